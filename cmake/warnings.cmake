@@ -1,0 +1,11 @@
+# Warnings for project code only (never applied to the dependencies' headers,
+# which are included as SYSTEM through their imported targets).
+add_library(lgi_warnings INTERFACE)
+target_compile_options(lgi_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion)
+
+# Floating-point policy: IEEE semantics everywhere. -ffp-contract=off keeps
+# the compiler from fusing a*b+c into an FMA, so conservation studies see the
+# rounding the source describes on every machine. -ffast-math is never used.
+add_library(lgi_fp_policy INTERFACE)
+target_compile_options(lgi_fp_policy INTERFACE -ffp-contract=off -fno-fast-math)

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs lgi's build and test dependencies from Debian 12's packages.
+# Safe to run twice: apt-get install is idempotent, and nothing is installed
+# when every package is already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev            # Eigen 3.4
+  libboost-dev             # Boost 1.74 headers: Odeint, Math
+  catch2                   # Catch2 2.13 (v2)
+  libhdf5-dev hdf5-tools   # HDF5 1.10, C and high-level API; h5dump for inspection
+  libcli11-dev             # CLI11
+  libtomlplusplus-dev      # toml++
+  libbenchmark-dev         # Google Benchmark
+  python3-matplotlib python3-h5py python3-numpy  # Debian's /usr/bin/python3 for plots
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed" >&2
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
