@@ -30,7 +30,8 @@ struct RigidBody {
     if constexpr (!has_torque) {
       return Vec3::Zero();
     } else {
-      return std::apply([&](const auto&... term) { return (term.torque(R, Pi, Omega, t) + ...); }, terms);
+      // The lambda returns Vec3, not an Eigen expression that would outlive its operands.
+      return std::apply([&](const auto&... term) -> Vec3 { return (term.torque(R, Pi, Omega, t) + ...); }, terms);
     }
   }
 

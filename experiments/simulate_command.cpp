@@ -1,0 +1,117 @@
+// lgi simulate: scene file → model → scheme → stepper loop → observer (HDF5).
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "experiments/commands.hpp"
+#include "experiments/exit_status.hpp"
+#include "experiments/scene_reader.hpp"
+#include "experiments/trajectory_observer.hpp"
+#include "integrators/registry.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
+
+std::string format_number(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+/// Validates flags against the scene and the scheme; fills the run config.
+integrators::RunConfig run_config(const SimulateOptions& o, const system::Scene& scene,
+                                  const integrators::SchemeInfo& scheme) {
+  integrators::RunConfig cfg;
+  cfg.t_end = o.t_end.value_or(scene.t_end);
+  if (!(cfg.t_end >= 0.0) || !std::isfinite(cfg.t_end)) throw UsageError("--t-end: must be a finite number >= 0");
+  if (o.save_every < 1) throw UsageError("--save-every: must be >= 1");
+  cfg.save_every = o.save_every;
+  if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a finite number > 0");
+  if (o.tol && !(*o.tol > 0.0 && std::isfinite(*o.tol))) throw UsageError("--tol: must be a finite number > 0");
+  if (scheme.properties.adaptive) {
+    if (!o.tol && !scene.tol)
+      throw UsageError("--tol: scheme '" + scheme.name + "' is adaptive and needs a tolerance: give --tol or [run] tol in " + scene.file);
+    cfg.tol = o.tol ? *o.tol : *scene.tol;
+    cfg.dt = o.dt.value_or(0.0);  // first trial step; 0 lets the scheme choose
+  } else {
+    if (o.tol) throw UsageError("--tol: scheme '" + scheme.name + "' is fixed-step; give --dt instead");
+    if (!o.dt && !scene.dt)
+      throw UsageError("--dt: scheme '" + scheme.name + "' needs a step: give --dt or [run] dt in " + scene.file);
+    cfg.dt = o.dt ? *o.dt : *scene.dt;
+  }
+  return cfg;
+}
+
+}  // namespace
+
+int simulate_command(const SimulateOptions& o) {
+  const system::Scene scene = read_scene(o.scene);
+  const integrators::SchemeInfo* scheme = integrators::find_scheme(o.scheme);
+  if (!scheme) throw UsageError("--scheme: unknown scheme '" + o.scheme + "' (lgi schemes lists them)");
+  const integrators::RunConfig cfg = run_config(o, scene, *scheme);
+  const system::AnyModel model = system::make_model(scene);
+  if (const std::string why = integrators::unsupported_reason(*scheme, model); !why.empty())
+    throw RunError(why + "; scene " + scene.file + " is not one");
+
+  const system::SceneInvariants invariants(scene, model);
+  Provenance prov;
+  prov.text_attributes = {{"scheme", scheme->name},
+                          {"scene_file", scene.file},
+                          {"scene_toml", scene.toml_text},
+                          {"scene_name", scene.name},
+                          {"command_line", o.command_line}};
+  if (scheme->properties.adaptive) {
+    prov.number_attributes["tol"] = cfg.tol;
+    if (cfg.dt > 0.0) prov.number_attributes["dt"] = cfg.dt;
+  } else {
+    prov.number_attributes["dt"] = cfg.dt;
+  }
+  prov.number_attributes["t_end"] = cfg.t_end;
+  prov.integer_attributes["save_every"] = cfg.save_every;
+
+  TrajectoryWriter writer(o.out, o.force, trajectory_layout(invariants), prov);
+  TrajectoryObserver observer(invariants, &writer);
+
+  interrupt_requested.store(false);
+  auto previous_int = std::signal(SIGINT, request_interrupt);
+  auto previous_term = std::signal(SIGTERM, request_interrupt);
+
+  system::State state = scene.initial;
+  integrators::RunStats stats;
+  try {
+    stats = scheme->run(model, state, cfg, observer);
+  } catch (const Interrupted& e) {
+    stats.ok = false;
+    stats.status = e.what();
+  }
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
+
+  Diagnostics diag;
+  diag.steps = stats.steps;
+  diag.rejected_steps = stats.work.rejected_steps;
+  diag.rhs_evaluations = stats.work.rhs_evaluations;
+  diag.newton_iterations_max = stats.work.newton_iterations_max;
+  diag.newton_failures = stats.work.newton_failures;
+  diag.cpu_seconds = stats.cpu_seconds;
+  diag.status = stats.status;
+  if (!stats.ok) {
+    writer.abandon(diag);
+    std::cerr << "lgi: " << scheme->name << " on " << scene.file << ": " << stats.status << "; partial trajectory kept in "
+              << writer.partial_path() << '\n';
+    return exit_run_failed;
+  }
+  writer.finish(diag);
+  if (!o.quiet) {
+    std::cout << "scheme=" << scheme->name << " steps=" << stats.steps << " rejected=" << stats.work.rejected_steps
+              << " rhs_evaluations=" << stats.work.rhs_evaluations << " cpu_seconds=" << format_number(stats.cpu_seconds)
+              << " t_end=" << format_number(stats.t_final) << ' ' << observer.invariant_error_summary() << '\n';
+  }
+  return exit_ok;
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,70 @@
+#include "experiments/trajectory_observer.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "lie/quaternion.hpp"
+
+namespace lgi::experiments {
+
+std::atomic<bool> interrupt_requested{false};
+
+TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants) {
+  TrajectoryLayout layout;
+  for (const auto& name : invariants.scalar_names()) {
+    const std::string unit = name == "kovalevskaya_k" ? "s-4" : "kg m+2 s-1";
+    layout.scalar_invariants.push_back({name, unit});
+  }
+  layout.space_momentum = invariants.free_body();
+  return layout;
+}
+
+void TrajectoryObserver::observe(std::int64_t step, double t, const system::State& s) {
+  if (interrupt_requested.load(std::memory_order_relaxed)) throw Interrupted("interrupted by signal");
+  latest_ = invariants_.evaluate(s);
+  latest_state_ = s;
+  latest_time_ = t;
+  if (!have_initial_) {
+    initial_ = latest_;
+    have_initial_ = true;
+  }
+  if (!writer_) return;
+  TrajectorySample sample;
+  sample.step = step;
+  sample.time = t;
+  sample.quaternion_wxyz = lie::to_wxyz(lie::quat_from_matrix(s.R));
+  sample.angular_momentum_body = s.Pi;
+  sample.angular_velocity_body = invariants_.omega(s);
+  sample.energy = latest_.energy;
+  sample.angular_momentum_space = latest_.space_momentum;
+  sample.invariant_count = invariants_.scalar_names().size();
+  for (std::size_t k = 0; k < sample.invariant_count; ++k) sample.invariants[k] = latest_.scalars[k];
+  sample.orthogonality_error = latest_.orthogonality_error;
+  writer_->append(sample);
+}
+
+std::string TrajectoryObserver::invariant_error_summary() const {
+  std::ostringstream out;
+  out.precision(3);
+  out << std::scientific;
+  const char* sep = "";
+  if (invariants_.energy_conserved()) {
+    out << "energy_error=" << system::relative_error(latest_.energy, initial_.energy);
+    sep = " ";
+  }
+  const auto& names = invariants_.scalar_names();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    out << sep << names[k] << "_error=" << system::relative_error(latest_.scalars[k], initial_.scalars[k]);
+    sep = " ";
+  }
+  if (invariants_.free_body()) {
+    const double m0 = initial_.space_momentum.norm();
+    const double d = (latest_.space_momentum - initial_.space_momentum).norm();
+    out << sep << "angular_momentum_space_error=" << (m0 > 0.0 ? d / m0 : d);
+    sep = " ";
+  }
+  out << sep << "orthogonality_error=" << latest_.orthogonality_error;
+  return out.str();
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,49 @@
+#pragma once
+// The scheme registry: every name a user can pass to --scheme, with its
+// order, family, properties, reference, and a function that runs it on any
+// scene's model. `lgi schemes` and the generic tests read this table.
+// Adding a scheme: write its header, then add one line to registry.cpp.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "integrators/stepper_loop.hpp"
+#include "integrators/system/model.hpp"
+
+namespace lgi::integrators {
+
+struct SchemeProperties {
+  bool symplectic = false;
+  bool symmetric = false;
+  bool conserves_energy = false;             // exactly, to round-off
+  bool conserves_momentum_norm = false;      // |Π| for a free body
+  bool conserves_spatial_momentum = false;   // m = RΠ for a free body
+  bool implicit = false;
+  bool adaptive = false;
+};
+
+enum class SceneSupport { any, free_body_only };
+
+/// Runs a scheme on a scene's model from the given state. Dispatches on the
+/// model once; the step loop inside is compiled for that model.
+using RunFunction = RunStats (*)(const system::AnyModel& model, State& state, const RunConfig& cfg,
+                                 Observer& observer);
+
+struct SchemeInfo {
+  std::string name;
+  int order = 0;              // 0: not applicable (exact)
+  std::string family;
+  SchemeProperties properties;
+  SceneSupport support = SceneSupport::any;
+  std::string reference;
+  std::string notes;
+  RunFunction run = nullptr;
+};
+
+const std::vector<SchemeInfo>& scheme_registry();
+/// nullptr if no scheme has that name.
+const SchemeInfo* find_scheme(std::string_view name);
+/// Empty if the scheme can run on the model, else the reason it cannot.
+std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model);
+
+}  // namespace lgi::integrators

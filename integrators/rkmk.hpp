@@ -1,0 +1,73 @@
+#pragma once
+// Runge–Kutta–Munthe-Kaas (RKMK) on SO(3) × ℝ³, driven by any explicit tableau.
+//
+// Munthe-Kaas, "High order Runge–Kutta methods on manifolds", Appl. Numer.
+// Math. 29 (1999) 115–127, Algorithm 1; Iserles, Munthe-Kaas, Nørsett &
+// Zanna, Acta Numerica 9 (2000) 215–365, §5.3, eq. (5.14); written in body
+// form (Ṙ = R Ω̂), see ../shared/design/math.md:
+//   for i = 1..s:  w_i = h Σ_{j<i} a_ij k̃_j,  R_i = R_n exp(w_i),
+//                  Π_i = Π_n + h Σ_{j<i} a_ij K_j,  Ω_i = J⁻¹Π_i,
+//                  k̃_i = dexp⁻¹_body(w_i) Ω_i = Ω_i + ½ w_i × Ω_i + c(|w_i|) w_i × (w_i × Ω_i),
+//                  K_i = Π_i × Ω_i + τ(R_i, Π_i, Ω_i, t_n + c_i h)
+//   R_{n+1} = R_n exp(h Σ b_i k̃_i),  Π_{n+1} = Π_n + h Σ b_i K_i.
+// Order: that of the tableau (the closed-form dexp⁻¹ is exact, so no
+// truncation condition applies). Conserves: RᵀR = I to round-off (the
+// attitude only moves by exp); no invariant of the dynamics exactly.
+// For a free body the stage attitudes R_i are never formed: the momentum
+// field does not depend on R.
+#include <array>
+
+#include "integrators/scheme_interface.hpp"
+#include "integrators/tableaus/runge_kutta.hpp"
+
+namespace lgi::integrators {
+
+template <const auto& Tableau>
+class Rkmk {
+ public:
+  static constexpr auto& tableau = Tableau;
+  static constexpr std::size_t stages = std::remove_cvref_t<decltype(Tableau)>::stages;
+
+  template <class Model>
+  StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
+    std::array<Vec3, stages> k_algebra;  // k̃_i
+    std::array<Vec3, stages> k_momentum; // K_i
+    for (std::size_t i = 0; i < stages; ++i) {
+      Vec3 w = Vec3::Zero();
+      Vec3 dPi = Vec3::Zero();
+      for (std::size_t j = 0; j < i; ++j) {
+        const double aij = Tableau.a[i][j];
+        if (aij == 0.0) continue;
+        w += aij * k_algebra[j];
+        dPi += aij * k_momentum[j];
+      }
+      w *= h;
+      const Vec3 Pi_i = s.Pi + h * dPi;
+      const Vec3 Omega_i = model.omega(Pi_i);
+      k_algebra[i] = i == 0 ? Omega_i : lie::dexpinv_body(w, Omega_i);
+      if constexpr (Model::has_torque) {
+        const Mat3 R_i = i == 0 ? s.R : Mat3(s.R * lie::exp_so3(w));
+        k_momentum[i] = model.momentum_rate(R_i, Pi_i, Omega_i, t + Tableau.c[i] * h);
+      } else {
+        k_momentum[i] = model.momentum_rate(s.R, Pi_i, Omega_i, t);
+      }
+    }
+    Vec3 w = Vec3::Zero();
+    Vec3 dPi = Vec3::Zero();
+    for (std::size_t i = 0; i < stages; ++i) {
+      w += Tableau.b[i] * k_algebra[i];
+      dPi += Tableau.b[i] * k_momentum[i];
+    }
+    s.R = s.R * lie::exp_so3(h * w);
+    s.Pi += h * dPi;
+    work.rhs_evaluations += static_cast<std::int64_t>(stages);
+    return {};
+  }
+};
+
+using LieEuler = Rkmk<tableaus::euler>;
+using Rkmk2 = Rkmk<tableaus::heun>;
+using Rkmk3 = Rkmk<tableaus::kutta3>;
+using Rkmk4 = Rkmk<tableaus::classical_rk4>;
+
+}  // namespace lgi::integrators

@@ -1,0 +1,158 @@
+#pragma once
+// The stepper loop: drives a scheme over [t0, t_end] and hands samples to
+// an observer. It owns the step count, the time grid, the checks that stop
+// a run (non-finite state, an implicit solve that did not converge, a
+// collapsing adaptive step) and the CPU clock. It knows no file format.
+#include <cmath>
+#include <cstdint>
+#include <ctime>
+#include <sstream>
+#include <string>
+
+#include "integrators/scheme_interface.hpp"
+
+namespace lgi::integrators {
+
+struct RunConfig {
+  double t0 = 0.0;
+  double t_end = 0.0;
+  double dt = 0.0;            // fixed step, or the first trial step of an adaptive scheme (0: automatic)
+  double tol = 0.0;           // adaptive schemes only
+  std::int64_t save_every = 1;  // observe every N steps; the initial and final states always
+};
+
+/// Receives the samples of a run. Called once per saved step (never inside
+/// the stage loop), so a virtual call costs nothing measurable.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void observe(std::int64_t step, double t, const State& s) = 0;
+};
+
+/// An observer that keeps nothing.
+class NullObserver final : public Observer {
+ public:
+  void observe(std::int64_t, double, const State&) override {}
+};
+
+struct RunStats {
+  std::int64_t steps = 0;
+  WorkCounters work{};
+  double cpu_seconds = 0.0;
+  double t_final = 0.0;
+  bool ok = true;
+  std::string status = "ok";  // or the reason the run stopped
+};
+
+namespace detail {
+inline double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+inline bool finite_state(const State& s) { return s.R.allFinite() && s.Pi.allFinite(); }
+inline void record_solve(const StepStatus& st, WorkCounters& work) {
+  if (st.iterations > work.newton_iterations_max) work.newton_iterations_max = st.iterations;
+  if (!st.converged) ++work.newton_failures;
+}
+inline std::string failure_message(const char* what, std::int64_t step, double t, const StepStatus* st) {
+  std::ostringstream m;
+  m.precision(17);
+  m << what << " at step " << step << ", t = " << t;
+  if (st) m << " (" << st->iterations << " iterations, residual " << st->residual << ")";
+  return m.str();
+}
+template <class Scheme, class Model>
+concept has_start = requires(Scheme& s, const Model& m, const State& x) { s.start(m, x, 0.0); };
+}  // namespace detail
+
+/// Number of fixed steps covering [t0, t_end]: the nearest integer to
+/// span/dt when span is a whole multiple of dt up to 1e-10 relative,
+/// otherwise one more step, and the last step ends exactly at t_end.
+inline std::int64_t fixed_step_count(double span, double dt) {
+  if (span <= 0.0) return 0;
+  const double ratio = span / dt;
+  const double nearest = std::round(ratio);
+  if (nearest >= 1.0 && std::abs(ratio - nearest) <= 1e-10 * nearest) return static_cast<std::int64_t>(nearest);
+  return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+/// Fixed-step run. Step k covers [t0 + k h, t0 + (k+1) h] (times are
+/// computed, not accumulated); the last step is clipped to t_end.
+template <class Scheme, class Model>
+RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const RunConfig& cfg, Observer& observer) {
+  RunStats stats;
+  const double cpu0 = detail::cpu_now();
+  if constexpr (detail::has_start<Scheme, Model>) scheme.start(model, s, cfg.t0);
+  const std::int64_t n = fixed_step_count(cfg.t_end - cfg.t0, cfg.dt);
+  observer.observe(0, cfg.t0, s);
+  double t = cfg.t0;
+  for (std::int64_t k = 0; k < n; ++k) {
+    const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + static_cast<double>(k + 1) * cfg.dt;
+    const StepStatus st = scheme.step(model, s, t, t_next - t, stats.work);
+    detail::record_solve(st, stats.work);
+    stats.steps = k + 1;
+    if (!st.converged) {
+      stats.ok = false;
+      stats.status = detail::failure_message("implicit solve did not converge", k + 1, t_next, &st);
+      break;
+    }
+    if (!detail::finite_state(s)) {
+      stats.ok = false;
+      stats.status = detail::failure_message("state became non-finite (blow-up)", k + 1, t_next, nullptr);
+      break;
+    }
+    t = t_next;
+    if ((k + 1) % cfg.save_every == 0 || k + 1 == n) observer.observe(k + 1, t, s);
+  }
+  stats.t_final = t;
+  stats.cpu_seconds = detail::cpu_now() - cpu0;
+  return stats;
+}
+
+/// Adaptive run: accepted steps advance, rejected ones retry with the
+/// proposed smaller step. The run stops (status not ok) if the step falls
+/// below 1e-14·max(1, |t|): the error target cannot be met in double precision.
+template <class Scheme, class Model>
+RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const RunConfig& cfg, Observer& observer) {
+  RunStats stats;
+  const double cpu0 = detail::cpu_now();
+  if constexpr (detail::has_start<Scheme, Model>) scheme.start(model, s, cfg.t0);
+  observer.observe(0, cfg.t0, s);
+  double t = cfg.t0;
+  const double span = cfg.t_end - cfg.t0;
+  double h = cfg.dt > 0.0 ? std::min(cfg.dt, span) : scheme.initial_step(model, s, t, span);
+  std::int64_t k = 0;
+  while (span > 0.0 && t < cfg.t_end) {
+    const bool last = t + h >= cfg.t_end || (cfg.t_end - (t + h)) < 1e-12 * std::abs(cfg.t_end);
+    const double h_try = last ? cfg.t_end - t : h;
+    const State before = s;
+    const AdaptiveStatus a = scheme.attempt(model, s, t, h_try, stats.work);
+    detail::record_solve(a.solve, stats.work);
+    if (!a.accepted) {
+      s = before;
+      h = a.h_next;
+      if (!(h >= 1e-14 * std::max(1.0, std::abs(t)))) {
+        stats.ok = false;
+        stats.status = detail::failure_message("adaptive step size collapsed below 1e-14", k, t, nullptr);
+        break;
+      }
+      continue;
+    }
+    ++k;
+    t = last ? cfg.t_end : t + h_try;
+    stats.steps = k;
+    if (!detail::finite_state(s)) {
+      stats.ok = false;
+      stats.status = detail::failure_message("state became non-finite (blow-up)", k, t, nullptr);
+      break;
+    }
+    if (k % cfg.save_every == 0 || t >= cfg.t_end) observer.observe(k, t, s);
+    h = a.h_next;
+  }
+  stats.t_final = t;
+  stats.cpu_seconds = detail::cpu_now() - cpu0;
+  return stats;
+}
+
+}  // namespace lgi::integrators

@@ -1,0 +1,73 @@
+#include "integrators/system/invariants.hpp"
+
+#include <cmath>
+#include <variant>
+
+namespace lgi::system {
+namespace {
+bool nearly(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); }
+bool is_diagonal(const Mat3& J) { return J(0, 1) == 0.0 && J(0, 2) == 0.0 && J(1, 2) == 0.0; }
+}  // namespace
+
+SceneInvariants::SceneInvariants(const Scene& scene, const AnyModel& model) : model_(&model) {
+  free_body_ = std::holds_alternative<FreeBody>(model);
+  heavy_top_ = std::holds_alternative<HeavyTop>(model);
+  const Mat3& J = scene.inertia;
+  if (heavy_top_ && is_diagonal(J) && scene.center_of_mass) {
+    const Vec3 chi = *scene.center_of_mass;
+    lagrange_ = nearly(J(0, 0), J(1, 1)) && chi.x() == 0.0 && chi.y() == 0.0;
+    kovalevskaya_ = nearly(J(0, 0), J(1, 1)) && nearly(J(0, 0), 2.0 * J(2, 2)) && chi.y() == 0.0 && chi.z() == 0.0 &&
+                    chi.x() != 0.0;
+    if (kovalevskaya_) kovalevskaya_c_ = *scene.mass * scene.gravity->g * chi.x() / J(2, 2);
+  }
+  const bool undamped_spring =
+      std::holds_alternative<SpringBody>(model) && scene.spring && scene.spring->damping == 0.0;
+  energy_conserved_ = free_body_ || heavy_top_ || undamped_spring ||
+                      (std::holds_alternative<HeavyTopSpring>(model) && scene.spring->damping == 0.0);
+  if (free_body_) names_.push_back("angular_momentum_norm");
+  if (heavy_top_) names_.push_back("casimir_vertical_momentum");
+  if (lagrange_) names_.push_back("lagrange_spin_momentum");
+  if (kovalevskaya_) names_.push_back("kovalevskaya_k");
+}
+
+std::vector<std::string> SceneInvariants::all_names() const {
+  std::vector<std::string> all;
+  if (energy_conserved_) all.push_back("energy");
+  for (const auto& n : names_) all.push_back(n);
+  if (free_body_) all.push_back("angular_momentum_space");
+  return all;
+}
+
+double SceneInvariants::energy(const State& s) const {
+  return std::visit([&](const auto& m) { return m.energy(s); }, *model_);
+}
+
+Vec3 SceneInvariants::omega(const State& s) const {
+  return std::visit([&](const auto& m) { return Vec3(m.omega(s.Pi)); }, *model_);
+}
+
+InvariantValues SceneInvariants::evaluate(const State& s) const {
+  InvariantValues v;
+  v.energy = energy(s);
+  v.orthogonality_error = lie::orthogonality_error(s.R);
+  std::size_t k = 0;
+  if (free_body_) {
+    v.space_momentum = s.R * s.Pi;
+    v.scalars[k++] = s.Pi.norm();
+  }
+  if (heavy_top_) {
+    const Vec3 Gamma = s.R.row(2).transpose();
+    v.scalars[k++] = s.Pi.dot(Gamma);
+    if (lagrange_) v.scalars[k++] = s.Pi.z();
+    if (kovalevskaya_) {
+      const Vec3 W = omega(s);
+      const double c = kovalevskaya_c_;
+      const double a = W.x() * W.x() - W.y() * W.y() - c * Gamma.x();
+      const double b = 2.0 * W.x() * W.y() - c * Gamma.y();
+      v.scalars[k++] = a * a + b * b;
+    }
+  }
+  return v;
+}
+
+}  // namespace lgi::system

@@ -1,0 +1,69 @@
+#pragma once
+// Minimal HDF5 reading for tests (C API): a dataset as a flat vector of
+// doubles with its shape, and string attributes.
+#include <hdf5.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lgi::testing {
+
+struct H5Array {
+  std::vector<double> data;
+  std::vector<hsize_t> shape;
+};
+
+inline H5Array read_dataset(const std::string& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open " + file);
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  if (d < 0) {
+    H5Fclose(f);
+    throw std::runtime_error("no dataset " + name + " in " + file);
+  }
+  const hid_t sp = H5Dget_space(d);
+  const int rank = H5Sget_simple_extent_ndims(sp);
+  H5Array a;
+  a.shape.resize(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(sp, a.shape.data(), nullptr);
+  hsize_t n = 1;
+  for (auto s : a.shape) n *= s;
+  a.data.resize(n);
+  if (n) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a.data.data());
+  H5Sclose(sp);
+  H5Dclose(d);
+  H5Fclose(f);
+  return a;
+}
+
+inline std::string read_string_attribute(const std::string& file, const std::string& object, const std::string& attr) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open " + file);
+  const hid_t a = H5Aopen_by_name(f, object.c_str(), attr.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  std::string out;
+  if (a >= 0) {
+    const hid_t t = H5Aget_type(a);
+    if (H5Tis_variable_str(t) > 0) {
+      char* s = nullptr;
+      const hid_t mt = H5Tcopy(H5T_C_S1);
+      H5Tset_size(mt, H5T_VARIABLE);
+      H5Tset_cset(mt, H5Tget_cset(t));
+      H5Aread(a, mt, &s);
+      if (s) out = s;
+      H5free_memory(s);
+      H5Tclose(mt);
+    } else {
+      const std::size_t size = H5Tget_size(t);
+      std::vector<char> buf(size + 1, '\0');
+      H5Aread(a, t, buf.data());
+      out = std::string(buf.data());
+    }
+    H5Tclose(t);
+    H5Aclose(a);
+  }
+  H5Fclose(f);
+  return out;
+}
+
+}  // namespace lgi::testing

@@ -1,0 +1,51 @@
+#pragma once
+// Runs the lgi executable as a user would, capturing exit status, stdout and stderr.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace lgi::testing {
+
+struct CommandResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+inline std::string scratch_dir(const std::string& name) {
+  const std::string dir = std::string(LGI_TEST_TMPDIR) + "/" + name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+/// Runs `lgi <args>` (args already shell-quoted where needed).
+inline CommandResult run_lgi(const std::string& args, const std::string& workdir = LGI_TEST_TMPDIR) {
+  static int counter = 0;
+  const std::string base = workdir + "/cmd" + std::to_string(++counter);
+  const std::string cmd = std::string(LGI_EXECUTABLE) + " " + args + " > " + base + ".out 2> " + base + ".err";
+  const int raw = std::system(cmd.c_str());
+  CommandResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = read_text(base + ".out");
+  r.err = read_text(base + ".err");
+  return r;
+}
+
+inline int line_count(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+}  // namespace lgi::testing
