@@ -46,7 +46,7 @@ system::State run_registered(const integrators::SchemeInfo& scheme, const system
 std::vector<double> step_sizes(int order) {
   // Coarser steps for high orders keep the errors above the round-off plateau.
   std::vector<double> hs;
-  double h = order >= 4 ? 0.2 : 0.1;
+  double h = order >= 4 ? 0.2 : order >= 2 ? 0.1 : 0.01;
   for (int k = 0; k < 6; ++k, h *= 0.5) hs.push_back(h);
   return hs;
 }
@@ -80,7 +80,7 @@ TEST_CASE("every explicit scheme converges at its nominal order on the asymmetri
     CHECK(std::abs(fit.slope - scheme.order) <= 0.2);
     ++tested;
   }
-  CHECK(tested >= 8);
+  CHECK(tested >= 7);  // lie-euler, rkmk2, rkmk3, rkmk4, cg3, cg4a, cf4
 }
 
 TEST_CASE("every explicit scheme converges at its nominal order on a driven general heavy top", "[order]") {
@@ -104,9 +104,12 @@ TEST_CASE("every explicit scheme converges at its nominal order on a driven gene
 }
 
 TEST_CASE("the Dormand-Prince pair behind rkmk-dp54 has order 5 at fixed steps", "[order]") {
-  auto check = [](const auto& model, const system::State& x0, double T, const system::State& ref, const char* what) {
+  // The asymptotic regime starts at smaller h on the free body, whose DP5
+  // error constant nearly cancels at coarse steps (ratios 90, 47, 24, 27, 30).
+  auto check = [](const auto& model, const system::State& x0, double T, const system::State& ref, const char* what,
+                  double h_max, double floor) {
     std::vector<ConvergencePoint> pts;
-    for (double h = 0.4; h > 0.01; h *= 0.5) {
+    for (double h = h_max; h > 0.01; h *= 0.5) {
       integrators::RkmkDp54 scheme(1.0);
       system::State x = x0;
       integrators::RunConfig cfg;
@@ -117,7 +120,7 @@ TEST_CASE("the Dormand-Prince pair behind rkmk-dp54 has order 5 at fixed steps",
       REQUIRE(integrators::integrate_fixed(scheme, model, x, cfg, none).ok);
       pts.push_back({h, testing::global_error(x, ref)});
     }
-    const auto fit = testing::fitted_slope(pts);
+    const auto fit = testing::fitted_slope(pts, floor);
     report("dp54 (fixed step)", what, fit, pts);
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - 5.0) <= 0.2);
@@ -126,12 +129,13 @@ TEST_CASE("the Dormand-Prince pair behind rkmk-dp54 has order 5 at fixed steps",
     const system::Scene scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
     const auto model = std::get<system::FreeBody>(system::make_model(scene));
     check(model, scene.initial, 10.0, system::FreeBodyExactFlow(model.inertia, scene.initial).at(10.0),
-          "free_body_hlw");
+          "free_body_hlw", 0.05, 5e-14);
   }
   {
     const system::Scene scene = driven_general_top();
     const auto model = std::get<system::DrivenHeavyTop>(system::make_model(scene));
-    check(model, scene.initial, 5.0, testing::reference_solution(model, scene.initial, 0.0, 5.0), "driven general top");
+    check(model, scene.initial, 5.0, testing::reference_solution(model, scene.initial, 0.0, 5.0), "driven general top",
+          0.1, 1e-11);
   }
 }
 
