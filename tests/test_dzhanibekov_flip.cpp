@@ -46,15 +46,35 @@ TEST_CASE("dzhanibekov_book_axis2 flips, and rkmk4 at dt = 1e-3 matches exact to
   REQUIRE(flips_exact.size() == flips.size());
   for (std::size_t i = 0; i < flips.size(); ++i) CHECK(std::abs(flips[i] - flips_exact[i]) < 1e-6);
 
-  // Order-4 error at h = 1e-3 with |Ω| = 10: (h|Ω|)^4 = 1e-8 per unit time,
-  // amplified near the separatrix; measured 3e-8 relative (see the issue note).
-  double worst = 0.0;
-  for (std::size_t i = 0; i < w_rk.data.size(); i += 3) {
-    double d = 0.0;
-    for (int k = 0; k < 3; ++k) d += std::pow(w_rk.data[i + k] - w_ex.data[i + k], 2);
-    worst = std::max(worst, std::sqrt(d) / 10.0);
-  }
-  INFO("max |Ω_rkmk4 − Ω_exact| / |Ω| = " << worst);
-  CHECK(worst < 1e-6);
-  CHECK(worst > 1e-12);  // not trivially identical: the two runs are independent
+  // "Agrees to the order-4 error expected at that step". Near the separatrix
+  // the flow amplifies perturbations ~1e3-fold per flip, so below h ≈ 2e-3
+  // the deviation sits on a round-off floor of ~1e-9 (measured, relative:
+  // 7.6e-7, 4.6e-8, 3.8e-9, 9.3e-10, 4.9e-9 at h = 8e-3 … 5e-4). So: at
+  // h = 1e-3 the deviation is at that floor, and at coarser steps it is
+  // rkmk4's truncation error, falling 16-fold per halving.
+  // Deviation at the sample times common to all runs (multiples of 8e-3).
+  auto worst_deviation = [&](const H5Array& w, std::size_t stride) {
+    double worst = 0.0;
+    for (std::size_t j = 0; 3 * j * stride < w.data.size(); ++j) {
+      const std::size_t i = 3 * j * stride;
+      double d = 0.0, n = 0.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        d += std::pow(w.data[i + k] - w_ex.data[3 * j * 8 + k], 2);
+        n += std::pow(w_ex.data[3 * j * 8 + k], 2);
+      }
+      worst = std::max(worst, std::sqrt(d / n));
+    }
+    return worst;
+  };
+  auto run_rkmk4 = [&](const char* dt) {
+    const std::string file = dir + "/rkmk4_" + dt + ".h5";
+    REQUIRE(run_lgi("simulate --scene " + scene + " --scheme rkmk4 --dt " + dt + " --out " + file).status == 0);
+    return read_dataset(file, "/particles/body/angular_velocity_body/value");
+  };
+  const double e1 = worst_deviation(w_rk, 8);
+  const double e4 = worst_deviation(run_rkmk4("4e-3"), 2);
+  const double e8 = worst_deviation(run_rkmk4("8e-3"), 1);
+  INFO("max |Ω_rkmk4 − Ω_exact| / |Ω|: " << e8 << " at h = 8e-3, " << e4 << " at 4e-3, " << e1 << " at 1e-3");
+  CHECK(e1 < 3e-9);
+  CHECK(e8 / e4 == Approx(16.0).margin(3.0));
 }
