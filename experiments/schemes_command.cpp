@@ -31,13 +31,19 @@ std::string property_list(const integrators::SchemeProperties& p) {
   add(p.conserves_energy, "energy");
   add(p.conserves_momentum_norm, "|Pi|");
   add(p.conserves_spatial_momentum, "spatial-momentum");
+  add(p.conserves_vertical_momentum, "Pi.Gamma");
   add(p.implicit, "implicit");
   add(p.adaptive, "adaptive");
   return s.empty() ? "-" : s;
 }
 
 const char* support_text(integrators::SceneSupport s) {
-  return s == integrators::SceneSupport::free_body_only ? "free bodies" : "all scenes";
+  switch (s) {
+    case integrators::SceneSupport::free_body_only: return "free bodies";
+    case integrators::SceneSupport::conservative_only: return "conservative";
+    case integrators::SceneSupport::any: break;
+  }
+  return "all scenes";
 }
 
 }  // namespace
@@ -54,6 +60,8 @@ int schemes_command(const SchemesOptions& options) {
                 << ", \"conserves_energy\": " << p.conserves_energy
                 << ", \"conserves_momentum_norm\": " << p.conserves_momentum_norm
                 << ", \"conserves_spatial_momentum\": " << p.conserves_spatial_momentum
+                << ", \"conserves_vertical_momentum\": " << p.conserves_vertical_momentum
+                << ", \"baseline\": " << p.baseline
                 << ", \"implicit\": " << p.implicit << ", \"adaptive\": " << p.adaptive << ", \"scenes\": \""
                 << support_text(s.support) << "\", \"reference\": \"" << json_escape(s.reference)
                 << "\", \"notes\": \"" << json_escape(s.notes) << "\"}" << (i + 1 < registry.size() ? "," : "")

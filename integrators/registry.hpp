@@ -14,15 +14,22 @@ namespace lgi::integrators {
 
 struct SchemeProperties {
   bool symplectic = false;
-  bool symmetric = false;
+  bool symmetric = false;                    // Φ₋ₕ ∘ Φₕ = id (tested to round-off)
   bool conserves_energy = false;             // exactly, to round-off
   bool conserves_momentum_norm = false;      // |Π| for a free body
   bool conserves_spatial_momentum = false;   // m = RΠ for a free body
+  bool conserves_vertical_momentum = false;  // Π·Γ for a heavy top
   bool implicit = false;
   bool adaptive = false;
+  bool baseline = false;                     // a Boost.Odeint baseline in coordinates, not a Lie-group scheme
 };
 
-enum class SceneSupport { any, free_body_only };
+/// Which scenes a scheme can run on; others are refused with exit 1.
+enum class SceneSupport {
+  any,
+  free_body_only,     // needs the free body (the exact flow, DMV without splitting)
+  conservative_only,  // torques from a potential only: no damping, no drive
+};
 
 /// Runs a scheme on a scene's model from the given state. Dispatches on the
 /// model once; the step loop inside is compiled for that model.
@@ -41,6 +48,14 @@ struct SchemeInfo {
 };
 
 const std::vector<SchemeInfo>& scheme_registry();
+
+/// Registration, one function per family, each in its own registry_<family>.cpp.
+void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& registry);
+void add_variational_schemes(std::vector<SchemeInfo>& registry);        // dmv, lgvi, dmv-pre*
+void add_energy_momentum_schemes(std::vector<SchemeInfo>& registry);    // simo-wong
+void add_splitting_schemes(std::vector<SchemeInfo>& registry);          // split-exact
+void add_implicit_schemes(std::vector<SchemeInfo>& registry);           // rkmk-gauss*, L-stable scheme
+void add_baseline_schemes(std::vector<SchemeInfo>& registry);           // COORDS/STEPPER (Boost.Odeint)
 /// nullptr if no scheme has that name.
 const SchemeInfo* find_scheme(std::string_view name);
 /// Empty if the scheme can run on the model, else the reason it cannot.
