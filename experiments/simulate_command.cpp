@@ -73,7 +73,7 @@ int simulate_command(const SimulateOptions& o) {
   prov.number_attributes["t_end"] = cfg.t_end;
   prov.integer_attributes["save_every"] = cfg.save_every;
 
-  TrajectoryWriter writer(o.out, o.force, trajectory_layout(invariants), prov);
+  TrajectoryWriter writer(o.out, o.force, trajectory_layout(invariants, scheme->properties.euler_angle_chart), prov);
   TrajectoryObserver observer(invariants, &writer);
 
   interrupt_requested.store(false);

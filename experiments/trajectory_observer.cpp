@@ -9,13 +9,14 @@ namespace lgi::experiments {
 
 std::atomic<bool> interrupt_requested{false};
 
-TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants) {
+TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants, bool euler_zxz) {
   TrajectoryLayout layout;
   for (const auto& name : invariants.scalar_names()) {
     const std::string unit = name == "kovalevskaya_k" ? "s-4" : "kg m+2 s-1";
     layout.scalar_invariants.push_back({name, unit});
   }
   layout.space_momentum = invariants.free_body();
+  layout.euler_zxz = euler_zxz;
   return layout;
 }
 
@@ -40,6 +41,7 @@ void TrajectoryObserver::observe(std::int64_t step, double t, const system::Stat
   sample.invariant_count = invariants_.scalar_names().size();
   for (std::size_t k = 0; k < sample.invariant_count; ++k) sample.invariants[k] = latest_.scalars[k];
   sample.orthogonality_error = latest_.orthogonality_error;
+  sample.euler_zxz = euler_zxz_;
   writer_->append(sample);
 }
 

@@ -20,7 +20,7 @@ struct Interrupted : std::runtime_error {
 };
 
 /// The file layout for a scene's invariants (units in H5MD spelling).
-TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants);
+TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants, bool euler_zxz = false);
 
 class TrajectoryObserver final : public integrators::Observer {
  public:
@@ -28,6 +28,7 @@ class TrajectoryObserver final : public integrators::Observer {
       : invariants_(invariants), writer_(writer) {}
 
   void observe(std::int64_t step, double t, const system::State& s) override;
+  void observe_euler_zxz(const lie::EulerZXZ& angles) override { euler_zxz_ = {angles.psi, angles.theta, angles.phi}; }
 
   bool has_samples() const { return have_initial_; }
   const system::InvariantValues& initial() const { return initial_; }
@@ -44,6 +45,7 @@ class TrajectoryObserver final : public integrators::Observer {
   system::InvariantValues initial_{}, latest_{};
   system::State latest_state_{};
   double latest_time_ = 0.0;
+  std::array<double, 3> euler_zxz_{};  // the last angles a chart-based scheme reported
 };
 
 }  // namespace lgi::experiments

@@ -22,6 +22,7 @@ struct SchemeProperties {
   bool implicit = false;
   bool adaptive = false;
   bool baseline = false;                     // a Boost.Odeint baseline in coordinates, not a Lie-group scheme
+  bool euler_angle_chart = false;            // integrates Euler ZXZ angles: /particles/body/euler_zxz is written
 };
 
 /// Which scenes a scheme can run on; others are refused with exit 1.

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "integrators/scheme_interface.hpp"
+#include "lie/charts.hpp"
 
 namespace lgi::integrators {
 
@@ -27,6 +28,9 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void observe(std::int64_t step, double t, const State& s) = 0;
+  /// Schemes that integrate Euler angles call this right before observe()
+  /// with the raw integrated angles (unwrapped), for /particles/body/euler_zxz.
+  virtual void observe_euler_zxz(const lie::EulerZXZ& /*angles*/) {}
 };
 
 /// An observer that keeps nothing.
