@@ -1,4 +1,5 @@
 // lgi schemes: the registry as a table, or as JSON for machines.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -62,6 +63,7 @@ int schemes_command(const SchemesOptions& options) {
                 << ", \"conserves_spatial_momentum\": " << p.conserves_spatial_momentum
                 << ", \"conserves_vertical_momentum\": " << p.conserves_vertical_momentum
                 << ", \"baseline\": " << p.baseline
+                << ", \"order_with_torque\": " << (s.order_with_torque ? s.order_with_torque : s.order)
                 << ", \"implicit\": " << p.implicit << ", \"adaptive\": " << p.adaptive << ", \"scenes\": \""
                 << support_text(s.support) << "\", \"reference\": \"" << json_escape(s.reference)
                 << "\", \"notes\": \"" << json_escape(s.notes) << "\"}" << (i + 1 < registry.size() ? "," : "")
@@ -70,14 +72,27 @@ int schemes_command(const SchemesOptions& options) {
     std::cout << "]\n";
     return exit_ok;
   }
-  std::cout << std::left << std::setw(12) << "name" << std::setw(7) << "order" << std::setw(17) << "family"
-            << std::setw(38) << "properties (exactly conserved)" << std::setw(13) << "scenes"
-            << "reference\n";
+  // Column widths follow the longest entry, so the table stays aligned as schemes are added.
+  std::size_t w_name = 4, w_family = 6, w_props = 10;
   for (const auto& s : registry) {
-    std::cout << std::left << std::setw(12) << s.name << std::setw(7) << (s.order > 0 ? std::to_string(s.order) : "-")
-              << std::setw(17) << s.family << std::setw(38) << property_list(s.properties) << std::setw(13)
-              << support_text(s.support) << s.reference << (s.notes.empty() ? "" : " [" + s.notes + "]") << '\n';
+    w_name = std::max(w_name, s.name.size());
+    w_family = std::max(w_family, s.family.size());
+    w_props = std::max(w_props, property_list(s.properties).size());
   }
+  const auto name_w = static_cast<int>(w_name + 2), family_w = static_cast<int>(w_family + 2),
+             props_w = static_cast<int>(w_props + 2);
+  std::cout << std::left << std::setw(name_w) << "name" << std::setw(7) << "order" << std::setw(family_w) << "family"
+            << std::setw(props_w) << "properties" << std::setw(14) << "scenes"
+            << "reference [notes]\n";
+  for (const auto& s : registry) {
+    std::string order = s.order > 0 ? std::to_string(s.order) : "-";
+    if (s.order_with_torque) order += "/" + std::to_string(s.order_with_torque);
+    std::cout << std::left << std::setw(name_w) << s.name << std::setw(7) << order << std::setw(family_w) << s.family
+              << std::setw(props_w) << property_list(s.properties) << std::setw(14) << support_text(s.support)
+              << s.reference << (s.notes.empty() ? "" : " [" + s.notes + "]") << '\n';
+  }
+  std::cout << "properties: exactly conserved where the quantity is an invariant of the scene "
+               "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top); order a/b: a on free bodies, b with torques\n";
   return exit_ok;
 }
 

@@ -46,6 +46,7 @@ struct SchemeInfo {
   std::string reference;
   std::string notes;
   RunFunction run = nullptr;
+  int order_with_torque = 0;  // order on scenes with torques where it differs (Strang splitting); 0: the same
 };
 
 const std::vector<SchemeInfo>& scheme_registry();

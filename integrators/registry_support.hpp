@@ -38,3 +38,34 @@ RunStats run_fixed_free_body(const system::AnyModel& model, State& state, const 
 }
 
 }  // namespace lgi::integrators
+
+#include "integrators/composition.hpp"
+
+namespace lgi::integrators {
+
+/// Registers BASE@yoshida4, @suzuki4, @kahan-li6 and @kahan-li8 for a
+/// symmetric scheme of order 2 (the coefficients raise order 2 to 4, 6, 8;
+/// they do not do so for other orders, so other bases are refused here).
+template <class Base>
+void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base) {
+  if (!base.properties.symmetric || base.order != 2) return;
+  auto add = [&](const auto& coefficients, RunFunction run) {
+    SchemeInfo info = base;
+    info.name = base.name + "@" + coefficients.name;
+    info.order = coefficients.order;
+    // A composition of a method that drops to order 2 with torques stays at 2 there.
+    info.order_with_torque = base.order_with_torque ? 2 : 0;
+    info.family = "composition of " + base.name;
+    info.reference = std::string(coefficients.citation) + "; base: " + base.name;
+    info.notes = std::to_string(coefficients.stages) + " stages of " + base.name +
+                 (base.notes.empty() ? "" : "; " + base.notes);
+    info.run = run;
+    registry.push_back(info);
+  };
+  add(tableaus::yoshida4, &run_fixed<Composition<Base, tableaus::yoshida4>>);
+  add(tableaus::suzuki4, &run_fixed<Composition<Base, tableaus::suzuki4>>);
+  add(tableaus::kahan_li6, &run_fixed<Composition<Base, tableaus::kahan_li6>>);
+  add(tableaus::kahan_li8, &run_fixed<Composition<Base, tableaus::kahan_li8>>);
+}
+
+}  // namespace lgi::integrators

@@ -82,17 +82,20 @@ inline std::int64_t fixed_step_count(double span, double dt) {
 }
 
 /// Fixed-step run. Step k covers [t0 + k h, t0 + (k+1) h] (times are
-/// computed, not accumulated); the last step is clipped to t_end.
+/// computed, not accumulated); the last step is clipped to t_end. If
+/// t_end < t0 the run goes backward in time with steps of −dt (used to check
+/// the symmetry Φ₋ₕ ∘ Φₕ = id through the registry).
 template <class Scheme, class Model>
 RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const RunConfig& cfg, Observer& observer) {
   RunStats stats;
   const double cpu0 = detail::cpu_now();
   if constexpr (detail::has_start<Scheme, Model>) scheme.start(model, s, cfg.t0);
-  const std::int64_t n = fixed_step_count(cfg.t_end - cfg.t0, cfg.dt);
+  const double direction = cfg.t_end < cfg.t0 ? -1.0 : 1.0;
+  const std::int64_t n = fixed_step_count(direction * (cfg.t_end - cfg.t0), cfg.dt);
   observer.observe(0, cfg.t0, s);
   double t = cfg.t0;
   for (std::int64_t k = 0; k < n; ++k) {
-    const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + static_cast<double>(k + 1) * cfg.dt;
+    const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + direction * static_cast<double>(k + 1) * cfg.dt;
     const StepStatus st = scheme.step(model, s, t, t_next - t, stats.work);
     detail::record_solve(st, stats.work);
     stats.steps = k + 1;
