@@ -52,8 +52,17 @@ inline EulerZXZExtraction euler_zxz_from_matrix(const Mat3& R, double phi_hint =
   const double s = std::hypot(R(2, 0), R(2, 1));  // sinθ ≥ 0
   out.angles.theta = std::atan2(s, R(2, 2));
   if (s >= singular_threshold) {
-    out.angles.psi = std::atan2(R(0, 2), -R(1, 2));
     out.angles.phi = std::atan2(R(2, 0), R(2, 1));
+    // ψ from the third column, atan2(R02, −R12), carries an error ε/sinθ that
+    // does not cancel against φ's, so R was reproduced only to ~ε/sinθ (5e-7
+    // just above the threshold). ψ ± φ are well conditioned:
+    //   R00 + R11 = (1 + cosθ) cos(ψ + φ),  R10 − R01 = (1 + cosθ) sin(ψ + φ),
+    //   R00 − R11 = (1 − cosθ) cos(ψ − φ),  R10 + R01 = (1 − cosθ) sin(ψ − φ);
+    // taking ψ = (ψ ± φ) ∓ φ makes φ's error only tilt the axis of the small
+    // rotation by θ (or π − θ), which costs O(ε) in R.
+    const double psi = R(2, 2) >= 0.0 ? std::atan2(R(1, 0) - R(0, 1), R(0, 0) + R(1, 1)) - out.angles.phi
+                                      : std::atan2(R(1, 0) + R(0, 1), R(0, 0) - R(1, 1)) + out.angles.phi;
+    out.angles.psi = std::remainder(psi, 2.0 * std::numbers::pi);  // in [−π, π]
     return out;
   }
   out.singular = true;

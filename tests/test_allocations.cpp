@@ -1,0 +1,56 @@
+// Steps allocate nothing: for every registered scheme, the number of heap
+// allocations of a run does not depend on its number of steps (per-run
+// set-up may allocate, a step may not). Counted by replacing the global
+// operator new in this test executable.
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <new>
+
+#include "experiments/scene_reader.hpp"
+#include "integrators/registry.hpp"
+
+namespace {
+std::atomic<long> allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace lgi;
+
+namespace {
+long allocations_of_run(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
+                        const system::Scene& scene, std::int64_t steps, double h) {
+  system::State x = scene.initial;
+  integrators::NullObserver none;
+  integrators::RunConfig cfg{0.0, static_cast<double>(steps) * h, h, 1e-8, 1};
+  const long before = allocations.load();
+  const auto stats = scheme.run(model, x, cfg, none);
+  const long after = allocations.load();
+  INFO(scheme.name << ": " << stats.status);
+  REQUIRE(stats.ok);
+  return after - before;
+}
+}  // namespace
+
+TEST_CASE("no scheme allocates per step", "[allocations]") {
+  for (const char* file : {"free_body_hlw.toml", "heavy_top_trindade_1.toml", "stiff_damped_spring.toml"}) {
+    const system::Scene scene = experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + file);
+    const system::AnyModel model = system::make_model(scene);
+    const double h = scene.dt.value_or(1e-3);
+    for (const auto& scheme : integrators::scheme_registry()) {
+      if (!integrators::unsupported_reason(scheme, model).empty()) continue;
+      if (std::string(file) == "stiff_damped_spring.toml" && !scheme.properties.implicit) continue;  // explicit ones blow up there
+      const long few = allocations_of_run(scheme, model, scene, 10, h);
+      const long many = allocations_of_run(scheme, model, scene, 1000, h);
+      INFO(scheme.name << " on " << file << ": " << few << " allocations for 10 steps, " << many << " for 1000");
+      CHECK(many == few);
+    }
+  }
+}
