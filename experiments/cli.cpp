@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <vector>
 
 #include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
@@ -35,28 +36,14 @@ int run_cli(int argc, char** argv) {
   CLI::App app{"lgi: geometric (Lie-group) integration of rigid-body dynamics on SO(3) x R^3"};
   app.set_version_flag("--version", std::string(build_info::version));
   app.require_subcommand(1);
+  const CommandContext context{join_command_line(argc, argv)};
 
-  SimulateOptions sim;
-  auto* simulate = app.add_subcommand("simulate", "Integrate one scene with one scheme and write an H5MD trajectory");
-  simulate->add_option("--scene", sim.scene, "Scene file (TOML)")->required();
-  simulate->add_option("--scheme", sim.scheme, "Scheme name (see `lgi schemes`)")->required();
-  simulate->add_option("--dt", sim.dt, "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
-  simulate->add_option("--tol", sim.tol, "Tolerance of adaptive schemes. Default: the scene's [run] tol");
-  simulate->add_option("--t-end", sim.t_end, "Final time. Default: the scene's [run] t_end");
-  simulate->add_option("--save-every", sim.save_every, "Save every N steps; the initial and final states are always saved")
-      ->capture_default_str();
-  simulate->add_option("--out", sim.out, "Output trajectory file (HDF5, H5MD layout)")->required();
-  simulate->add_flag("--force", sim.force, "Overwrite an existing output file");
-  simulate->add_flag("--quiet", sim.quiet, "Print nothing but errors");
-
-  SchemesOptions schemes_opt;
-  auto* schemes = app.add_subcommand("schemes", "List every registered scheme with its order and properties");
-  schemes->add_flag("--json", schemes_opt.json, "Machine-readable JSON");
-
-  ScenesOptions scenes_opt;
-  scenes_opt.directory = LGI_SCENES_DIR;
-  auto* scenes = app.add_subcommand("scenes", "List the scene files in a folder and the invariants that apply");
-  scenes->add_option("DIR", scenes_opt.directory, "Folder of scene files")->capture_default_str();
+  // One line per subcommand; each is declared in its own <name>_command.cpp.
+  const std::vector<Subcommand> subcommands = {
+      add_simulate_subcommand(app, context),
+      add_schemes_subcommand(app),
+      add_scenes_subcommand(app),
+  };
 
   try {
     app.parse(argc, argv);
@@ -72,12 +59,8 @@ int run_cli(int argc, char** argv) {
   }
 
   try {
-    if (*simulate) {
-      sim.command_line = join_command_line(argc, argv);
-      return simulate_command(sim);
-    }
-    if (*schemes) return schemes_command(schemes_opt);
-    if (*scenes) return scenes_command(scenes_opt);
+    for (const auto& sub : subcommands)
+      if (sub.app->parsed()) return sub.action();
   } catch (const InputError& e) {
     std::cerr << "lgi: " << one_line(e.what()) << '\n';
     return exit_bad_input;

@@ -1,35 +1,27 @@
 #pragma once
-// The subcommands of `lgi`. Each returns an exit status (exit_status.hpp)
-// and throws InputError / UsageError / OutputFileError for bad input, which
-// run_cli turns into one line on stderr and status 2.
-#include <cstdint>
-#include <optional>
+// The subcommands of `lgi`. Each lives in its own <name>_command.cpp and
+// registers itself on the CLI11 app with add_<name>_subcommand(), which
+// declares its options and returns the action to run when it is selected.
+// Actions return an exit status (exit_status.hpp) and throw InputError /
+// UsageError / OutputFileError for bad input (status 2) or RunError (1).
+#include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 
 namespace lgi::experiments {
 
-struct SimulateOptions {
-  std::string scene;
-  std::string scheme;
-  std::optional<double> dt;
-  std::optional<double> tol;
-  std::optional<double> t_end;
-  std::int64_t save_every = 1;
-  std::string out;
-  bool force = false;
-  bool quiet = false;
+struct Subcommand {
+  CLI::App* app = nullptr;
+  std::function<int()> action;
+};
+
+/// The whole command line, for provenance in output files.
+struct CommandContext {
   std::string command_line;
 };
-int simulate_command(const SimulateOptions& options);
 
-struct SchemesOptions {
-  bool json = false;
-};
-int schemes_command(const SchemesOptions& options);
-
-struct ScenesOptions {
-  std::string directory;
-};
-int scenes_command(const ScenesOptions& options);
+Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_schemes_subcommand(CLI::App& app);
+Subcommand add_scenes_subcommand(CLI::App& app);
 
 }  // namespace lgi::experiments

@@ -6,19 +6,21 @@
 #include <vector>
 
 #include "experiments/commands.hpp"
+#include <memory>
 #include "experiments/exit_status.hpp"
 #include "experiments/input_error.hpp"
 #include "experiments/scene_reader.hpp"
 #include "integrators/system/invariants.hpp"
 
 namespace lgi::experiments {
+namespace {
 
-int scenes_command(const ScenesOptions& options) {
+int list_scenes(const std::string& directory) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_directory(options.directory, ec)) throw UsageError("DIR: '" + options.directory + "' is not a folder");
+  if (!fs::is_directory(directory, ec)) throw UsageError("DIR: '" + directory + "' is not a folder");
   std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(options.directory, ec))
+  for (const auto& entry : fs::directory_iterator(directory, ec))
     if (entry.path().extension() == ".toml") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   int status = exit_ok;
@@ -37,6 +39,15 @@ int scenes_command(const ScenesOptions& options) {
     }
   }
   return status;
+}
+
+}  // namespace
+
+Subcommand add_scenes_subcommand(CLI::App& app) {
+  auto directory = std::make_shared<std::string>(LGI_SCENES_DIR);
+  auto* sub = app.add_subcommand("scenes", "List the scene files in a folder and the invariants that apply");
+  sub->add_option("DIR", *directory, "Folder of scene files")->capture_default_str();
+  return {sub, [directory] { return list_scenes(*directory); }};
 }
 
 }  // namespace lgi::experiments

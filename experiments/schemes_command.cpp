@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "experiments/commands.hpp"
+#include <memory>
 #include "experiments/exit_status.hpp"
 #include "integrators/registry.hpp"
 
@@ -47,11 +48,9 @@ const char* support_text(integrators::SceneSupport s) {
   return "all scenes";
 }
 
-}  // namespace
-
-int schemes_command(const SchemesOptions& options) {
+int list_schemes(bool json) {
   const auto& registry = integrators::scheme_registry();
-  if (options.json) {
+  if (json) {
     std::cout << "[\n";
     for (std::size_t i = 0; i < registry.size(); ++i) {
       const auto& s = registry[i];
@@ -94,6 +93,15 @@ int schemes_command(const SchemesOptions& options) {
   std::cout << "properties: exactly conserved where the quantity is an invariant of the scene "
                "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top); order a/b: a on free bodies, b with torques\n";
   return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_schemes_subcommand(CLI::App& app) {
+  auto json = std::make_shared<bool>(false);
+  auto* sub = app.add_subcommand("schemes", "List every registered scheme with its order and properties");
+  sub->add_flag("--json", *json, "Machine-readable JSON");
+  return {sub, [json] { return list_schemes(*json); }};
 }
 
 }  // namespace lgi::experiments

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "experiments/commands.hpp"
+#include <memory>
+#include <optional>
 #include "experiments/exit_status.hpp"
 #include "experiments/scene_reader.hpp"
 #include "experiments/trajectory_observer.hpp"
@@ -12,6 +14,19 @@
 
 namespace lgi::experiments {
 namespace {
+
+struct SimulateOptions {
+  std::string scene;
+  std::string scheme;
+  std::optional<double> dt;
+  std::optional<double> tol;
+  std::optional<double> t_end;
+  std::int64_t save_every = 1;
+  std::string out;
+  bool force = false;
+  bool quiet = false;
+  std::string command_line;
+};
 
 extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
 
@@ -46,9 +61,7 @@ integrators::RunConfig run_config(const SimulateOptions& o, const system::Scene&
   return cfg;
 }
 
-}  // namespace
-
-int simulate_command(const SimulateOptions& o) {
+int simulate(const SimulateOptions& o) {
   const system::Scene scene = read_scene(o.scene);
   const integrators::SchemeInfo* scheme = integrators::find_scheme(o.scheme);
   if (!scheme) throw UsageError("--scheme: unknown scheme '" + o.scheme + "' (lgi schemes lists them)");
@@ -112,6 +125,28 @@ int simulate_command(const SimulateOptions& o) {
               << " t_end=" << format_number(stats.t_final) << ' ' << observer.invariant_error_summary() << '\n';
   }
   return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<SimulateOptions>();
+  auto* sub = app.add_subcommand("simulate", "Integrate one scene with one scheme and write an H5MD trajectory");
+  sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
+  sub->add_option("--scheme", o->scheme, "Scheme name (see `lgi schemes`)")->required();
+  sub->add_option("--dt", o->dt,
+                  "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
+  sub->add_option("--tol", o->tol, "Tolerance of adaptive schemes. Default: the scene's [run] tol");
+  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end");
+  sub->add_option("--save-every", o->save_every, "Save every N steps; the initial and final states are always saved")
+      ->capture_default_str();
+  sub->add_option("--out", o->out, "Output trajectory file (HDF5, H5MD layout)")->required();
+  sub->add_flag("--force", o->force, "Overwrite an existing output file");
+  sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  return {sub, [o, context] {
+            o->command_line = context.command_line;
+            return simulate(*o);
+          }};
 }
 
 }  // namespace lgi::experiments
