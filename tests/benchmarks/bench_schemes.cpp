@@ -1,0 +1,54 @@
+// Nanoseconds per step of every registered scheme on free_body_hlw and
+// heavy_top_trindade_1, through the same run functions lgi simulate uses
+// (no output: a null observer). Ratios to quat/rk4 (or rkmk4 where the
+// baselines are absent) on the same scene come from
+// scripts/benchmark_ratios.py, which runs this program and divides.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "experiments/scene_reader.hpp"
+#include "integrators/registry.hpp"
+
+using namespace lgi;
+
+namespace {
+
+constexpr std::int64_t steps_per_iteration = 256;
+
+void bench_scheme(benchmark::State& state, const integrators::SchemeInfo* scheme, const system::Scene* scene,
+                  const system::AnyModel* model) {
+  const double h = scene->dt.value_or(1e-3);
+  integrators::RunConfig cfg{0.0, static_cast<double>(steps_per_iteration) * h, h, 1e-8, 1 << 30};
+  integrators::NullObserver none;
+  for (auto _ : state) {
+    system::State x = scene->initial;
+    const auto stats = scheme->run(*model, x, cfg, none);
+    benchmark::DoNotOptimize(x);
+    if (!stats.ok) {
+      state.SkipWithError(stats.status.c_str());
+      break;
+    }
+  }
+  // ns per step: elapsed / (iterations · steps · 1e-9).
+  state.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(steps_per_iteration) * 1e-9,
+                                                     benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
+}
+
+struct Registration {
+  Registration() {
+    static const char* files[] = {"free_body_hlw", "heavy_top_trindade_1"};
+    for (const char* file : files) {
+      auto* scene = new system::Scene(experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + file + ".toml"));
+      auto* model = new system::AnyModel(system::make_model(*scene));
+      for (const auto& scheme : integrators::scheme_registry()) {
+        if (!integrators::unsupported_reason(scheme, *model).empty()) continue;
+        benchmark::RegisterBenchmark((std::string(file) + "/" + scheme.name).c_str(), bench_scheme, &scheme, scene,
+                                     model);
+      }
+    }
+  }
+} registration;
+
+}  // namespace
