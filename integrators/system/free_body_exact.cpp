@@ -2,10 +2,12 @@
 #include "integrators/system/free_body_exact.hpp"
 
 #include <algorithm>
+#include <Eigen/Eigenvalues>
 #include <boost/math/policies/policy.hpp>
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace lgi::system {
@@ -16,8 +18,13 @@ using lie::Vec3;
 namespace {
 
 // Carlson's integrals in plain double (Boost otherwise promotes to long double,
-// which costs time and is not needed: both are accurate to a few ulps).
-using CarlsonPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+// which costs time and is not needed: both are accurate to a few ulps), and
+// without exceptions (the arguments are valid by construction: at most one of
+// x, y is 0 since dn² ≥ k'² > 0, z = 1, p = 1 − n sn² ≥ 1).
+namespace policies = boost::math::policies;
+using CarlsonPolicy =
+    policies::policy<policies::promote_double<false>, policies::domain_error<policies::errno_on_error>,
+                     policies::evaluation_error<policies::errno_on_error>>;
 double carlson_rf(double x, double y, double z) { return boost::math::ellint_rf(x, y, z, CarlsonPolicy()); }
 double carlson_rj(double x, double y, double z, double p) {
   return boost::math::ellint_rj(x, y, z, p, CarlsonPolicy());
@@ -83,14 +90,23 @@ FreeBodyExactFlow::FreeBodyExactFlow(const Inertia& inertia, const lie::SO3xR3& 
   axis_ = pi0 / G;
 
   // Principal frame sorted ascending, as a proper rotation P (x_body = P x_p).
+  // A non-diagonal tensor is decomposed again in long double: the moments then
+  // carry only their final rounding (Eigen's double solver leaves ~10 ulps,
+  // which the precession angle G t/I1 accumulates).
+  Vec3 principal = inertia.principal;
+  Mat3 axes = inertia.principal_axes;
+  if (!inertia.diagonal) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<long double, 3, 3>> eig(inertia.J.cast<long double>());
+    principal = eig.eigenvalues().cast<double>();
+    axes = eig.eigenvectors().cast<double>();
+  }
   std::array<int, 3> order{0, 1, 2};
-  std::sort(order.begin(), order.end(),
-            [&](int i, int j) { return inertia.principal(i) < inertia.principal(j); });
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return principal(i) < principal(j); });
   Vec3 I;
   Mat3 P;
   for (int i = 0; i < 3; ++i) {
-    I(i) = inertia.principal(order[static_cast<std::size_t>(i)]);
-    P.col(i) = inertia.principal_axes.col(order[static_cast<std::size_t>(i)]);
+    I(i) = principal(order[static_cast<std::size_t>(i)]);
+    P.col(i) = axes.col(order[static_cast<std::size_t>(i)]);
   }
   if (P.determinant() < 0.0) P.col(2) = -P.col(2);
 
@@ -157,7 +173,10 @@ FreeBodyExactFlow::FreeBodyExactFlow(const Inertia& inertia, const lie::SO3xR3& 
   s /= h;
   c /= h;
 
-  if (kc2_ == 0.0) {
+  if (kc2_ < std::numeric_limits<double>::min()) {
+    // k'² = 0, or so small (Δ/G² below 1e-308) that dn² could underflow: the
+    // homoclinic orbit, which the elliptic one follows for |λt| < ln(4/k') > 350.
+    kc2_ = 0.0;
     regime_ = Regime::separatrix;
     sep_root_ = std::sqrt(-n_);
     u0_ = std::asinh(s / c);

@@ -6,7 +6,8 @@
 // to space, m = RΠ is constant. Invariants: |Π| = G, 2T = Π·J⁻¹Π, m.
 //
 // ── Frames ───────────────────────────────────────────────────────────────────
-// J = P diag(principal) Pᵀ. The constructor sorts the principal moments and
+// J = P diag(principal) Pᵀ. The constructor sorts the principal moments (Inertia
+// keeps a diagonal J's moments in the given order) and
 // picks a constant "working" frame x_body = Q x_w (Q ∈ SO(3), a signed
 // permutation of P's columns) with moments (I1, I2, I3), I2 the middle one,
 // in which Π3 > 0 at t = 0 and the dn-component is Π3 (so Π3 never changes
@@ -19,7 +20,7 @@
 // The working-frame state is (R_w, Π_w) = (R Q, Qᵀ Π); Euler's equations keep
 // their form.
 //
-// ── Π(t) (Celledoni et al. 2008, §2.2, cases (i)/(ii); with the sign of λ
+// ── Π(t) (Celledoni et al. 2008, §2, cases (i)/(ii); with the sign of λ
 //    corrected by P. Leroy, Principia documentation/Celledoni.tex,
 //    "Solution of Euler's equation", eqs. (solneuleri)/(solneulerii)) ─────────
 // With the cancellation-free forms (Celledoni.tex, "The quantity Δj")
@@ -32,10 +33,11 @@
 //   b = a1 a3 I31/(I1 I3 λ),  k² = I21 C13/(I32 C31),  k'² = 1 − k² = I31 Δ/(I32 C31).
 // (Substituting into Π̇1 = Π2Π3 I23/(I2I3), Π̇2 = Π3Π1 I31/(I3I1),
 //  Π̇3 = Π1Π2 I12/(I1I2) with DLMF 22.13.1–3 checks all three; k'² is
-//  Celledoni.tex's m_c = Δ2 I31/(Δ3 I21), computed from Δ without forming
+//  Celledoni.tex's m_c = Δ2 I31/(Δ1 I32) of its case (ii), from Δ without forming
 //  1 − k².) a1 carries the sign of Π1(0), so cn(u0) ≥ 0 and u0 ∈ [−K, K]:
 //   u0 = F(φ0, k) = sin φ0 R_F(cos²φ0, 1 − k² sin²φ0, 1),  φ0 = atan2(Π2/b, Π1/a1)
-//   (DLMF 19.25.5 scaled by homogeneity, 19.16.1).
+//   (DLMF 19.25.5 with its arguments scaled by sin²φ0: R_F is homogeneous of
+//   degree −1/2, R_J of degree −3/2).
 // Separatrix (Δ = 0, k = 1, the homoclinic orbit; Celledoni.tex case (iii)
 // with its two free signs, here the signs of a1 and a3): sn = tanh,
 // cn = dn = sech (DLMF 22.5(ii)), u0 = asinh(sn/cn).
@@ -58,8 +60,8 @@
 // This is Celledoni.tex, "Integrals/Case (ii)", whose characteristic
 // I3 I21/(I1 I23) and coefficient G I31/(λ I1 I3) are the same; its extra
 // arctan(sc) term belongs to its different (minimal-rotation quaternion) choice
-// of B and is absent here. (Celledoni et al. 2008, §3, give n with an error,
-// which Celledoni.tex corrects.)
+// of B and is absent here. (Celledoni.tex notes that the paper's value of n in
+// ψ(t) is wrong and corrects the sign of its f(s); neither is used here.)
 // Evaluation without loss over many periods: with Π(n; φ) = F(φ) + Z(φ),
 //   Z(φ) = (n/3) sin³φ R_J(cos²φ, 1 − k² sin²φ, 1, 1 − n sin²φ)  (DLMF 19.25.14
 //   scaled by homogeneity; no cancellation since n < 0),
@@ -71,13 +73,25 @@
 // Back to the body: R(t) = L Rz(ψ) B(Π_w(t)) Qᵀ with L = R(0) Q B(Π_w(0))ᵀ,
 // Π(t) = Q Π_w(t).
 //
-// ── Jacobi functions ─────────────────────────────────────────────────────────
-// Own arithmetic–geometric-mean (descending Landen) evaluation, Abramowitz &
-// Stegun 16.4 / DLMF 22.20(ii), started from b0 = k' computed from Δ (Boost's
-// jacobi_elliptic takes k and would form 1 − k², losing k' near the
-// separatrix). For |r| > K/2 the quarter-period shift (DLMF Table 22.4.3)
-// sn(K − v) = cd v, cn(K − v) = k' sd v, dn(K − v) = k' nd v keeps cn and dn
-// relatively accurate near their minima. R_F, R_J: Boost.Math (Carlson).
+// ── Numerics ─────────────────────────────────────────────────────────────────
+// * k' is formed from Δ, never as √(1 − k²); Δ I1 I3 = Π3² I32 I1 − Π1² I21 I3 is
+//   evaluated in double-double (its terms cancel near the separatrix planes,
+//   and δΔ/Δ becomes δK/K ~ the long-time phase error).
+// * sn, cn, dn: own evaluation by the descending Gauss transformation along the
+//   AGM chain a0 = 1, b0 = k' (DLMF 22.7.1–3, 22.20(ii)), in the rational
+//   (Bulirsch 1965) form with y = sn/cn: every step multiplies, divides or adds
+//   positive numbers, so the values keep full relative accuracy as k → 1, where
+//   the arcsine recurrence of A&S 16.4 loses digits and Boost's jacobi_elliptic
+//   (which takes k, not k') loses k'. For |r| > K/2 the quarter-period shift
+//   (DLMF Table 22.4.3) sn(K − v) = cd v, cn(K − v) = k' sd v, dn(K − v) = k' nd v
+//   keeps cn and dn relatively accurate near their minima.
+// * R_F, R_J: Boost.Math (Carlson's duplication algorithm), in double.
+// * A non-diagonal J is decomposed again in long double (its moments then carry
+//   only their final rounding; the precession angle G t/I1 accumulates any error
+//   of I1).
+// * Accuracy is set by the phases: errors of a few ulps of the elliptic phase
+//   λ t and of the precession angle ψ(t) (10⁴ rad after 100 periods of the
+//   prism scene) are the floor of any double evaluation at absolute time t.
 //
 // ── Regimes ──────────────────────────────────────────────────────────────────
 //   rest        Π = 0: R, Π constant.
@@ -89,18 +103,22 @@
 //               R(t) = R0 exp(t G/I_i (Π0/G)^), Π constant (covers the middle axis,
 //               the saddle of the separatrix).
 //   elliptic    Δ ≠ 0: the formulas above (cases (i)/(ii) of Celledoni et al.).
-//   separatrix  Δ = 0 exactly (in floating point; a Δ off by rounding is the
-//               exact flow of an elliptic orbit 1e-16 away, and the formulas
-//               are uniform as k' → 0).
+//   separatrix  Δ = 0 exactly, as computed (also k'² below the smallest normal
+//               double). No tolerance: a Δ off by rounding is the exact flow of
+//               an elliptic orbit ulps away, and the elliptic formulas join the
+//               hyperbolic ones continuously as k' → 0.
 //
 // References
 //   E. Celledoni, F. Fassò, N. Säfström, A. Zanna, The exact computation of the
 //     free rigid body motion and its use in splitting methods, SIAM J. Sci.
-//     Comput. 30 (2008) 2084–2112 (§2.2 Π(t), §3 R(t)).
+//     Comput. 30 (2008) 2084–2112 (§2: Π(t) in its cases (i)–(iii); §3: R(t)).
 //   P. Leroy, On an article by Celledoni et al., mockingbirdnest/Principia,
 //     documentation/Celledoni.tex (sign of λ, k'², the separatrix, Π-integral).
 //   L. D. Landau, E. M. Lifshitz, Mechanics, 3rd ed., §37 (Euler angles about M).
-//   NIST DLMF §19.16, §19.25 (Carlson forms), §22.4, §22.5, §22.13, §22.16, §22.20.
+//   NIST DLMF §19.16, §19.25 (Carlson forms), §22.4, §22.5, §22.7, §22.13, §22.16,
+//     §22.20.
+//   R. Bulirsch, Numerical calculation of elliptic integrals and elliptic
+//     functions, Numer. Math. 7 (1965) 78–90 (sn, cn, dn from k' by Gauss steps).
 //   M. Abramowitz, I. Stegun, Handbook of Mathematical Functions, 16.4.
 // (No code was taken from these; Principia's physics/euler_solver.hpp was not copied.)
 #include <array>

@@ -14,8 +14,9 @@ using lie::Vec3;
 struct Inertia {
   Mat3 J = Mat3::Identity();
   Mat3 J_inv = Mat3::Identity();
-  /// Principal moments in ascending order and the rotation P (det +1) with
-  /// J = P diag(principal) Pᵀ: body vectors are P · (principal-frame vectors).
+  /// Principal moments and the rotation P (det +1) with J = P diag(principal) Pᵀ:
+  /// body vectors are P · (principal-frame vectors). For a diagonal J the
+  /// moments keep the body-axis order (P = I); otherwise they are ascending.
   Vec3 principal = Vec3::Ones();
   Mat3 principal_axes = Mat3::Identity();
   bool diagonal = true;  // J is diagonal in the body axes as given
