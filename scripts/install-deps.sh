@@ -14,6 +14,8 @@ packages=(
   libtomlplusplus-dev      # toml++
   libbenchmark-dev         # Google Benchmark
   python3-matplotlib python3-h5py python3-numpy  # Debian's /usr/bin/python3 for plots
+  python3-pil                                     # GIF animations (matplotlib's PillowWriter)
+  latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended lmodern  # the paper (scripts/build_paper.sh)
 )
 
 missing=()
