@@ -1,0 +1,345 @@
+#pragma once
+// Schemes `dmv`, `lgvi` and `dmv-pre4` … `dmv-pre10`: the discrete
+// Moser–Veselov algorithm, its Lie group variational form with a potential,
+// and its preprocessed (modified-inertia) high-order versions.
+//
+// ── DMV / LGVI ──────────────────────────────────────────────────────────────
+// Lee, Leok & McClamroch, "A Lie group variational integrator for the
+// attitude dynamics of a rigid body with applications to the 3D pendulum",
+// Proc. IEEE Conf. Control Applications (2005); and CMAME 196 (2007)
+// (../shared/design/math.md, which states the scheme in this project's
+// body-form conventions). With M(R) the body torque of the
+// potential terms only (gravity m g Γ × χ, the spring −k log(R_restᵀR)) and
+// the non-standard inertia J_d = ½ tr(J) I − J:
+//   h (Π_k + ½ h M_k)^ = F_k J_d − J_d F_kᵀ,
+//   R_{k+1} = R_k F_k,
+//   Π_{k+1} = F_kᵀ Π_k + ½ h F_kᵀ M_k + ½ h M_{k+1}.
+// This is kick(½h) ∘ DMV(h) ∘ kick(½h) with kick(τ): Π += τ M(R), which the
+// class exposes (kick, free_step) so compositions can merge half kicks.
+// With M = 0 it is the discrete Moser–Veselov algorithm (Moser & Veselov,
+// Commun. Math. Phys. 139 (1991) 217–243) in the form of Hairer & Vilmart
+// (2006) eqs. (3)–(4) with Ω_nᵀ = F_k and D = J_d (their eq. (5)).
+// Writing F = cay(2f) = (I + f̂)(I − f̂)⁻¹, the first equation is the
+// 3-vector equation (math.md ✓; Hairer–Vilmart §5, eqs. (16)–(18), solve
+// the same step for diagonal J by a fixed-point iteration on a quaternion
+// form; the tests check that both give the same numbers)
+//   φ(f) = h g + h g × f + (h g·f) f − 2 J f = 0,   g = Π_k + ½ h M_k,
+//   ∂φ/∂f = (h g)^ + (h g·f) I + f (h g)ᵀ − 2 J,
+// solved here by Newton from f₀ = ½ h J⁻¹ g (J the full tensor, which may be
+// non-diagonal) to |φ| ≤ 4ε·(|hg| + |hg × f| + |hg·f||f| + 2|Jf|), the sum
+// of the magnitudes of its terms, at most 50 iterations. For F the
+// rotation by θ about the unit vector n, F J_d − J_d Fᵀ =
+// (sin θ J n + (1 − cos θ) n × J n)^, so |hg| ≤ 2 sin(θ/2) |J n|, and a spin
+// about a principal axis has sin θ = h|Ω| exactly: there no solution exists
+// once h|Ω| > 1, and none anywhere once |hg| > 2 λ_max(J). A Cayley step
+// cannot rotate by π or more (|f| = tan(θ/2) → ∞). Newton then
+// fails within its limit and the step returns converged = false with the
+// iterations and the final relative residual |φ|/scale, leaving the state
+// untouched. A step with |h| |J⁻¹g| ≥ π, which the exact flow would turn by
+// about π or more, is refused the same way before any iteration (0
+// iterations, residual reported as inf), as a solution the equations may
+// still have there approximates nothing.
+// Order 2; symplectic and symmetric (a variational integrator; DMV is
+// RATTLE for the constrained formulation, HLW GNI §VII.5.3). Conserves to
+// round-off: |Π| (F orthogonal), the spatial momentum R Π of a free body,
+// Π·Γ of any potential invariant about the vertical (the kick is ⊥ Γ and
+// Γ_{k+1} = F_kᵀ Γ_k), the free body's energy ½ Π·J⁻¹Π (Hairer–Vilmart §1),
+// and RᵀR = I up to round-off accumulation (no renormalisation).
+//
+// ── Preprocessed DMV (`dmv-pre2r`, r = 2…5) ─────────────────────────────────
+// E. Hairer & G. Vilmart, "Preprocessed discrete Moser–Veselov algorithm for
+// the full dynamics of a rigid body", J. Phys. A 39 (2006) 13225–13235,
+// Algorithm 2.2: apply DMV with modified moments of inertia, eq. (6),
+//   1/Ĩ_j = (1/I_j)(1 + h² s₃ + h⁴ s₅ + …) + h² d₃ + h⁴ d₅ + …,
+// truncated after the h^{2r−2} terms, where s_k, d_k are homogeneous
+// polynomials in H = ½ Σ y_j²/I_j (the kinetic energy) and C = ½ |y|²
+// evaluated at the current momentum y_n (Theorem 2.1). No other pre- or
+// post-processing is involved: the "preprocessing" is the modification of
+// the vector field (their ref. [2]). As the relation is basis-free,
+// J̃⁻¹ = s J⁻¹ + d I, so it holds for a non-diagonal J too (the constants
+// below are symmetric functions of the principal moments).
+// Coefficients: s₃…s₇ and d₃…d₇ from Table 1 of the paper; s₉, d₉ (order
+// 10) from the authors' code DMV10.f (version of 29 Aug 2006, corrected
+// 28 Dec 2007; mirrored in ja72/RB_DiscreteMoserVeselov, DMV_F77/DMV10.FI).
+// Notation of Table 1: δ = I₁I₂I₃, σ_a = I₁^a + I₂^a + I₃^a,
+// τ_{b,c} = Σ_{i≠j} I_i^b / I_j^c.
+// Order 2r for the free body (Proposition 2.3); symmetric; conserves y·y,
+// H and the spatial momentum exactly (Prop. 2.3); a Poisson integrator for
+// y but NOT symplectic for r > 1 (their Table 2 and §4.3). With a potential
+// the authors' code, and this one, use Strang splitting kick(½h) ∘
+// preDMV(h) ∘ kick(½h): order 2, Π·Γ still conserved exactly.
+// The truncated series is only meaningful for moderate h|Ω|: besides the
+// h|Ω| ≥ π refusal above, a step whose modified moments css/λ_j + cdd are
+// not all positive is refused (converged = false, 0 iterations). Between
+// DMV's own limit (h|Ω| ≈ 1) and those refusals the modified equation may
+// still be solvable, with an error of order one, like any scheme there.
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "integrators/scheme_interface.hpp"
+#include "integrators/system/torque_terms.hpp"
+
+namespace lgi::integrators {
+
+namespace moser_veselov {
+
+inline constexpr int max_newton_iterations = 50;
+
+/// Whether the model has a potential torque (gravity or a spring); the drive
+/// and the spring's damping are not potential forces and are not included.
+template <class Model>
+inline constexpr bool has_potential =
+    Model::template has_term<system::GravityTerm> || Model::template has_term<system::SpringTerm>;
+
+/// M(R): the body torque of the potential terms only.
+template <class Model>
+Vec3 potential_torque(const Model& model, const Mat3& R) {
+  Vec3 M = Vec3::Zero();
+  if constexpr (Model::template has_term<system::GravityTerm>) {
+    const auto& gravity = model.template term<system::GravityTerm>();
+    M += system::GravityTerm::vertical_in_body(R).cross(gravity.mg_chi);  // m g Γ × χ
+  }
+  if constexpr (Model::template has_term<system::SpringTerm>) {
+    const auto& spring = model.template term<system::SpringTerm>();
+    M -= spring.stiffness * spring.deflection(R);  // −k log(R_restᵀ R)
+  }
+  return M;
+}
+
+/// Newton solve of φ(f) = hg + hg × f + (hg·f) f − 2 J f = 0 (header
+/// comment). On return f holds the last iterate; the status has the Newton
+/// iterations performed and the relative residual |φ|/scale.
+inline StepStatus solve_cayley_parameter(const Mat3& J, const Mat3& J_inv, const Vec3& hg, Vec3& f) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  StepStatus st{false, 0, 0.0};
+  f = 0.5 * (J_inv * hg);
+  const double hg_norm = hg.norm();
+  for (int it = 0;; ++it) {
+    const Vec3 Jf = J * f;
+    const Vec3 cross = hg.cross(f);
+    const double dot = hg.dot(f);
+    const Vec3 r = hg + cross + dot * f - 2.0 * Jf;
+    const double scale = hg_norm + cross.norm() + std::abs(dot) * f.norm() + 2.0 * Jf.norm();
+    const double rn = r.norm();
+    st.iterations = it;
+    st.residual = scale > 0.0 ? rn / scale : rn;
+    if (!std::isfinite(rn) || !std::isfinite(scale)) return st;  // diverged: not converged
+    if (rn <= 4.0 * eps * scale) {
+      st.converged = true;
+      return st;
+    }
+    if (it == max_newton_iterations) return st;
+    Mat3 D = lie::hat(hg) + f * hg.transpose() - 2.0 * J;
+    D.diagonal().array() += dot;
+    f -= D.inverse() * r;  // closed-form 3×3 inverse; a singular D gives non-finite f, caught above
+  }
+}
+
+/// The status of a step refused before any Newton iteration (see
+/// turns_too_far and the modified-inertia check): not converged, 0
+/// iterations, an infinite residual.
+inline StepStatus refused_step() { return {false, 0, std::numeric_limits<double>::infinity()}; }
+
+/// Whether the exact flow would turn the body by π or more in this step
+/// (|h| |Ω| ≥ π, Ω = J⁻¹Π): no Cayley step F = cay(2f), whose angle is
+/// 2 atan|f| < π, can represent that, and any solution the equations still
+/// have there is not an approximation of the flow; such a step is refused.
+inline bool turns_too_far(const Mat3& J_inv, const Vec3& Pi, double h) {
+  return !(std::abs(h) * (J_inv * Pi).norm() < std::numbers::pi);
+}
+
+/// One DMV step of length h with inertia J (inverse J_inv) on the state as
+/// it is (no kicks): R ← R F, Π ← Fᵀ Π, F = cay(2f). The state is left
+/// untouched if the solve fails.
+inline StepStatus dmv_step(const Mat3& J, const Mat3& J_inv, State& s, double h) {
+  Vec3 f;
+  const StepStatus st = solve_cayley_parameter(J, J_inv, h * s.Pi, f);
+  if (!st.converged) return st;
+  const Mat3 F = lie::cay(2.0 * f);  // (I + f̂)(I − f̂)⁻¹
+  s.R = s.R * F;
+  s.Pi = F.transpose() * s.Pi;
+  return st;
+}
+
+/// The scalar series of Hairer & Vilmart (2006), eq. (6) and Table 1, for
+/// order 2r = Order: 1/Ĩ_j = css/I_j + cdd with
+///   css = 1 + Σ_{k=1}^{r−1} Σ_{i=0}^{k} s_{k,i} x^{k−i} y^{i},
+///   cdd =     Σ_{k=1}^{r−1} Σ_{i=0}^{k} d_{k,i} x^{k−i} y^{i},
+/// x = h² H, y = h² C (so that x^a y^b carries h^{2(a+b)}).
+template <int Order>
+struct ModifiedInertiaSeries {
+  static_assert(Order == 4 || Order == 6 || Order == 8 || Order == 10, "preprocessed DMV has orders 4, 6, 8, 10");
+  static constexpr int degrees = Order / 2 - 1;  // highest power of h² kept
+  // s[k−1][i], d[k−1][i]: the coefficient of H^{k−i} C^{i} in s_{2k+1}, d_{2k+1}.
+  std::array<std::array<double, 5>, 4> s{}, d{};
+
+  /// From the principal moments (any order).
+  explicit ModifiedInertiaSeries(const Vec3& I = Vec3::Ones()) {
+    const double I1 = I.x(), I2 = I.y(), I3 = I.z();
+    auto sigma = [&](int a) { return std::pow(I1, a) + std::pow(I2, a) + std::pow(I3, a); };
+    // τ_{b,c} = Σ_{i≠j} I_i^b / I_j^c = (I2^b + I3^b)/I1^c + (I3^b + I1^b)/I2^c + (I1^b + I2^b)/I3^c
+    auto tau = [&](int b, int c) {
+      const double p1 = std::pow(I1, b), p2 = std::pow(I2, b), p3 = std::pow(I3, b);
+      return (p2 + p3) / std::pow(I1, c) + (p3 + p1) / std::pow(I2, c) + (p1 + p2) / std::pow(I3, c);
+    };
+    const double dl = I1 * I2 * I3;  // δ
+    const double dl2 = dl * dl, dl3 = dl2 * dl, dl4 = dl2 * dl2;
+    const double s1 = sigma(1), s2 = sigma(2), s3 = sigma(3), s4 = sigma(4);
+    const double sm1 = sigma(-1), sm2 = sigma(-2), sm3 = sigma(-3), sm4 = sigma(-4);
+    const double t11 = tau(1, 1), t12 = tau(1, 2), t21 = tau(2, 1), t13 = tau(1, 3), t31 = tau(3, 1), t22 = tau(2, 2);
+    // h²: s₃ = −σ₋₁/3 H + σ₁/(6δ) C,  d₃ = σ₁/(6δ) H − 1/(3δ) C        (Table 1)
+    s[0] = {-sm1 / 3.0, s1 / (6.0 * dl)};
+    d[0] = {s1 / (6.0 * dl), -1.0 / (3.0 * dl)};
+    // h⁴: s₅, d₅                                                         (Table 1)
+    s[1] = {(3.0 * s1 + 2.0 * dl * sm2) / (60.0 * dl), (1.0 - t11) / (30.0 * dl), (s2 - dl * sm1) / (30.0 * dl2)};
+    d[1] = {-(9.0 + t11) / (60.0 * dl), (6.0 * dl * sm1 - s2) / (60.0 * dl2), -s1 / (60.0 * dl2)};
+    // h⁶: s₇, d₇                                                         (Table 1)
+    s[2] = {(15.0 - dl * sm3 - 2.0 * t11) / (630.0 * dl),
+            (6.0 * dl * t12 - 100.0 * dl * sm1 + 53.0 * s2) / (2520.0 * dl2),
+            (9.0 * s1 + 10.0 * dl * sm2 - 6.0 * t21) / (420.0 * dl2),
+            (4.0 * dl + 17.0 * s3 - 15.0 * dl * t11) / (2520.0 * dl3)};
+    d[2] = {(9.0 * dl * sm1 + dl * t12 - 11.0 * s2) / (1260.0 * dl2),
+            (47.0 * s1 + 13.0 * t21 - 38.0 * dl * sm2) / (2520.0 * dl2),
+            (s3 + 2.0 * dl * t11 - 85.0 * dl) / (1260.0 * dl3),
+            (34.0 * dl * sm1 - 19.0 * s2) / (2520.0 * dl3)};
+    // h⁸: s₉, d₉ (not in Table 1; the authors' DMV10.f, S9C5…S9C1, D9C5…D9C1)
+    s[3] = {(2.0 * dl2 * sm4 + 5.0 * dl * t12 - 171.0 * dl * sm1 + 159.0 * s2) / (45360.0 * dl2),
+            (137.0 * dl * sm2 - dl * t13 + 3.0 * s1 - 69.0 * t21) / (11340.0 * dl2),
+            (26.0 * dl * t22 + 55.0 * s3 + 204.0 * dl - 50.0 * dl2 * sm3 - 59.0 * dl * t11) / (7560.0 * dl3),
+            (-77.0 * t31 + 75.0 * dl * t12 + 214.0 * s2 - 240.0 * dl * sm1) / (22680.0 * dl3),
+            (62.0 * s4 - 94.0 * dl * t21 + 66.0 * dl2 * sm2 + 81.0 * dl * s1) / (45360.0 * dl4)};
+    d[3] = {(165.0 * s1 - dl * t13 - 9.0 * t21 - 145.0 * dl * sm2) / (45360.0 * dl2),
+            (67.0 * s3 - 735.0 * dl - 15.0 * dl * t22 + 87.0 * dl * t11 + 34.0 * dl2 * sm3) / (22680.0 * dl3),
+            (125.0 * dl * sm1 - 5.0 * t31 - 130.0 * s2 + 4.0 * dl * t12) / (7560.0 * dl3),
+            (54.0 * dl * s1 - s4 + 218.0 * dl * t21 - 426.0 * dl2 * sm2) / (45360.0 * dl4),
+            (60.0 * t11 * dl - 61.0 * s3 - 247.0 * dl) / (45360.0 * dl4)};
+  }
+
+  /// css and cdd at x = h² H, y = h² C.
+  void evaluate(double x, double y, double& css, double& cdd) const {
+    std::array<double, 5> xp{}, yp{};
+    xp[0] = yp[0] = 1.0;
+    for (std::size_t i = 1; i < 5; ++i) {
+      xp[i] = xp[i - 1] * x;
+      yp[i] = yp[i - 1] * y;
+    }
+    css = 1.0;
+    cdd = 0.0;
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(degrees); ++k) {
+      for (std::size_t i = 0; i <= k; ++i) {
+        const double m = xp[k - i] * yp[i];  // H^{k−i} C^{i}, times h^{2k}
+        css += s[k - 1][i] * m;
+        cdd += d[k - 1][i] * m;
+      }
+    }
+  }
+};
+
+}  // namespace moser_veselov
+
+/// `lgvi` (and `dmv`, the same algorithm, which the registry keeps to free
+/// bodies): kick(½h) ∘ DMV(h) ∘ kick(½h).
+class Lgvi {
+ public:
+  /// Π ← Π + τ M(R), the potential torque only (nothing for a free body).
+  template <class Model>
+  static void kick(const Model& model, State& s, double /*t*/, double tau) {
+    if constexpr (moser_veselov::has_potential<Model>) s.Pi += tau * moser_veselov::potential_torque(model, s.R);
+  }
+  /// The free DMV step of length h (no kicks).
+  template <class Model>
+  static StepStatus free_step(const Model& model, State& s, double h) {
+    if (moser_veselov::turns_too_far(model.inertia.J_inv, s.Pi, h)) return moser_veselov::refused_step();
+    return moser_veselov::dmv_step(model.inertia.J, model.inertia.J_inv, s, h);
+  }
+
+  template <class Model>
+  StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
+    State x = s;
+    kick(model, x, t, 0.5 * h);
+    const StepStatus st = free_step(model, x, h);
+    if (!st.converged) return st;
+    kick(model, x, t + h, 0.5 * h);
+    s = x;
+    work.rhs_evaluations += 1;  // one implicit stage (and the potential torque at the new attitude)
+    return st;
+  }
+
+  // The kick/flow face that composition.hpp uses to merge neighbouring half kicks.
+  template <class Model>
+  void kick(const Model& model, State& s, double t, double tau, WorkCounters& /*work*/) const {
+    kick(model, s, t, tau);
+  }
+  template <class Model>
+  StepStatus flow(const Model& model, State& s, double /*t*/, double h, WorkCounters& work) const {
+    work.rhs_evaluations += 1;
+    return free_step(model, s, h);
+  }
+};
+
+using Dmv = Lgvi;
+
+/// `dmv-pre4` … `dmv-pre10`: Hairer–Vilmart Algorithm 2.2, with a potential
+/// in Strang splitting kick(½h) ∘ preDMV(h) ∘ kick(½h) (order 2 then).
+template <int Order>
+class DmvPreprocessed {
+ public:
+  static constexpr int order = Order;
+
+  template <class Model>
+  void start(const Model& model, const State& /*initial*/, double /*t0*/) {
+    series_ = moser_veselov::ModifiedInertiaSeries<Order>(model.inertia.principal);
+    ready_ = true;
+  }
+
+  template <class Model>
+  static void kick(const Model& model, State& s, double t, double tau) {
+    Lgvi::kick(model, s, t, tau);
+  }
+
+  /// The preprocessed DMV step of length h (no kicks): DMV with the modified
+  /// inertia J̃⁻¹ = css J⁻¹ + cdd I evaluated at the current Π.
+  template <class Model>
+  StepStatus free_step(const Model& model, State& s, double h) {
+    if (!ready_) start(model, s, 0.0);
+    const Mat3& J_inv = model.inertia.J_inv;
+    const Vec3 Omega = J_inv * s.Pi;
+    if (!(std::abs(h) * Omega.norm() < std::numbers::pi)) return moser_veselov::refused_step();
+    const double H = 0.5 * s.Pi.dot(Omega);
+    const double C = 0.5 * s.Pi.squaredNorm();
+    double css = 1.0, cdd = 0.0;
+    series_.evaluate(h * h * H, h * h * C, css, cdd);
+    // J̃⁻¹ shares J's principal axes, with moments css/λ_j + cdd: refuse a step
+    // where the truncated series has left them non-positive (h far too large).
+    const Vec3 moments_inv = css * model.inertia.principal.cwiseInverse() + Vec3::Constant(cdd);
+    if (!(moments_inv.minCoeff() > 0.0)) return moser_veselov::refused_step();
+    Mat3 Jt_inv = css * J_inv;
+    Jt_inv.diagonal().array() += cdd;
+    return moser_veselov::dmv_step(Jt_inv.inverse(), Jt_inv, s, h);
+  }
+
+  template <class Model>
+  StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
+    State x = s;
+    kick(model, x, t, 0.5 * h);
+    const StepStatus st = free_step(model, x, h);
+    if (!st.converged) return st;
+    kick(model, x, t + h, 0.5 * h);
+    s = x;
+    work.rhs_evaluations += 1;
+    return st;
+  }
+
+ private:
+  moser_veselov::ModifiedInertiaSeries<Order> series_{};
+  bool ready_ = false;
+};
+
+using DmvPre4 = DmvPreprocessed<4>;
+using DmvPre6 = DmvPreprocessed<6>;
+using DmvPre8 = DmvPreprocessed<8>;
+using DmvPre10 = DmvPreprocessed<10>;
+
+}  // namespace lgi::integrators
