@@ -43,6 +43,8 @@ int run_cli(int argc, char** argv) {
       add_simulate_subcommand(app, context),
       add_schemes_subcommand(app),
       add_scenes_subcommand(app),
+      add_work_precision_subcommand(app, context),
+      add_long_time_subcommand(app, context),
   };
 
   try {

@@ -23,5 +23,7 @@ struct CommandContext {
 Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context);
 Subcommand add_schemes_subcommand(CLI::App& app);
 Subcommand add_scenes_subcommand(CLI::App& app);
+Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context);
 
 }  // namespace lgi::experiments
