@@ -47,7 +47,9 @@ namespace lgi::integrators {
 /// symmetric scheme of order 2 (the coefficients raise order 2 to 4, 6, 8;
 /// they do not do so for other orders, so other bases are refused here).
 template <class Base>
-void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base) {
+void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_entry) {
+  // A copy: base_entry is usually registry.back(), which push_back may move.
+  const SchemeInfo base = base_entry;
   if (!base.properties.symmetric || base.order != 2) return;
   auto add = [&](const auto& coefficients, RunFunction run) {
     SchemeInfo info = base;
