@@ -6,6 +6,7 @@
 // The fitted slope must lie within ±0.2 of the nominal order. The same
 // problems check the DP5(4) pair used at fixed steps.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -69,18 +70,23 @@ TEST_CASE("every explicit scheme converges at its nominal order on the asymmetri
       system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
   int tested = 0;
   for (const auto& scheme : integrators::scheme_registry()) {
-    if (scheme.order == 0 || scheme.properties.adaptive || scheme.properties.implicit) continue;
+    if (scheme.order == 0 || scheme.properties.adaptive || scheme.properties.baseline ||
+        scheme.name.find('@') != std::string::npos || !integrators::unsupported_reason(scheme, model).empty())
+      continue;
     std::vector<ConvergencePoint> pts;
     for (double h : step_sizes(scheme.order))
       pts.push_back({h, testing::global_error(run_registered(scheme, model, scene.initial, T, h), exact)});
     const auto fit = testing::fitted_slope(pts);
     report(scheme.name, "free_body_hlw", fit, pts);
+    // A splitting with the exact free flow is exact on a free body: every
+    // error at round-off, no slope to fit.
+    if (fit.points == 0 && std::all_of(pts.begin(), pts.end(), [](const auto& p) { return p.error < 1e-11; })) continue;
     INFO(scheme.name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - scheme.order) <= 0.2);
     ++tested;
   }
-  CHECK(tested >= 7);  // lie-euler, rkmk2, rkmk3, rkmk4, cg3, cg4a, cf4
+  CHECK(tested >= 7);  // at least lie-euler, rkmk2, rkmk3, rkmk4, cg3, cg4a, cf4
 }
 
 TEST_CASE("every explicit scheme converges at its nominal order on a driven general heavy top", "[order]") {
@@ -91,15 +97,18 @@ TEST_CASE("every explicit scheme converges at its nominal order on a driven gene
   const system::State ref =
       testing::reference_solution(std::get<system::DrivenHeavyTop>(model), scene.initial, 0.0, T, 1e-14);
   for (const auto& scheme : integrators::scheme_registry()) {
-    if (scheme.order == 0 || scheme.properties.adaptive || scheme.properties.implicit) continue;
+    if (scheme.order == 0 || scheme.properties.adaptive || scheme.properties.baseline ||
+        scheme.name.find('@') != std::string::npos || !integrators::unsupported_reason(scheme, model).empty())
+      continue;
     std::vector<ConvergencePoint> pts;
     for (double h : step_sizes(scheme.order))
       pts.push_back({h, testing::global_error(run_registered(scheme, model, scene.initial, T, h), ref)});
     const auto fit = testing::fitted_slope(pts);
     report(scheme.name, "driven general top", fit, pts);
     INFO(scheme.name << ": slope " << fit.slope << " from " << fit.points << " points");
+    const int expected = scheme.order_with_torque ? scheme.order_with_torque : scheme.order;
     CHECK(fit.points >= 3);
-    CHECK(std::abs(fit.slope - scheme.order) <= 0.2);
+    CHECK(std::abs(fit.slope - expected) <= 0.2);
   }
 }
 
