@@ -22,6 +22,7 @@ struct SimulateOptions {
   std::optional<double> tol;
   std::optional<double> t_end;
   std::int64_t save_every = 1;
+  int retry_halving = 0;
   std::string out;
   bool force = false;
   bool quiet = false;
@@ -58,6 +59,10 @@ integrators::RunConfig run_config(const SimulateOptions& o, const system::Scene&
       throw UsageError("--dt: scheme '" + scheme.name + "' needs a step: give --dt or [run] dt in " + scene.file);
     cfg.dt = o.dt ? *o.dt : *scene.dt;
   }
+  if (o.retry_halving < 0 || o.retry_halving > 30) throw UsageError("--retry-halving: must be between 0 and 30");
+  if (o.retry_halving > 0 && scheme.properties.adaptive)
+    throw UsageError("--retry-halving: scheme '" + scheme.name + "' is adaptive and controls its own steps");
+  cfg.retry_halving = o.retry_halving;
   return cfg;
 }
 
@@ -85,6 +90,7 @@ int simulate(const SimulateOptions& o) {
   }
   prov.number_attributes["t_end"] = cfg.t_end;
   prov.integer_attributes["save_every"] = cfg.save_every;
+  if (cfg.retry_halving > 0) prov.integer_attributes["retry_halving"] = cfg.retry_halving;
 
   TrajectoryWriter writer(o.out, o.force, trajectory_layout(invariants, scheme->properties.euler_angle_chart), prov);
   TrajectoryObserver observer(invariants, &writer);
@@ -139,6 +145,10 @@ Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--tol", o->tol, "Tolerance of adaptive schemes. Default: the scene's [run] tol");
   sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end");
   sub->add_option("--save-every", o->save_every, "Save every N steps; the initial and final states are always saved")
+      ->capture_default_str();
+  sub->add_option("--retry-halving", o->retry_halving,
+                  "Fixed-step schemes: redo a step whose implicit solve did not converge as two half steps, at most "
+                  "N halvings deep; each redone step counts in /diagnostics rejected_steps (and newton_failures)")
       ->capture_default_str();
   sub->add_option("--out", o->out, "Output trajectory file (HDF5, H5MD layout)")->required();
   sub->add_flag("--force", o->force, "Overwrite an existing output file");

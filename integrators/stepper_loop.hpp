@@ -20,6 +20,7 @@ struct RunConfig {
   double dt = 0.0;            // fixed step, or the first trial step of an adaptive scheme (0: automatic)
   double tol = 0.0;           // adaptive schemes only
   std::int64_t save_every = 1;  // observe every N steps; the initial and final states always
+  int retry_halving = 0;      // fixed-step: retry a step whose implicit solve failed as 2, 4, ... substeps, at most N halvings
 };
 
 /// Receives the samples of a run. Called once per saved step (never inside
@@ -68,6 +69,24 @@ inline std::string failure_message(const char* what, std::int64_t step, double t
 }
 template <class Scheme, class Model>
 concept has_start = requires(Scheme& s, const Model& m, const State& x) { s.start(m, x, 0.0); };
+/// One step of size h; while its implicit solve does not converge, it is
+/// redone as two steps of h/2, at most `halvings` times deep (RunConfig::
+/// retry_halving). Records every attempt: each failed solve counts as a
+/// Newton failure and its redone step as a rejected step. Returns the
+/// status of the last attempt (not converged if the halvings ran out).
+template <class Scheme, class Model>
+StepStatus step_with_halving(Scheme& scheme, const Model& model, State& s, double t, double h, int halvings,
+                             WorkCounters& work) {
+  const State before = s;
+  const StepStatus st = scheme.step(model, s, t, h, work);
+  record_solve(st, work);
+  if (st.converged || halvings <= 0) return st;
+  ++work.rejected_steps;
+  s = before;
+  const StepStatus first = step_with_halving(scheme, model, s, t, 0.5 * h, halvings - 1, work);
+  if (!first.converged) return first;
+  return step_with_halving(scheme, model, s, t + 0.5 * h, 0.5 * h, halvings - 1, work);
+}
 }  // namespace detail
 
 /// Number of fixed steps covering [t0, t_end]: the nearest integer to
@@ -96,12 +115,18 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   double t = cfg.t0;
   for (std::int64_t k = 0; k < n; ++k) {
     const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + direction * static_cast<double>(k + 1) * cfg.dt;
-    const StepStatus st = scheme.step(model, s, t, t_next - t, stats.work);
-    detail::record_solve(st, stats.work);
+    StepStatus st;
+    if (cfg.retry_halving > 0) {
+      st = detail::step_with_halving(scheme, model, s, t, t_next - t, cfg.retry_halving, stats.work);
+    } else {
+      st = scheme.step(model, s, t, t_next - t, stats.work);
+      detail::record_solve(st, stats.work);
+    }
     stats.steps = k + 1;
     if (!st.converged) {
       stats.ok = false;
       stats.status = detail::failure_message("implicit solve did not converge", k + 1, t_next, &st);
+      if (cfg.retry_halving > 0) stats.status += " after " + std::to_string(cfg.retry_halving) + " halvings of the step";
       break;
     }
     if (!detail::finite_state(s)) {

@@ -44,6 +44,53 @@ struct RigidBody {
     }
   }
 
+  // ---- Jacobians (implicit schemes). Perturbations: R → R exp(η̂) (body
+  // side, η ∈ ℝ³) and Π → Π + δΠ with Ω = J⁻¹Π following. Exact closed
+  // forms; tests/test_model_jacobian.cpp checks them by central differences.
+
+  /// ∂Ω/∂Π = J⁻¹ (Ω does not depend on R).
+  const Mat3& omega_jacobian() const { return inertia.J_inv; }
+
+  /// ∂τ/∂η at η = 0, the sum over the declared terms.
+  Mat3 torque_jacobian_attitude(const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) const {
+    if constexpr (!has_torque) {
+      return Mat3::Zero();
+    } else {
+      return std::apply(
+          [&](const auto&... term) -> Mat3 { return (term.torque_jacobian_attitude(R, Pi, Omega, t) + ...); }, terms);
+    }
+  }
+  /// dτ/dΠ (through Ω = J⁻¹Π where a term depends on Ω).
+  Mat3 torque_jacobian_momentum(const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) const {
+    if constexpr (!has_torque) {
+      return Mat3::Zero();
+    } else {
+      return std::apply(
+          [&](const auto&... term) -> Mat3 {
+            return (term.torque_jacobian_momentum(R, Pi, Omega, t, inertia.J_inv) + ...);
+          },
+          terms);
+    }
+  }
+
+  /// Derivatives of the momentum field K(R, Π, t) = Π × Ω + τ.
+  struct MomentumRateJacobian {
+    Mat3 attitude;  // ∂K/∂η = ∂τ/∂η
+    Mat3 momentum;  // ∂K/∂Π = Π̂ J⁻¹ − Ω̂ + dτ/dΠ
+  };
+  /// δ(Π × Ω) = δΠ × Ω + Π × J⁻¹δΠ = (Π̂ J⁻¹ − Ω̂) δΠ.
+  MomentumRateJacobian momentum_rate_jacobian(const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) const {
+    MomentumRateJacobian jac;
+    jac.momentum = lie::hat(Pi) * inertia.J_inv - lie::hat(Omega);
+    if constexpr (!has_torque) {
+      jac.attitude.setZero();
+    } else {
+      jac.attitude = torque_jacobian_attitude(R, Pi, Omega, t);
+      jac.momentum += torque_jacobian_momentum(R, Pi, Omega, t);
+    }
+    return jac;
+  }
+
   double kinetic_energy(const Vec3& Pi) const { return 0.5 * Pi.dot(omega(Pi)); }
   double potential_energy(const Mat3& R) const {
     if constexpr (!has_torque) {
