@@ -10,8 +10,9 @@ void add_splitting_schemes(std::vector<SchemeInfo>& r) {
   // heavy top (kick along Gamma x m g chi, free flow conserves m). The energy of a
   // torqued scene is not conserved exactly (symplectic: bounded, no drift).
   r.push_back({"split-exact", 2, "splitting",
-               {.symplectic = true, .symmetric = true, .conserves_momentum_norm = true,
-                .conserves_spatial_momentum = true, .conserves_vertical_momentum = true},
+               // |Π| and m are not claimed: the per-step elliptic-function flow keeps them
+               // only to ~1e-12 over 1e5 steps (measured 1.3e-12 and 9.7e-12), not to round-off.
+               {.symplectic = true, .symmetric = true, .conserves_vertical_momentum = true},
                SceneSupport::any,
                "Celledoni, Fasso, Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084-2112 (Strang splitting "
                "with the exact free flow)",
