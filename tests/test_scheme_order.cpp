@@ -70,7 +70,9 @@ TEST_CASE("every explicit scheme converges at its nominal order on the asymmetri
       system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
   int tested = 0;
   for (const auto& scheme : integrators::scheme_registry()) {
-    if (scheme.order == 0 || scheme.properties.adaptive || scheme.properties.baseline ||
+    // Orders above 5 reach round-off within this step range; test_variational.cpp
+    // checks them (dmv-pre6/8/10) with steps chosen for them.
+    if (scheme.order == 0 || scheme.order > 5 || scheme.properties.adaptive || scheme.properties.baseline ||
         scheme.name.find('@') != std::string::npos || !integrators::unsupported_reason(scheme, model).empty())
       continue;
     std::vector<ConvergencePoint> pts;
@@ -97,7 +99,9 @@ TEST_CASE("every explicit scheme converges at its nominal order on a driven gene
   const system::State ref =
       testing::reference_solution(std::get<system::DrivenHeavyTop>(model), scene.initial, 0.0, T, 1e-14);
   for (const auto& scheme : integrators::scheme_registry()) {
-    if (scheme.order == 0 || scheme.properties.adaptive || scheme.properties.baseline ||
+    // Orders above 5 reach round-off within this step range; test_variational.cpp
+    // checks them (dmv-pre6/8/10) with steps chosen for them.
+    if (scheme.order == 0 || scheme.order > 5 || scheme.properties.adaptive || scheme.properties.baseline ||
         scheme.name.find('@') != std::string::npos || !integrators::unsupported_reason(scheme, model).empty())
       continue;
     std::vector<ConvergencePoint> pts;
