@@ -45,6 +45,7 @@ int run_cli(int argc, char** argv) {
       add_scenes_subcommand(app),
       add_work_precision_subcommand(app, context),
       add_long_time_subcommand(app, context),
+      add_singularity_subcommand(app, context),
       add_stress_subcommand(app, context),
   };
 

@@ -25,6 +25,7 @@ Subcommand add_schemes_subcommand(CLI::App& app);
 Subcommand add_scenes_subcommand(CLI::App& app);
 Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& context);
 Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& context);  // singularity_command.cpp
 Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context);  // stress_command.cpp
 
 }  // namespace lgi::experiments

@@ -1,0 +1,14 @@
+// Instantiations of the quat and quat-normalized baselines, for every stepper and model.
+#include "integrators/baselines/quaternion.hpp"
+
+#include "integrators/baselines/baselines.hpp"
+
+namespace lgi::integrators::baselines {
+
+RunStats run_quat(bool normalized, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
+                  Observer& observer, const BaselineOptions& options) {
+  if (normalized) return run_with_stepper<QuatNormalizedCoordinates>(s, model, state, cfg, observer, options);
+  return run_with_stepper<QuatCoordinates>(s, model, state, cfg, observer, options);
+}
+
+}  // namespace lgi::integrators::baselines
