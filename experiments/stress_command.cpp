@@ -612,50 +612,16 @@ struct RunResult {
   std::int64_t steps = 0, rejected_steps = 0, rhs_evaluations = 0;
 };
 
-/// Parses "(N iterations, residual R)" from a stepper-loop failure message.
-bool parse_solve(const std::string& status, long& iterations, double& residual) {
-  const auto open = status.rfind('(');
-  if (open == std::string::npos) return false;
-  const std::string tail = status.substr(open + 1);
-  const auto comma = tail.find(" iterations, residual ");
-  if (comma == std::string::npos) return false;
-  try {
-    iterations = std::stol(tail.substr(0, comma));
-    const std::string r = tail.substr(comma + 22);
-    residual = r.rfind("inf", 0) == 0 ? inf : std::stod(r);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return true;
-}
-
 /// Refused or failed, from the reason a run stopped (STRESS.md, "Outcomes").
+/// A step refused by design says so in its status (StepStatus::reason):
+/// "step refused: ..." (a Cayley step that would turn by pi or more, a
+/// modified inertia that is not positive).
 Outcome classify_stop(const std::string& status) {
   if (status.rfind("Euler-angle singularity", 0) == 0) return Outcome::refused;  // a chart that will not go on
-  if (status.find("did not converge") != std::string::npos) {
-    long it = -1;
-    double res = nan;
-    if (parse_solve(status, it, res)) {
-      if (it == 0 && std::isinf(res)) return Outcome::refused;   // refused before any iteration (DMV: h|Omega| >= pi)
-      // Solved to round-off (simo-wong accepts <= 64 * 4 eps), but the step rejected (Cayley: h|W| >= pi).
-      if (std::isfinite(res) && res <= 1e-13) return Outcome::refused;
-    }
-    return Outcome::failed;
-  }
+  if (status.rfind("step refused", 0) == 0) return Outcome::refused;
   if (status.find("needs a free body") != std::string::npos || status.find("needs torques") != std::string::npos)
     return Outcome::refused;
-  return Outcome::failed;  // blow-up, step-size collapse, anything else
-}
-
-std::string explain_refusal(const std::string& status) {
-  long it = -1;
-  double res = nan;
-  if (status.find("did not converge") != std::string::npos && parse_solve(status, it, res)) {
-    if (it == 0 && std::isinf(res))
-      return "step refused before the solve (e.g. h|Omega| >= pi for a Cayley step): " + status;
-    return "step refused after a converged solve (the step would rotate by pi or more): " + status;
-  }
-  return status;
+  return Outcome::failed;  // blow-up, a solve that did not converge, step-size collapse, anything else
 }
 
 RunResult run_scheme(const SchemeInfo& scheme, const Scene& scene, double t_end, double dt, double tol,
@@ -710,7 +676,7 @@ RunResult run_scheme(const SchemeInfo& scheme, const Scene& scene, double t_end,
     r.rhs_evaluations = stats.work.rhs_evaluations;
     if (!stats.ok) {
       r.outcome = classify_stop(stats.status);
-      r.reason = r.outcome == Outcome::refused ? explain_refusal(stats.status) : stats.status;
+      r.reason = stats.status;
     }
   }
   r.reason = one_line(r.reason);

@@ -186,7 +186,11 @@ class ImplicitRkmk {
     for (int k = 1; k <= newton.max_iterations; ++k) {
       const bool refresh = k == 1 || newton.jacobian == NewtonJacobian::full ||
                            (newton.jacobian == NewtonJacobian::refreshed && k > 2 && last_theta > 0.25);
-      if (!evaluate(model, s, t, h, Z, F, refresh ? &M : nullptr)) return status;  // outside the chart
+      if (!evaluate(model, s, t, h, Z, F, refresh ? &M : nullptr)) {  // outside the chart
+        status.reason = "implicit solve did not converge: Newton left the chart of exp (a stage rotation near "
+                        "2 pi, where dexp^-1 is singular); reduce --dt";
+        return status;
+      }
       work.rhs_evaluations += static_cast<std::int64_t>(stages);
       if (refresh) lu.compute(M);
       VecN G = Z;

@@ -139,8 +139,13 @@ inline StepStatus solve_cayley_parameter(const Mat3& J, const Mat3& J_inv, const
 
 /// The status of a step refused before any Newton iteration (see
 /// turns_too_far and the modified-inertia check): not converged, 0
-/// iterations, an infinite residual.
-inline StepStatus refused_step() { return {false, 0, std::numeric_limits<double>::infinity()}; }
+/// iterations, an infinite residual, and the reason.
+inline StepStatus refused_step(const char* reason) {
+  return {false, 0, std::numeric_limits<double>::infinity(), reason};
+}
+inline constexpr const char* turns_too_far_reason =
+    "step refused: it would turn the body by pi or more (|h Omega| >= pi), which no Cayley step represents; "
+    "reduce --dt";
 
 /// Whether the exact flow would turn the body by π or more in this step
 /// (|h| |Ω| ≥ π, Ω = J⁻¹Π): no Cayley step F = cay(2f), whose angle is
@@ -251,7 +256,8 @@ class Lgvi {
   /// The free DMV step of length h (no kicks).
   template <class Model>
   static StepStatus free_step(const Model& model, State& s, double h) {
-    if (moser_veselov::turns_too_far(model.inertia.J_inv, s.Pi, h)) return moser_veselov::refused_step();
+    if (moser_veselov::turns_too_far(model.inertia.J_inv, s.Pi, h))
+      return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
     return moser_veselov::dmv_step(model.inertia.J, model.inertia.J_inv, s, h);
   }
 
@@ -306,7 +312,8 @@ class DmvPreprocessed {
     if (!ready_) start(model, s, 0.0);
     const Mat3& J_inv = model.inertia.J_inv;
     const Vec3 Omega = J_inv * s.Pi;
-    if (!(std::abs(h) * Omega.norm() < std::numbers::pi)) return moser_veselov::refused_step();
+    if (!(std::abs(h) * Omega.norm() < std::numbers::pi))
+      return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
     const double H = 0.5 * s.Pi.dot(Omega);
     const double C = 0.5 * s.Pi.squaredNorm();
     double css = 1.0, cdd = 0.0;
@@ -314,7 +321,9 @@ class DmvPreprocessed {
     // J̃⁻¹ shares J's principal axes, with moments css/λ_j + cdd: refuse a step
     // where the truncated series has left them non-positive (h far too large).
     const Vec3 moments_inv = css * model.inertia.principal.cwiseInverse() + Vec3::Constant(cdd);
-    if (!(moments_inv.minCoeff() > 0.0)) return moser_veselov::refused_step();
+    if (!(moments_inv.minCoeff() > 0.0))
+      return moser_veselov::refused_step(
+          "step refused: the truncated modified-inertia series is not positive at this h|Omega|; reduce --dt");
     Mat3 Jt_inv = css * J_inv;
     Jt_inv.diagonal().array() += cdd;
     return moser_veselov::dmv_step(Jt_inv.inverse(), Jt_inv, s, h);

@@ -27,6 +27,11 @@ struct StepStatus {
   bool converged = true;
   int iterations = 0;
   double residual = 0.0;
+  /// Why a step that did not converge failed, if not simply "the implicit
+  /// solve did not converge" (e.g. a step refused before any iteration
+  /// because no solution of the scheme's equations approximates the flow).
+  /// A string literal; it goes into the run's status message.
+  const char* reason = nullptr;
 };
 
 struct AdaptiveStatus {

@@ -154,7 +154,10 @@ class SimoWong {
       ++evaluations;
     }
     work.rhs_evaluations += evaluations;
-    if (status.converged && !(std::abs(h) * W.norm() < max_step_rotation)) status.converged = false;
+    if (status.converged && !(std::abs(h) * W.norm() < max_step_rotation)) {
+      status.converged = false;
+      status.reason = "step refused: the midpoint rotation h|W| reaches pi, beyond the Cayley update; reduce --dt";
+    }
     if (!status.converged) return status;
 
     // (1) and (2'): R_{n+1} = R_n Q, Π_{n+1} = QᵀΠ_n + h (I + A)⁻¹ τ_d.

@@ -125,7 +125,8 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     stats.steps = k + 1;
     if (!st.converged) {
       stats.ok = false;
-      stats.status = detail::failure_message("implicit solve did not converge", k + 1, t_next, &st);
+      stats.status =
+          detail::failure_message(st.reason ? st.reason : "implicit solve did not converge", k + 1, t_next, &st);
       if (cfg.retry_halving > 0) stats.status += " after " + std::to_string(cfg.retry_halving) + " halvings of the step";
       break;
     }

@@ -410,14 +410,17 @@ TEST_CASE("steps beyond DMV's reach are reported through the registry, with thei
   struct Case {
     double turn;  // h|Ω|
     std::vector<const char*> schemes;
+    const char* what;    // how the message starts
     const char* detail;  // in the message
   };
   // h|Ω| = 1.5: Newton runs out of iterations (no DMV solution near the identity);
   // h|Ω| ≥ π: the step is refused before any iteration (a Cayley step cannot turn by π).
-  for (const Case& c : {Case{1.5, {"dmv", "lgvi"}, "(50 iterations"},
-                        Case{std::numbers::pi, {"dmv", "lgvi", "dmv-pre4", "dmv-pre10"}, "(0 iterations, residual inf)"},
-                        Case{4.0, {"dmv", "lgvi", "dmv-pre4", "dmv-pre6", "dmv-pre10"}, "(0 iterations, residual inf)"},
-                        Case{10.0, {"dmv", "lgvi", "dmv-pre8"}, "(0 iterations, residual inf)"}}) {
+  const char* refused = "step refused: it would turn the body by pi or more";
+  for (const Case& c :
+       {Case{1.5, {"dmv", "lgvi"}, "implicit solve did not converge", "(50 iterations"},
+        Case{std::numbers::pi, {"dmv", "lgvi", "dmv-pre4", "dmv-pre10"}, refused, "(0 iterations, residual inf)"},
+        Case{4.0, {"dmv", "lgvi", "dmv-pre4", "dmv-pre6", "dmv-pre10"}, refused, "(0 iterations, residual inf)"},
+        Case{10.0, {"dmv", "lgvi", "dmv-pre8"}, refused, "(0 iterations, residual inf)"}}) {
     const double h = c.turn / omega;
     for (const char* name : c.schemes) {
       const Run r = run_scheme(name, free_model, free_scene.initial, 10.0 * h, h);
@@ -425,7 +428,7 @@ TEST_CASE("steps beyond DMV's reach are reported through the registry, with thei
       CHECK_FALSE(r.stats.ok);
       CHECK(r.stats.steps == 1);
       CHECK(r.stats.work.newton_failures == 1);
-      CHECK_THAT(r.stats.status, Catch::Contains("did not converge") && Catch::Contains("at step 1") &&
+      CHECK_THAT(r.stats.status, Catch::StartsWith(c.what) && Catch::Contains("at step 1") &&
                                      Catch::Contains("residual") && Catch::Contains(c.detail));
       CHECK(r.x.R == free_scene.initial.R);  // untouched, finite
       CHECK(r.x.Pi == free_scene.initial.Pi);
