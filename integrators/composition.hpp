@@ -10,6 +10,11 @@
 // split-exact), consecutive half kicks of neighbouring stages are merged into
 // one kick by (γ_i + γ_{i+1}) h / 2 ("first same as last"), saving s − 1
 // torque evaluations per step (HLW §V.3.1, remark after (3.4)).
+// Every coefficient set here has negative γ_i (order > 2 needs them: Sheng,
+// IMA J. Numer. Anal. 9 (1989) 199–212; Suzuki, J. Math. Phys. 32 (1991)
+// 400–407): a damped scene is then integrated backward over part
+// of each step, where the damper amplifies. Compositions are for conservative
+// and mildly dissipative scenes; on stiff_damped_spring use rkmk-radau5.
 #include <concepts>
 
 #include "integrators/scheme_interface.hpp"
@@ -44,6 +49,7 @@ class Composition {
       total.converged = total.converged && st.converged;
       total.iterations = std::max(total.iterations, st.iterations);
       total.residual = std::max(total.residual, st.residual);
+      if (!st.converged && !total.reason) total.reason = st.reason;
     };
     if constexpr (kick_flow_splitting<Base, Model>) {
       double tau = t;

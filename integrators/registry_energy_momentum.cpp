@@ -15,6 +15,7 @@ void add_energy_momentum_schemes(std::vector<SchemeInfo>& r) {
                "discrete gradient (energy exact), dampers and drives at the midpoint (damped energy decays "
                "monotonically); refuses steps that rotate by pi or more",
                &run_fixed<SimoWong>});
+  add_compositions<SimoWong>(r, r.back());
 }
 
 }  // namespace lgi::integrators

@@ -16,6 +16,7 @@ void add_implicit_schemes(std::vector<SchemeInfo>& r) {
                munthe_kaas + "; tableau: Gauss-Legendre s = 1, implicit midpoint (Hairer & Wanner, Solving ODEs II, "
                              "IV.5, Table 5.1)",
                "A-stable; free body: |Pi| and energy conserved; " + newton, &run_fixed<RkmkGauss2>});
+  add_compositions<RkmkGauss2>(r, r.back());
   r.push_back({"rkmk-gauss4", 4, "implicit RKMK", gauss, SceneSupport::any,
                munthe_kaas + "; chart centred at the step midpoint (Zanna, Engo & Munthe-Kaas, BIT 41 (2001) "
                              "395-421); tableau: Gauss-Legendre s = 2 (Hairer & Wanner, Solving ODEs II, IV.5, "

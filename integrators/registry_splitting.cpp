@@ -19,6 +19,7 @@ void add_splitting_schemes(std::vector<SchemeInfo>& r) {
                "half kick, exact free flow, half kick; exact for a free body; kicks solved exactly (a damper "
                "as a linear ODE, a drive at frozen time); symplectic only without damper or drive",
                &run_fixed<SplitExact>});
+  add_compositions<SplitExact>(r, r.back());
 }
 
 }  // namespace lgi::integrators

@@ -106,6 +106,20 @@ class SplitExact {
     flow_->advance(s, h);
   }
 
+  // The kick/flow face that composition.hpp uses to merge neighbouring half
+  // kicks (exact kicks at frozen R and t compose: kick(a) ∘ kick(b) = kick(a + b)).
+  template <class Model>
+  void kick(const Model& model, State& s, double t, double length, WorkCounters& work) const {
+    kick(model, s, t, length);
+    work.rhs_evaluations += Model::has_torque ? 1 : 0;
+  }
+  template <class Model>
+  StepStatus flow(const Model& model, State& s, double /*t*/, double h, WorkCounters& /*work*/) {
+    if (!flow_) flow_.emplace(model.inertia);  // used without start(): set up once
+    flow_->advance(s, h);
+    return {};
+  }
+
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
     if (!flow_) flow_.emplace(model.inertia);  // used without start(): set up once
