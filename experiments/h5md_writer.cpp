@@ -6,120 +6,25 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <ctime>
 #include <limits>
 #include <set>
 #include <utility>
 
-#include "lgi/build_info.hpp"
+#include "experiments/hdf5_support.hpp"
 
 namespace lgi::experiments {
 
-namespace {
-
-// ---- small HDF5 helpers ------------------------------------------------------
-
-/// Owns an HDF5 identifier and closes it with the matching H5?close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), close_(closer) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = std::exchange(o.id_, H5I_INVALID_HID);
-      close_ = o.close_;
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { reset(); }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  /// Closes now; returns the close status (0 if nothing was open).
-  herr_t reset() {
-    herr_t r = 0;
-    if (id_ >= 0 && close_ != nullptr) r = close_(id_);
-    id_ = H5I_INVALID_HID;
-    return r;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer close_ = nullptr;
-};
-
-/// HDF5 prints its error stack to stderr by default; the writer reports
-/// failures through one-line exceptions instead. Silenced for the duration
-/// of each writer call and restored afterwards (the setting is per thread).
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietHdf5Errors(const QuietHdf5Errors&) = delete;
-  QuietHdf5Errors& operator=(const QuietHdf5Errors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-/// The innermost description on the current HDF5 error stack, on one line.
-std::string hdf5_error_detail() {
-  std::string out;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
-        if (n == 0 && e != nullptr && e->desc != nullptr) *static_cast<std::string*>(data) = e->desc;
-        return 0;
-      },
-      &out);
-  for (char& c : out)
-    if (c == '\n' || c == '\r') c = ' ';
-  return out;
-}
-
-constexpr hsize_t unlimited = H5S_UNLIMITED;
-
-std::string errno_text(int err) { return std::strerror(err); }
-
-std::string utc_now_iso8601() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-std::string author_name() {
-  for (const char* var : {"USER", "LOGNAME"}) {
-    const char* v = std::getenv(var);
-    if (v != nullptr && *v != '\0') return v;
-  }
-  return "unknown";
-}
-
-std::string parent_directory(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
-}  // namespace
+using hdf5::create_group;
+using hdf5::errno_text;
+using hdf5::Handle;
+using hdf5::hdf5_error_detail;
+using hdf5::QuietHdf5Errors;
+using hdf5::write_double_attribute;
+using hdf5::write_fixed_strings;
+using hdf5::write_int_attribute;
+using hdf5::write_vlen_string;
 
 std::string hdf5_library_version() {
   unsigned maj = 0, min = 0, rel = 0;
@@ -130,6 +35,8 @@ std::string hdf5_library_version() {
 // ---- the file's open objects ---------------------------------------------------
 
 namespace {
+
+constexpr hsize_t unlimited = H5S_UNLIMITED;
 
 /// One time series' value dataset (or the shared step / time datasets):
 /// rank 1 + item rank, item shape item[0..rank-2].
@@ -162,80 +69,6 @@ void TrajectoryWriter::fail(const std::string& what) const {
 namespace {
 
 // Helpers that need the writer's fail() receive it as a callable.
-template <class Fail>
-Handle make_group(hid_t parent, const char* name, const std::string& full, Fail&& fail) {
-  Handle g(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!g.valid()) fail("cannot create group " + full);
-  return g;
-}
-
-template <class Fail>
-void delete_attribute_if_present(hid_t obj, const char* name, Fail&& fail) {
-  const htri_t exists = H5Aexists(obj, name);
-  if (exists < 0) fail(std::string("cannot query attribute ") + name);
-  if (exists > 0 && H5Adelete(obj, name) < 0) fail(std::string("cannot replace attribute ") + name);
-}
-
-template <class Fail>
-void write_attribute(hid_t obj, const char* name, hid_t file_type, hid_t memory_type, hid_t space,
-                     const void* data, Fail&& fail) {
-  delete_attribute_if_present(obj, name, fail);
-  Handle a(H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (!a.valid() || H5Awrite(a.get(), memory_type, data) < 0)
-    fail(std::string("cannot write attribute ") + name);
-}
-
-template <class Fail>
-Handle scalar_space(Fail&& fail) {
-  Handle s(H5Screate(H5S_SCALAR), H5Sclose);
-  if (!s.valid()) fail("cannot create a dataspace");
-  return s;
-}
-
-/// Variable-length string attribute, scalar. UTF-8 (h5py reads str) unless ascii.
-template <class Fail>
-void write_vlen_string(hid_t obj, const char* name, const std::string& value, bool ascii, Fail&& fail) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  if (!type.valid() || H5Tset_size(type.get(), H5T_VARIABLE) < 0 ||
-      H5Tset_cset(type.get(), ascii ? H5T_CSET_ASCII : H5T_CSET_UTF8) < 0)
-    fail("cannot make a string type");
-  Handle space = scalar_space(fail);
-  const char* p = value.c_str();
-  write_attribute(obj, name, type.get(), type.get(), space.get(), &p, fail);
-}
-
-/// Fixed-length, null-terminated UTF-8 string attributes: scalar for one
-/// value, rank 1 for several (H5MD 1.1 asks fixed length for the /h5md
-/// metadata and box/boundary).
-template <class Fail>
-void write_fixed_strings(hid_t obj, const char* name, const std::vector<std::string>& values, bool scalar,
-                         Fail&& fail) {
-  std::size_t width = 1;
-  for (const auto& v : values) width = std::max(width, v.size() + 1);
-  std::vector<char> buf(width * values.size(), '\0');
-  for (std::size_t i = 0; i < values.size(); ++i) std::memcpy(&buf[i * width], values[i].data(), values[i].size());
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  if (!type.valid() || H5Tset_size(type.get(), width) < 0 || H5Tset_strpad(type.get(), H5T_STR_NULLTERM) < 0 ||
-      H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0)
-    fail("cannot make a string type");
-  const hsize_t n = values.size();
-  Handle space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
-  if (!space.valid()) fail("cannot create a dataspace");
-  write_attribute(obj, name, type.get(), type.get(), space.get(), buf.data(), fail);
-}
-
-template <class Fail>
-void write_int_attribute(hid_t obj, const char* name, hid_t file_type, std::int64_t value, Fail&& fail) {
-  Handle space = scalar_space(fail);
-  write_attribute(obj, name, file_type, H5T_NATIVE_INT64, space.get(), &value, fail);
-}
-
-template <class Fail>
-void write_double_attribute(hid_t obj, const char* name, double value, Fail&& fail) {
-  Handle space = scalar_space(fail);
-  write_attribute(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), &value, fail);
-}
-
 /// A chunked, extendible dataset [0][item...] with maxdims [unlimited][item...].
 template <class Fail>
 Series make_series(hid_t group, const char* name, const std::string& full, hid_t file_type, hid_t memory_type,
@@ -318,7 +151,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
     if (!force) throw OutputFileError("output file '" + path + "' exists (use --force to replace it)");
     if (S_ISDIR(st.st_mode)) throw OutputFileError("cannot write trajectory '" + path + "': it is a directory");
   }
-  const std::string dir = parent_directory(path);
+  const std::string dir = hdf5::parent_directory(path);
   if (::stat(dir.c_str(), &st) != 0)
     throw OutputFileError("cannot write trajectory '" + path + "': directory '" + dir + "': " + errno_text(errno));
   if (!S_ISDIR(st.st_mode))
@@ -350,46 +183,22 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
   QuietHdf5Errors quiet;
   auto fail_fn = [this](const std::string& what) { fail(what); };
   try {
-    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-    // STRONG: H5Fclose closes every object, so the file is complete when it returns.
-    if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot set up file access");
-    // Default library-version bounds (earliest format): no superblock status
-    // flags, so a file left by a killed run opens without h5clear.
-    impl_->file = Handle(H5Fcreate(partial_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
-    if (!impl_->file.valid()) fail("cannot create the HDF5 file");
+    impl_->file = hdf5::create_file(partial_path_, fail_fn);
     const hid_t f = impl_->file.get();
 
-    // /h5md
-    {
-      Handle h5md = make_group(f, "h5md", "/h5md", fail_fn);
-      const std::int32_t version[2] = {1, 1};
-      const hsize_t two = 2;
-      Handle space(H5Screate_simple(1, &two, nullptr), H5Sclose);
-      if (!space.valid()) fail("cannot create a dataspace");
-      write_attribute(h5md.get(), "version", H5T_STD_I32LE, H5T_NATIVE_INT32, space.get(), version, fail_fn);
-      Handle author = make_group(h5md.get(), "author", "/h5md/author", fail_fn);
-      write_fixed_strings(author.get(), "name", {author_name()}, true, fail_fn);
-      Handle creator = make_group(h5md.get(), "creator", "/h5md/creator", fail_fn);
-      write_fixed_strings(creator.get(), "name", {"lgi"}, true, fail_fn);
-      write_fixed_strings(creator.get(), "version", {lgi::build_info::version}, true, fail_fn);
-      // The H5MD units module (modules/units.mdwn) governs the `unit` attributes.
-      Handle modules = make_group(h5md.get(), "modules", "/h5md/modules", fail_fn);
-      Handle units = make_group(modules.get(), "units", "/h5md/modules/units", fail_fn);
-      const std::int32_t units_version[2] = {1, 0};
-      write_attribute(units.get(), "version", H5T_STD_I32LE, H5T_NATIVE_INT32, space.get(), units_version, fail_fn);
-      write_vlen_string(units.get(), "system", "SI", /*ascii=*/true, fail_fn);
-    }
+    hdf5::write_h5md_metadata(f, /*units_module=*/true, fail_fn);
 
     // /particles/body
     const auto rows = static_cast<hsize_t>(options.chunk_rows);
     {
-      Handle particles = make_group(f, "particles", "/particles", fail_fn);
-      Handle body = make_group(particles.get(), "body", "/particles/body", fail_fn);
-      Handle box = make_group(body.get(), "box", "/particles/body/box", fail_fn);
+      // Groups are made by their full path from the file, so parents need not stay open.
+      create_group(f, "/particles", fail_fn);
+      create_group(f, "/particles/body", fail_fn);
+      Handle box = create_group(f, "/particles/body/box", fail_fn);
       write_int_attribute(box.get(), "dimension", H5T_STD_I32LE, 3, fail_fn);
       write_fixed_strings(box.get(), "boundary", {"none", "none", "none"}, false, fail_fn);
 
-      Handle g = make_group(body.get(), "orientation", "/particles/body/orientation", fail_fn);
+      Handle g = create_group(f, "/particles/body/orientation", fail_fn);
       impl_->step = make_series(g.get(), "step", "/particles/body/orientation/step", H5T_STD_I64LE,
                                 H5T_NATIVE_INT64, {}, rows, nullptr, fail_fn);
       impl_->time = make_series(g.get(), "time", "/particles/body/orientation/time", H5T_IEEE_F64LE,
@@ -399,7 +208,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
 
       auto body_vector = [&](const char* name, const char* unit) {
         const std::string full = std::string("/particles/body/") + name;
-        Handle grp = make_group(body.get(), name, full, fail_fn);
+        Handle grp = create_group(f, full, fail_fn);
         hard_link(f, "/particles/body/orientation/step", grp.get(), "step", fail_fn);
         hard_link(f, "/particles/body/orientation/time", grp.get(), "time", fail_fn);
         return make_series(grp.get(), "value", full + "/value", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {1, 3}, rows,
@@ -412,10 +221,10 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
 
     // /observables
     {
-      Handle obs = make_group(f, "observables", "/observables", fail_fn);
+      create_group(f, "/observables", fail_fn);
       auto observable = [&](const std::string& name, std::initializer_list<hsize_t> item, const char* unit) {
         const std::string full = "/observables/" + name;
-        Handle grp = make_group(obs.get(), name.c_str(), full, fail_fn);
+        Handle grp = create_group(f, full, fail_fn);
         hard_link(f, "/particles/body/orientation/step", grp.get(), "step", fail_fn);
         hard_link(f, "/particles/body/orientation/time", grp.get(), "time", fail_fn);
         return make_series(grp.get(), "value", full + "/value", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, item, rows, unit,
@@ -430,17 +239,13 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
 
     // /parameters
     {
-      Handle params = make_group(f, "parameters", "/parameters", fail_fn);
+      Handle params = create_group(f, "/parameters", fail_fn);
       std::map<std::string, std::string> text = provenance.text_attributes;
       auto add_default = [&](const std::string& key, const std::string& value) {
         if (!text.count(key) && !provenance.number_attributes.count(key) && !provenance.integer_attributes.count(key))
           text[key] = value;
       };
-      add_default("compiler", lgi::build_info::compiler);
-      add_default("cxx_flags", lgi::build_info::cxx_flags);
-      add_default("build_type", lgi::build_info::build_type);
-      add_default("hdf5_version", hdf5_library_version());
-      add_default("utc_start", utc_now_iso8601());
+      for (const auto& [k, v] : hdf5::default_provenance(hdf5::utc_now_iso8601())) add_default(k, v);
       for (const auto& [k, v] : text) write_vlen_string(params.get(), k.c_str(), v, false, fail_fn);
       for (const auto& [k, v] : provenance.number_attributes) write_double_attribute(params.get(), k.c_str(), v, fail_fn);
       for (const auto& [k, v] : provenance.integer_attributes)
@@ -448,7 +253,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
     }
 
     // /diagnostics: placeholders until finish/abandon (what a killed run leaves).
-    impl_->diagnostics = make_group(f, "diagnostics", "/diagnostics", fail_fn);
+    impl_->diagnostics = create_group(f, "/diagnostics", fail_fn);
     Diagnostics running;
     running.steps = running.rejected_steps = running.rhs_evaluations = -1;
     running.newton_iterations_max = running.newton_failures = -1;
@@ -600,22 +405,8 @@ void TrajectoryWriter::finish(const Diagnostics& diagnostics) {
     }
     throw;
   }
-  // Publish. Without force, never replace a file that appeared during the run.
-  if (!force_) {
-    if (::renameat2(AT_FDCWD, partial_path_.c_str(), AT_FDCWD, path_.c_str(), RENAME_NOREPLACE) == 0) return;
-    const int err = errno;
-    if (err == EEXIST)
-      throw OutputFileError("output file '" + path_ + "' appeared during the run; the trajectory is in '" +
-                            partial_path_ + "'");
-    if (err != EINVAL && err != ENOSYS && err != ENOTSUP)
-      throw OutputFileError("cannot rename '" + partial_path_ + "' to '" + path_ + "': " + errno_text(err));
-    struct stat st {};  // file system without RENAME_NOREPLACE
-    if (::lstat(path_.c_str(), &st) == 0)
-      throw OutputFileError("output file '" + path_ + "' appeared during the run; the trajectory is in '" +
-                            partial_path_ + "'");
-  }
-  if (std::rename(partial_path_.c_str(), path_.c_str()) != 0)
-    throw OutputFileError("cannot rename '" + partial_path_ + "' to '" + path_ + "': " + errno_text(errno));
+  // Without force, never replace a file that appeared during the run.
+  hdf5::publish(partial_path_, path_, force_, "the trajectory is");
 }
 
 void TrajectoryWriter::abandon(const Diagnostics& diagnostics) {

@@ -1,7 +1,7 @@
 // Result files of the experiment subcommands: HDF5 (C API) tables stored
 // column by column, a CSV twin, .partial + rename (results_file.hpp,
-// RESULTS.md). The /h5md and /parameters conventions follow h5md_writer.cpp
-// (whose helpers are private to it; the few needed are repeated here).
+// RESULTS.md). The /h5md and /parameters conventions are those of
+// h5md_writer.cpp, through the same helpers (hdf5_support.hpp).
 #include "experiments/results_file.hpp"
 
 #include <fcntl.h>
@@ -10,108 +10,27 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
-#include "lgi/build_info.hpp"
+#include "experiments/hdf5_support.hpp"
 
 namespace lgi::experiments {
+
+using hdf5::csv_number;
+using hdf5::csv_text;
+using hdf5::Handle;
+using hdf5::hdf5_error_detail;
+using hdf5::open_or_create_group;
+using hdf5::QuietHdf5Errors;
+using hdf5::write_vlen_string;
+
 namespace {
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "results_file.hpp passes hid_t as std::int64_t");
-
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), close_(closer) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = std::exchange(o.id_, H5I_INVALID_HID);
-      close_ = o.close_;
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { reset(); }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  herr_t reset() {
-    herr_t r = 0;
-    if (id_ >= 0 && close_ != nullptr) r = close_(id_);
-    id_ = H5I_INVALID_HID;
-    return r;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer close_ = nullptr;
-};
-
-/// Silences HDF5's error printing for the duration of a call (errors become
-/// one-line exceptions).
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietHdf5Errors(const QuietHdf5Errors&) = delete;
-  QuietHdf5Errors& operator=(const QuietHdf5Errors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-std::string hdf5_error_detail() {
-  std::string out;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
-        if (n == 0 && e != nullptr && e->desc != nullptr) *static_cast<std::string*>(data) = e->desc;
-        return 0;
-      },
-      &out);
-  for (char& c : out)
-    if (c == '\n' || c == '\r') c = ' ';
-  return out;
-}
-
-std::string utc_now_iso8601() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-std::string author_name() {
-  for (const char* var : {"USER", "LOGNAME"}) {
-    const char* v = std::getenv(var);
-    if (v != nullptr && *v != '\0') return v;
-  }
-  return "unknown";
-}
-
-std::string parent_directory(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -119,110 +38,6 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 bool valid_name(const std::string& n) {
   return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos;
-}
-
-// ---- attribute writers (throwing through `fail`) ------------------------------
-
-template <class Fail>
-void write_attribute(hid_t obj, const char* name, hid_t file_type, hid_t memory_type, hid_t space, const void* data,
-                     Fail&& fail) {
-  const htri_t exists = H5Aexists(obj, name);
-  if (exists < 0) fail(std::string("cannot query attribute ") + name);
-  if (exists > 0 && H5Adelete(obj, name) < 0) fail(std::string("cannot replace attribute ") + name);
-  Handle a(H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (!a.valid() || H5Awrite(a.get(), memory_type, data) < 0) fail(std::string("cannot write attribute ") + name);
-}
-
-template <class Fail>
-Handle scalar_space(Fail&& fail) {
-  Handle s(H5Screate(H5S_SCALAR), H5Sclose);
-  if (!s.valid()) fail("cannot create a dataspace");
-  return s;
-}
-
-template <class Fail>
-Handle vlen_string_type(bool ascii, Fail&& fail) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  if (!type.valid() || H5Tset_size(type.get(), H5T_VARIABLE) < 0 ||
-      H5Tset_cset(type.get(), ascii ? H5T_CSET_ASCII : H5T_CSET_UTF8) < 0)
-    fail("cannot make a string type");
-  return type;
-}
-
-template <class Fail>
-void write_vlen_string(hid_t obj, const char* name, const std::string& value, bool ascii, Fail&& fail) {
-  Handle type = vlen_string_type(ascii, fail);
-  Handle space = scalar_space(fail);
-  const char* p = value.c_str();
-  write_attribute(obj, name, type.get(), type.get(), space.get(), &p, fail);
-}
-
-/// Fixed-length null-terminated UTF-8 string, scalar (H5MD 1.1 metadata).
-template <class Fail>
-void write_fixed_string(hid_t obj, const char* name, const std::string& value, Fail&& fail) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  if (!type.valid() || H5Tset_size(type.get(), value.size() + 1) < 0 ||
-      H5Tset_strpad(type.get(), H5T_STR_NULLTERM) < 0 || H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0)
-    fail("cannot make a string type");
-  Handle space = scalar_space(fail);
-  write_attribute(obj, name, type.get(), type.get(), space.get(), value.c_str(), fail);
-}
-
-template <class Fail>
-void write_int32_pair(hid_t obj, const char* name, std::int32_t a, std::int32_t b, Fail&& fail) {
-  const std::int32_t v[2] = {a, b};
-  const hsize_t two = 2;
-  Handle space(H5Screate_simple(1, &two, nullptr), H5Sclose);
-  if (!space.valid()) fail("cannot create a dataspace");
-  write_attribute(obj, name, H5T_STD_I32LE, H5T_NATIVE_INT32, space.get(), v, fail);
-}
-
-template <class Fail>
-Handle open_or_create_group(hid_t parent, const std::string& name, Fail&& fail) {
-  const htri_t exists = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
-  if (exists < 0) fail("cannot query group /" + name);
-  Handle g(exists > 0 ? H5Gopen2(parent, name.c_str(), H5P_DEFAULT)
-                      : H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-           H5Gclose);
-  if (!g.valid()) fail("cannot create group " + name);
-  return g;
-}
-
-// ---- CSV ----------------------------------------------------------------------------
-
-std::string csv_number(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);  // shortest round-trip form
-  return std::string(buf, r.ptr);
-}
-
-std::string csv_text(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + '"';
-}
-
-/// Renames `from` to `to`; without force never replaces an existing `to`.
-void publish(const std::string& from, const std::string& to, bool force) {
-  if (!force) {
-    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return;
-    const int err = errno;
-    if (err == EEXIST)
-      throw OutputFileError("output file '" + to + "' appeared during the run; the results are in '" + from + "'");
-    if (err != EINVAL && err != ENOSYS && err != ENOTSUP)
-      throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + std::strerror(err));
-    struct stat st {};
-    if (::lstat(to.c_str(), &st) == 0)
-      throw OutputFileError("output file '" + to + "' appeared during the run; the results are in '" + from + "'");
-  }
-  if (std::rename(from.c_str(), to.c_str()) != 0)
-    throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + std::strerror(errno));
 }
 
 }  // namespace
@@ -323,7 +138,7 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
       if (S_ISDIR(st.st_mode)) throw OutputFileError("cannot write results '" + p + "': it is a directory");
     }
   }
-  const std::string dir = parent_directory(path);
+  const std::string dir = hdf5::parent_directory(path);
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0)
     throw OutputFileError("cannot write results '" + path + "': directory '" + dir + "': " + std::strerror(errno));
@@ -351,29 +166,11 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
     if (std::fputs(header.c_str(), impl_->csv) < 0 || std::fflush(impl_->csv) != 0)
       throw OutputFileError("cannot write results '" + csv_partial + "': " + std::strerror(errno));
 
-    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-    if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot set up file access");
-    // Default library-version bounds: no superblock status flags, so a file
-    // left by a killed run opens without h5clear.
-    impl_->file = Handle(H5Fcreate(partial_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
-    if (!impl_->file.valid()) fail("cannot create the HDF5 file");
+    impl_->file = hdf5::create_file(partial_path_, fail_fn);
     const hid_t f = impl_->file.get();
+    hdf5::write_h5md_metadata(f, /*units_module=*/true, fail_fn);  // as in trajectory files
 
-    {  // /h5md, as in trajectory files
-      Handle h5md = open_or_create_group(f, "h5md", fail_fn);
-      write_int32_pair(h5md.get(), "version", 1, 1, fail_fn);
-      Handle author = open_or_create_group(h5md.get(), "author", fail_fn);
-      write_fixed_string(author.get(), "name", author_name(), fail_fn);
-      Handle creator = open_or_create_group(h5md.get(), "creator", fail_fn);
-      write_fixed_string(creator.get(), "name", "lgi", fail_fn);
-      write_fixed_string(creator.get(), "version", lgi::build_info::version, fail_fn);
-      Handle modules = open_or_create_group(h5md.get(), "modules", fail_fn);
-      Handle units = open_or_create_group(modules.get(), "units", fail_fn);
-      write_int32_pair(units.get(), "version", 1, 0, fail_fn);
-      write_vlen_string(units.get(), "system", "SI", /*ascii=*/true, fail_fn);
-    }
-
-    impl_->string_type = vlen_string_type(/*ascii=*/false, fail_fn);
+    impl_->string_type = hdf5::vlen_string_type(/*ascii=*/false, fail_fn);
     impl_->table = open_or_create_group(f, options_.table, fail_fn);
     for (const Column& c : columns_) {
       const hsize_t dims = 0, maxdims = H5S_UNLIMITED, chunk = options_.chunk_rows;
@@ -418,20 +215,9 @@ ResultsFile::~ResultsFile() {
 void ResultsFile::write_attributes(std::int64_t group, const ResultAttributes& a) {
   auto fail_fn = [this](const std::string& what) { fail(what); };
   for (const auto& [k, v] : a.text) write_vlen_string(group, k.c_str(), v, false, fail_fn);
-  for (const auto& [k, v] : a.number) {
-    Handle space = scalar_space(fail_fn);
-    write_attribute(group, k.c_str(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), &v, fail_fn);
-  }
-  for (const auto& [k, v] : a.integer) {
-    Handle space = scalar_space(fail_fn);
-    write_attribute(group, k.c_str(), H5T_STD_I64LE, H5T_NATIVE_INT64, space.get(), &v, fail_fn);
-  }
-  for (const auto& [k, v] : a.number_array) {
-    const hsize_t n = v.size();
-    Handle space(n ? H5Screate_simple(1, &n, nullptr) : H5Screate(H5S_NULL), H5Sclose);
-    if (!space.valid()) fail("cannot create a dataspace");
-    write_attribute(group, k.c_str(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), v.data(), fail_fn);
-  }
+  for (const auto& [k, v] : a.number) hdf5::write_double_attribute(group, k.c_str(), v, fail_fn);
+  for (const auto& [k, v] : a.integer) hdf5::write_int_attribute(group, k.c_str(), H5T_STD_I64LE, v, fail_fn);
+  for (const auto& [k, v] : a.number_array) hdf5::write_double_array(group, k.c_str(), v, fail_fn);
 }
 
 void ResultsFile::write_parameters(const ResultAttributes& attributes) {
@@ -441,11 +227,7 @@ void ResultsFile::write_parameters(const ResultAttributes& attributes) {
     if (!a.text.count(key) && !a.number.count(key) && !a.integer.count(key) && !a.number_array.count(key))
       a.text[key] = value;
   };
-  add_default("compiler", lgi::build_info::compiler);
-  add_default("cxx_flags", lgi::build_info::cxx_flags);
-  add_default("build_type", lgi::build_info::build_type);
-  add_default("hdf5_version", hdf5_library_version());
-  add_default("utc_start", utc_now_iso8601());
+  for (const auto& [k, v] : hdf5::default_provenance(hdf5::utc_now_iso8601())) add_default(k, v);
   write_group("parameters", a);
 }
 
@@ -592,8 +374,8 @@ void ResultsFile::finish(const ResultAttributes& diagnostics) {
     }
     throw;
   }
-  publish(csv_partial_path(), csv_path_, force_);
-  publish(partial_path_, path_, force_);
+  hdf5::publish(csv_partial_path(), csv_path_, force_, "the results are");
+  hdf5::publish(partial_path_, path_, force_, "the results are");
 }
 
 void ResultsFile::abandon(const ResultAttributes& diagnostics) {

@@ -15,8 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -31,10 +29,11 @@
 #include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
 #include "experiments/h5md_writer.hpp"
+#include "experiments/hdf5_support.hpp"
+#include "experiments/results_file.hpp"
 #include "experiments/scene_reader.hpp"
 #include "integrators/baselines/baselines.hpp"
 #include "integrators/registry.hpp"
-#include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -64,138 +63,68 @@ constexpr double grid_spacing = 0.01;
 
 // ---- HDF5 output (C API), errors as OutputFileError ------------------------------
 
+/// The study's file: attributes through the shared writers, plain (not
+/// chunked) datasets written once. Errors: "cannot write <what> in '<path>'".
 class H5 {
  public:
-  H5(const std::string& path) : path_(path) {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (file_ < 0) throw OutputFileError("cannot create '" + path + "'");
+  explicit H5(const std::string& path)
+      : path_(path), fail_([this](const std::string& what) { throw OutputFileError(what + " in '" + path_ + "'"); }) {
+    file_ = hdf5::Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (!file_.valid()) throw OutputFileError("cannot create '" + path + "'");
   }
-  ~H5() { close(); }
   H5(const H5&) = delete;
   H5& operator=(const H5&) = delete;
-  void close() {
-    if (file_ >= 0) H5Fclose(file_);
-    file_ = -1;
-  }
-  hid_t file() const { return file_; }
+  void close() { file_.reset(); }
+  hid_t file() const { return file_.get(); }
+  const hdf5::Fail& fail() const { return fail_; }
 
-  /// Creates the group `path` (parents must exist); returns an open id the caller closes.
-  hid_t group(const std::string& path) {
-    const hid_t g = H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    check(g < 0 ? -1 : 0, "group " + path);
-    return g;
-  }
+  /// Creates the group `path` (parents must exist).
+  hdf5::Handle group(const std::string& path) { return hdf5::create_group(file(), path, fail_); }
   void text(hid_t obj, const char* name, const std::string& value) {
-    const hid_t type = H5Tcopy(H5T_C_S1);
-    H5Tset_size(type, H5T_VARIABLE);
-    H5Tset_cset(type, H5T_CSET_UTF8);
-    const hid_t space = H5Screate(H5S_SCALAR);
-    const hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    const char* p = value.c_str();
-    const herr_t w = a >= 0 ? H5Awrite(a, type, &p) : -1;
-    if (a >= 0) H5Aclose(a);
-    H5Sclose(space);
-    H5Tclose(type);
-    check(w, std::string("attribute ") + name);
+    hdf5::write_vlen_string(obj, name, value, /*ascii=*/false, fail_);
   }
-  /// Fixed-length string attribute (H5MD asks these for /h5md).
-  void fixed_text(hid_t obj, const char* name, const std::string& value) {
-    const hid_t type = H5Tcopy(H5T_C_S1);
-    H5Tset_size(type, value.size() + 1);
-    H5Tset_strpad(type, H5T_STR_NULLTERM);
-    H5Tset_cset(type, H5T_CSET_UTF8);
-    const hid_t space = H5Screate(H5S_SCALAR);
-    const hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    const herr_t w = a >= 0 ? H5Awrite(a, type, value.c_str()) : -1;
-    if (a >= 0) H5Aclose(a);
-    H5Sclose(space);
-    H5Tclose(type);
-    check(w, std::string("attribute ") + name);
-  }
-  void number(hid_t obj, const char* name, double value) {
-    scalar_attribute(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
-  }
+  void number(hid_t obj, const char* name, double value) { hdf5::write_double_attribute(obj, name, value, fail_); }
   void integer(hid_t obj, const char* name, std::int64_t value) {
-    scalar_attribute(obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+    hdf5::write_int_attribute(obj, name, H5T_STD_I64LE, value, fail_);
   }
   void numbers(hid_t obj, const char* name, const std::vector<double>& v) {
-    const hsize_t n = v.size();
-    const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t a = H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
-    const herr_t w = a >= 0 ? H5Awrite(a, H5T_NATIVE_DOUBLE, v.data()) : -1;
-    if (a >= 0) H5Aclose(a);
-    H5Sclose(space);
-    check(w, std::string("attribute ") + name);
+    hdf5::write_double_array(obj, name, v, fail_);
   }
   /// A float64 dataset of shape dims (row-major data), with an optional unit attribute.
-  void dataset(hid_t parent, const char* name, const std::vector<double>& data, std::vector<hsize_t> dims,
+  void dataset(hid_t parent, const char* name, const std::vector<double>& data, const std::vector<hsize_t>& dims,
                const char* unit = nullptr) {
-    hsize_t n = 1;
-    for (hsize_t d : dims) n *= d;
-    if (n != data.size()) throw OutputFileError("internal: dataset " + std::string(name) + " has the wrong size");
-    const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
-    const hid_t d = H5Dcreate2(parent, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    const herr_t w = d >= 0 ? (n ? H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) : 0) : -1;
-    if (d >= 0 && unit) text(d, "unit", unit);
-    if (d >= 0) H5Dclose(d);
-    H5Sclose(space);
-    check(w, std::string("dataset ") + name);
+    const hdf5::Handle d =
+        write_dataset(parent, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, data.data(), data.size());
+    if (unit) text(d.get(), "unit", unit);
   }
   void int_dataset(hid_t parent, const char* name, const std::vector<std::int64_t>& data) {
-    const hsize_t n = data.size();
-    const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t d = H5Dcreate2(parent, name, H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    const herr_t w = d >= 0 ? (n ? H5Dwrite(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) : 0) : -1;
-    if (d >= 0) H5Dclose(d);
-    H5Sclose(space);
-    check(w, std::string("dataset ") + name);
+    write_dataset(parent, name, H5T_STD_I64LE, H5T_NATIVE_INT64, {data.size()}, data.data(), data.size());
   }
   void string_dataset(hid_t parent, const char* name, const std::vector<std::string>& data) {
     std::vector<const char*> p;
     for (const auto& s : data) p.push_back(s.c_str());
-    const hsize_t n = data.size();
-    const hid_t type = H5Tcopy(H5T_C_S1);
-    H5Tset_size(type, H5T_VARIABLE);
-    H5Tset_cset(type, H5T_CSET_UTF8);
-    const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t d = H5Dcreate2(parent, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    const herr_t w = d >= 0 ? (n ? H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) : 0) : -1;
-    if (d >= 0) H5Dclose(d);
-    H5Sclose(space);
-    H5Tclose(type);
-    check(w, std::string("dataset ") + name);
+    const hdf5::Handle type = hdf5::vlen_string_type(/*ascii=*/false, fail_);
+    write_dataset(parent, name, type.get(), type.get(), {data.size()}, p.data(), data.size());
   }
-  void flush() { H5Fflush(file_, H5F_SCOPE_GLOBAL); }
+  void flush() { H5Fflush(file(), H5F_SCOPE_GLOBAL); }
 
  private:
-  void scalar_attribute(hid_t obj, const char* name, hid_t file_type, hid_t mem_type, const void* v) {
-    const hid_t space = H5Screate(H5S_SCALAR);
-    const hid_t a = H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT);
-    const herr_t w = a >= 0 ? H5Awrite(a, mem_type, v) : -1;
-    if (a >= 0) H5Aclose(a);
-    H5Sclose(space);
-    check(w, std::string("attribute ") + name);
+  hdf5::Handle write_dataset(hid_t parent, const char* name, hid_t file_type, hid_t memory_type,
+                             const std::vector<hsize_t>& dims, const void* data, std::size_t elements) {
+    hsize_t n = 1;
+    for (hsize_t d : dims) n *= d;
+    if (n != elements) throw OutputFileError("internal: dataset " + std::string(name) + " has the wrong size");
+    const hdf5::Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+    hdf5::Handle d(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+    if (!d.valid() || (n && H5Dwrite(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
+      fail_(std::string("cannot write dataset ") + name);
+    return d;
   }
-  void check(herr_t r, const std::string& what) const {
-    if (r < 0) throw OutputFileError("cannot write " + what + " in '" + path_ + "'");
-  }
+
+  hdf5::QuietHdf5Errors quiet_;  // for the file's lifetime: errors arrive as OutputFileError
   std::string path_;
-  hid_t file_ = -1;
-};
-
-class GroupHandle {
- public:
-  explicit GroupHandle(hid_t id) : id_(id) {}
-  ~GroupHandle() {
-    if (id_ >= 0) H5Gclose(id_);
-  }
-  GroupHandle(const GroupHandle&) = delete;
-  GroupHandle& operator=(const GroupHandle&) = delete;
-  hid_t get() const { return id_; }
-
- private:
-  hid_t id_;
+  hdf5::Fail fail_;
+  hdf5::Handle file_;
 };
 
 // ---- methods and runs ------------------------------------------------------------
@@ -349,32 +278,6 @@ std::string format(double x, int precision = 6) {
   return s.str();
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string csv_path_for(const std::string& h5) {
-  const std::string ext = ".h5";
-  if (h5.size() > ext.size() && h5.compare(h5.size() - ext.size(), ext.size(), ext) == 0)
-    return h5.substr(0, h5.size() - ext.size()) + ".csv";
-  return h5 + ".csv";
-}
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 std::vector<Method> study_methods(bool quick, const system::AnyModel& model) {
   std::vector<Method> out;
   auto add_baseline = [&](bl::Coordinates c, bl::Stepper s, bool guarded) {
@@ -424,7 +327,7 @@ int singularity(const SingularityOptions& o) {
   if (o.out.empty()) throw UsageError("--out: an output file is required");
   if (o.tol && !(*o.tol > 0.0 && std::isfinite(*o.tol))) throw UsageError("--tol: must be a finite number > 0");
   if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a finite number > 0");
-  const std::string csv = csv_path_for(o.out);
+  const std::string csv = results_csv_path(o.out);
   struct stat st {};
   if (!o.force && ::stat(o.out.c_str(), &st) == 0)
     throw OutputFileError("output file '" + o.out + "' exists (use --force to replace it)");
@@ -439,24 +342,9 @@ int singularity(const SingularityOptions& o) {
 
   const std::string partial = o.out + ".partial";
   H5 h5(partial);
-  const std::string utc = utc_now();
-  {
-    GroupHandle h5md(h5.group("/h5md"));
-    const std::int32_t version[2] = {1, 1};
-    const hsize_t two = 2;
-    const hid_t space = H5Screate_simple(1, &two, nullptr);
-    const hid_t a = H5Acreate2(h5md.get(), "version", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(a, H5T_NATIVE_INT32, version);
-    H5Aclose(a);
-    H5Sclose(space);
-    GroupHandle author(h5.group("/h5md/author"));
-    const char* user = std::getenv("USER");
-    h5.fixed_text(author.get(), "name", user && *user ? user : "unknown");
-    GroupHandle creator(h5.group("/h5md/creator"));
-    h5.fixed_text(creator.get(), "name", "lgi");
-    h5.fixed_text(creator.get(), "version", build_info::version);
-  }
-  { GroupHandle scenes_group(h5.group("/scenes")); }
+  const std::string utc = hdf5::utc_now_iso8601();
+  hdf5::write_h5md_metadata(h5.file(), /*units_module=*/false, h5.fail());
+  h5.group("/scenes");
 
   struct SummaryRow {
     std::string scene;
@@ -558,7 +446,7 @@ int singularity(const SingularityOptions& o) {
 
     // This scene's group.
     const std::string base = "/scenes/" + sc.key;
-    GroupHandle g(h5.group(base));
+    const hdf5::Handle g = h5.group(base);
     h5.text(g.get(), "scene_file", scene.file);
     h5.text(g.get(), "scene_name", scene.name);
     h5.text(g.get(), "scene_toml", scene.toml_text);
@@ -567,19 +455,19 @@ int singularity(const SingularityOptions& o) {
     h5.number(g.get(), "dt", dt);
     h5.numbers(g.get(), "center_of_mass_body", {chi.x(), chi.y(), chi.z()});
     {
-      GroupHandle gg(h5.group(base + "/grid"));
+      const hdf5::Handle gg = h5.group(base + "/grid");
       h5.dataset(gg.get(), "time", grid, {G}, "s");
     }
     {
-      GroupHandle rg(h5.group(base + "/reference"));
+      const hdf5::Handle rg = h5.group(base + "/reference");
       h5.text(rg.get(), "scheme", reference_scheme);
       h5.number(rg.get(), "tol", reference_tol);
       h5.dataset(rg.get(), "center_of_mass", ref, {G, 3}, "m");
     }
-    GroupHandle runs(h5.group(base + "/runs"));
+    const hdf5::Handle runs = h5.group(base + "/runs");
     for (const RunRecord& r : all[ci]) {
       const std::string p = base + "/runs/" + r.method.label;
-      GroupHandle rg(h5.group(p));
+      const hdf5::Handle rg = h5.group(p);
       const Method& m = r.method;
       h5.text(rg.get(), "method", m.name);
       h5.text(rg.get(), "family", m.baseline ? std::string("baseline") : m.scheme->family);
@@ -603,7 +491,7 @@ int singularity(const SingularityOptions& o) {
       h5.number(rg.get(), "com_max_deviation", r.com_max_deviation);
       h5.integer(rg.get(), "com_points_compared", r.com_points);
       {
-        GroupHandle sh(h5.group(p + "/step_history"));
+        const hdf5::Handle sh = h5.group(p + "/step_history");
         h5.dataset(sh.get(), "time", r.step_end, {r.step_end.size()}, "s");
         h5.dataset(sh.get(), "step_size", r.step_size, {r.step_size.size()}, "s");
       }
@@ -611,7 +499,7 @@ int singularity(const SingularityOptions& o) {
       h5.dataset(rg.get(), "com_deviation", r.com_deviation, {G}, "m");
       if (m.baseline && m.id.coordinates == bl::Coordinates::euler_zxz) {
         h5.number(rg.get(), "min_abs_sin_theta", r.min_abs_sin_theta);
-        GroupHandle eg(h5.group(p + "/euler_zxz"));
+        const hdf5::Handle eg = h5.group(p + "/euler_zxz");
         const hsize_t n = r.e_time.size();
         h5.dataset(eg.get(), "time", r.e_time, {n}, "s");
         h5.dataset(eg.get(), "psi", r.psi, {n}, "rad");
@@ -626,7 +514,7 @@ int singularity(const SingularityOptions& o) {
 
   // /results: one row per run, column datasets; the same table as the CSV.
   {
-    GroupHandle sg(h5.group("/results"));
+    const hdf5::Handle sg = h5.group("/results");
     std::vector<std::string> scene_col, method_col, coord_col, stepper_col, guard_col, outcome_col, status_col;
     std::vector<double> tol_col, dt_col, t_final, cpu, h_min, h_median, h_max, t_hmin, sin_min, com_dev;
     std::vector<std::int64_t> steps, rejected, rhs, compared;
@@ -681,7 +569,7 @@ int singularity(const SingularityOptions& o) {
     h5.int_dataset(sg.get(), "com_points_compared", compared);
   }
   {
-    GroupHandle pg(h5.group("/parameters"));
+    const hdf5::Handle pg = h5.group("/parameters");
     h5.text(pg.get(), "command", "singularity");
     h5.text(pg.get(), "command_line", o.command_line);
     h5.number(pg.get(), "tol", tol_used);
@@ -693,11 +581,7 @@ int singularity(const SingularityOptions& o) {
     h5.number(pg.get(), "euler_singular_threshold", bl::default_euler_singular_threshold);
     h5.number(pg.get(), "euler_fixed_step_resolution", bl::default_euler_fixed_step_resolution);
     h5.text(pg.get(), "csv_file", csv);
-    h5.text(pg.get(), "compiler", build_info::compiler);
-    h5.text(pg.get(), "cxx_flags", build_info::cxx_flags);
-    h5.text(pg.get(), "build_type", build_info::build_type);
-    h5.text(pg.get(), "hdf5_version", hdf5_library_version());
-    h5.text(pg.get(), "utc_start", utc);
+    for (const auto& [k, v] : hdf5::default_provenance(utc)) h5.text(pg.get(), k.c_str(), v);
   }
   h5.close();
 
@@ -712,12 +596,12 @@ int singularity(const SingularityOptions& o) {
     for (const auto& row : rows) {
       const RunRecord& r = *row.r;
       const Method& m = r.method;
-      f << row.scene << ',' << csv_field(m.name) << ','
+      f << row.scene << ',' << hdf5::csv_text(m.name) << ','
         << (m.baseline ? bl::coordinates_name(m.id.coordinates) : "lie-group") << ','
         << (m.baseline ? std::string(bl::stepper_name(m.id.stepper)) : m.name) << ','
         << (!m.baseline || m.id.coordinates != bl::Coordinates::euler_zxz ? "-" : m.guarded ? "on" : "off") << ','
         << (m.adaptive ? format(row.tol, 3) : "") << ',' << (m.adaptive ? "" : format(row.dt, 3)) << ','
-        << (r.stats.ok ? "ok" : "failed") << ',' << csv_field(r.stats.status) << ',' << format(r.stats.t_final, 10)
+        << (r.stats.ok ? "ok" : "failed") << ',' << hdf5::csv_text(r.stats.status) << ',' << format(r.stats.t_final, 10)
         << ',' << r.stats.steps << ',' << r.stats.work.rejected_steps << ',' << r.stats.work.rhs_evaluations << ','
         << format(r.cpu_seconds, 4) << ',' << format(r.h_min, 4) << ',' << format(r.h_median, 4) << ','
         << format(r.h_max, 4) << ',' << format(r.t_at_h_min, 8) << ',' << format(r.min_abs_sin_theta, 4) << ','
@@ -725,11 +609,9 @@ int singularity(const SingularityOptions& o) {
     }
     f.close();
     if (!f) throw OutputFileError("cannot write '" + csv_partial + "'");
-    if (std::rename(csv_partial.c_str(), csv.c_str()) != 0)
-      throw OutputFileError("cannot rename '" + csv_partial + "' to '" + csv + "'");
+    hdf5::publish(csv_partial, csv, o.force, "the table is");
   }
-  if (std::rename(partial.c_str(), o.out.c_str()) != 0)
-    throw OutputFileError("cannot rename '" + partial + "' to '" + o.out + "'");
+  hdf5::publish(partial, o.out, o.force, "the study is");
   if (!o.quiet) std::cout << "wrote " << o.out << " and " << csv << '\n';
   return exit_ok;
 }
