@@ -12,6 +12,9 @@
 #include <iostream>
 #include <string>
 
+// First: it includes odeint with a GCC false positive silenced (see there).
+#include "support/reference_solution.hpp"
+
 #include "experiments/scene_reader.hpp"
 #include "integrators/baselines/baselines.hpp"
 #include "integrators/baselines/euler_zxz.hpp"
@@ -21,7 +24,6 @@
 #include "integrators/registry.hpp"
 #include "support/convergence.hpp"
 #include "support/h5_read.hpp"
-#include "support/reference_solution.hpp"
 #include "support/run_command.hpp"
 
 using namespace lgi;

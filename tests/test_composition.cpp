@@ -20,6 +20,7 @@
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
+#include "support/registered_run.hpp"
 
 using namespace lgi;
 using testing::ConvergencePoint;
@@ -48,26 +49,9 @@ std::vector<ConvergencePoint> convergence(const integrators::SchemeInfo& scheme,
   const StepRange range = step_range(scheme.order);
   double h = range.h0;
   for (int k = 0; k < 7; ++k, h *= range.ratio) {
-    system::State x = x0;
-    integrators::RunConfig cfg;
-    cfg.t_end = T;
-    cfg.dt = h;
-    cfg.save_every = 1 << 30;
-    integrators::NullObserver none;
-    const auto stats = scheme.run(model, x, cfg, none);
-    INFO(scheme.name << " at h = " << h << ": " << stats.status);
-    REQUIRE(stats.ok);
-    pts.push_back({h, testing::global_error(x, ref)});
+    pts.push_back({h, testing::global_error(testing::final_state_ok(scheme, model, x0, T, h), ref)});
   }
   return pts;
-}
-
-void report(const std::string& name, const std::string& problem, const testing::SlopeFit& fit,
-            const std::vector<ConvergencePoint>& pts) {
-  std::cout << "order " << name << " on " << problem << ": slope " << fit.slope << " from " << fit.points
-            << " points;";
-  for (const auto& p : pts) std::cout << " (" << p.h << ", " << p.error << ")";
-  std::cout << '\n';
 }
 
 }  // namespace
@@ -84,7 +68,7 @@ TEST_CASE("every composition reaches its order on the asymmetric free body", "[c
     if (scheme.name.starts_with("split-exact@")) continue;  // the exact flow here
     const auto pts = convergence(scheme, model, scene.initial, T, exact);
     const auto fit = testing::fitted_slope(pts, 1e-12);  // 17 substeps per step: round-off reaches 1e-13
-    report(scheme.name, "free_body_hlw", fit, pts);
+    testing::report_slope(scheme.name, "free_body_hlw", fit, pts);
     INFO(scheme.name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - scheme.order) <= 0.2);
@@ -105,7 +89,7 @@ TEST_CASE("every composition reaches its order on the Kovalevskaya top", "[compo
     if (!is_composition(scheme) || !integrators::unsupported_reason(scheme, model).empty()) continue;
     const auto pts = convergence(scheme, model, scene.initial, T, ref);
     const auto fit = testing::fitted_slope(pts, 1e-12);
-    report(scheme.name, "kovalevskaya", fit, pts);
+    testing::report_slope(scheme.name, "kovalevskaya", fit, pts);
     const int expected = scheme.order_with_torque ? scheme.order_with_torque : scheme.order;
     INFO(scheme.name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);

@@ -31,6 +31,7 @@
 #include "support/convergence.hpp"
 #include "support/h5_read.hpp"
 #include "support/reference_solution.hpp"
+#include "support/registered_run.hpp"
 #include "support/run_command.hpp"
 
 using namespace lgi;
@@ -44,28 +45,9 @@ const std::string scenes = LGI_SCENES_DIR;
 
 system::Scene scene(const std::string& name) { return experiments::read_scene(scenes + "/" + name + ".toml"); }
 
-const integrators::SchemeInfo& registered(const std::string& name) {
-  const auto* s = integrators::find_scheme(name);
-  REQUIRE(s);
-  return *s;
-}
-
-struct Run {
-  system::State state;
-  integrators::RunStats stats;
-};
-
-Run run_registered(const std::string& name, const system::AnyModel& model, const system::State& x0, double t_end,
-                   double h) {
-  Run r{x0, {}};
-  integrators::RunConfig cfg;
-  cfg.t_end = t_end;
-  cfg.dt = h;
-  cfg.save_every = 1 << 30;
-  integrators::NullObserver none;
-  r.stats = registered(name).run(model, r.state, cfg, none);
-  return r;
-}
+using Run = testing::RegisteredRun;
+using testing::run_registered;
+const integrators::SchemeInfo& registered(const std::string& name) { return testing::registered_scheme(name); }
 
 template <class Scheme, class Model>
 Run run_scheme(Scheme& scheme, const Model& model, const system::State& x0, double t_end, double h) {
@@ -77,14 +59,6 @@ Run run_scheme(Scheme& scheme, const Model& model, const system::State& x0, doub
   integrators::NullObserver none;
   r.stats = integrators::integrate_fixed(scheme, model, r.state, cfg, none);
   return r;
-}
-
-void report(const std::string& name, const std::string& problem, const testing::SlopeFit& fit,
-            const std::vector<ConvergencePoint>& pts) {
-  std::cout << "order " << name << " on " << problem << ": slope " << fit.slope << " from " << fit.points
-            << " points;";
-  for (const auto& p : pts) std::cout << " (" << p.h << ", " << p.error << ")";
-  std::cout << '\n';
 }
 
 std::int64_t integer_attribute(const std::string& file, const std::string& object, const std::string& name) {
@@ -136,7 +110,7 @@ TEST_CASE("implicit schemes converge at their nominal order on the asymmetric fr
       pts.push_back({h, testing::global_error(r.state, exact)});
     }
     const auto fit = testing::fitted_slope(pts);
-    report(name, "free_body_hlw", fit, pts);
+    testing::report_slope(name, "free_body_hlw", fit, pts);
     INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - registered(name).order) <= 0.2);
@@ -157,7 +131,7 @@ TEST_CASE("implicit schemes converge at their nominal order on the Kovalevskaya 
       pts.push_back({h, testing::global_error(r.state, ref)});
     }
     const auto fit = testing::fitted_slope(pts);
-    report(name, "kovalevskaya", fit, pts);
+    testing::report_slope(name, "kovalevskaya", fit, pts);
     INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - registered(name).order) <= 0.2);
@@ -182,7 +156,7 @@ TEST_CASE("implicit schemes converge at their nominal order with a time-dependen
       pts.push_back({h, testing::global_error(r.state, ref)});
     }
     const auto fit = testing::fitted_slope(pts);
-    report(name, "driven general top", fit, pts);
+    testing::report_slope(name, "driven general top", fit, pts);
     INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - registered(name).order) <= 0.2);
@@ -382,7 +356,7 @@ TEST_CASE("stiff damped spring: radau5 against its own h = 1e-4 run, and its err
     REQUIRE(r.stats.ok);
     pts.push_back({h, testing::global_error(r.state, fine.state)});
   }
-  report("rkmk-radau5", "stiff_damped_spring (h c/J from 800 down to 12.5)", testing::fitted_slope(pts, 1e-12, 1.0), pts);
+  testing::report_slope("rkmk-radau5", "stiff_damped_spring (h c/J from 800 down to 12.5)", testing::fitted_slope(pts, 1e-12, 1.0), pts);
   for (std::size_t k = 1; k < pts.size(); ++k) CHECK(pts[k].error < pts[k - 1].error);
   CHECK(pts[3].error < 1e-5);  // h = 0.1
 }

@@ -16,6 +16,7 @@
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
+#include "support/registered_run.hpp"
 
 using namespace lgi;
 using testing::ConvergencePoint;
@@ -31,33 +32,12 @@ system::Scene driven_general_top() {
   return scene;
 }
 
-system::State run_registered(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
-                             const system::State& x0, double t_end, double h) {
-  system::State x = x0;
-  integrators::RunConfig cfg;
-  cfg.t_end = t_end;
-  cfg.dt = h;
-  cfg.save_every = 1 << 30;
-  integrators::NullObserver none;
-  const auto stats = scheme.run(model, x, cfg, none);
-  REQUIRE(stats.ok);
-  return x;
-}
-
 std::vector<double> step_sizes(int order) {
   // Coarser steps for high orders keep the errors above the round-off plateau.
   std::vector<double> hs;
   double h = order >= 4 ? 0.2 : order >= 2 ? 0.1 : 0.01;
   for (int k = 0; k < 6; ++k, h *= 0.5) hs.push_back(h);
   return hs;
-}
-
-void report(const std::string& name, const std::string& problem, const testing::SlopeFit& fit,
-            const std::vector<ConvergencePoint>& pts) {
-  std::cout << "order " << name << " on " << problem << ": slope " << fit.slope << " from " << fit.points
-            << " points;";
-  for (const auto& p : pts) std::cout << " (" << p.h << ", " << p.error << ")";
-  std::cout << '\n';
 }
 
 }  // namespace
@@ -77,9 +57,9 @@ TEST_CASE("every explicit scheme converges at its nominal order on the asymmetri
       continue;
     std::vector<ConvergencePoint> pts;
     for (double h : step_sizes(scheme.order))
-      pts.push_back({h, testing::global_error(run_registered(scheme, model, scene.initial, T, h), exact)});
+      pts.push_back({h, testing::global_error(testing::final_state_ok(scheme, model, scene.initial, T, h), exact)});
     const auto fit = testing::fitted_slope(pts);
-    report(scheme.name, "free_body_hlw", fit, pts);
+    testing::report_slope(scheme.name, "free_body_hlw", fit, pts);
     // A splitting with the exact free flow is exact on a free body: every
     // error at round-off, no slope to fit.
     if (fit.points == 0 && std::all_of(pts.begin(), pts.end(), [](const auto& p) { return p.error < 1e-11; })) continue;
@@ -106,9 +86,9 @@ TEST_CASE("every explicit scheme converges at its nominal order on a driven gene
       continue;
     std::vector<ConvergencePoint> pts;
     for (double h : step_sizes(scheme.order))
-      pts.push_back({h, testing::global_error(run_registered(scheme, model, scene.initial, T, h), ref)});
+      pts.push_back({h, testing::global_error(testing::final_state_ok(scheme, model, scene.initial, T, h), ref)});
     const auto fit = testing::fitted_slope(pts);
-    report(scheme.name, "driven general top", fit, pts);
+    testing::report_slope(scheme.name, "driven general top", fit, pts);
     INFO(scheme.name << ": slope " << fit.slope << " from " << fit.points << " points");
     const int expected = scheme.order_with_torque ? scheme.order_with_torque : scheme.order;
     CHECK(fit.points >= 3);
@@ -134,7 +114,7 @@ TEST_CASE("the Dormand-Prince pair behind rkmk-dp54 has order 5 at fixed steps",
       pts.push_back({h, testing::global_error(x, ref)});
     }
     const auto fit = testing::fitted_slope(pts, floor);
-    report("dp54 (fixed step)", what, fit, pts);
+    testing::report_slope("dp54 (fixed step)", what, fit, pts);
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - 5.0) <= 0.2);
   };

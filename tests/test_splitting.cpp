@@ -30,6 +30,7 @@
 #include "integrators/system/invariants.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
+#include "support/registered_run.hpp"
 
 using namespace lgi;
 using lie::Mat3;
@@ -42,23 +43,10 @@ const std::string scenes = LGI_SCENES_DIR;
 
 system::Scene scene_file(const std::string& name) { return experiments::read_scene(scenes + "/" + name + ".toml"); }
 
-const integrators::SchemeInfo& split_exact() {
-  const auto* s = integrators::find_scheme("split-exact");
-  REQUIRE(s);
-  return *s;
-}
+const integrators::SchemeInfo& split_exact() { return testing::registered_scheme("split-exact"); }
 
 system::State run_ok(const system::AnyModel& model, const system::State& x0, double t_end, double h) {
-  system::State x = x0;
-  integrators::RunConfig cfg;
-  cfg.t_end = t_end;
-  cfg.dt = h;
-  cfg.save_every = 1 << 30;
-  integrators::NullObserver none;
-  const auto stats = split_exact().run(model, x, cfg, none);
-  INFO(stats.status);
-  REQUIRE(stats.ok);
-  return x;
+  return testing::final_state_ok(split_exact(), model, x0, t_end, h);
 }
 
 double attitude_error(const system::State& a, const system::State& b) { return lie::geodesic_distance(a.R, b.R); }

@@ -25,6 +25,7 @@
 #include "integrators/system/invariants.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
+#include "support/registered_run.hpp"
 #include "support/run_command.hpp"
 
 using namespace lgi;
@@ -36,31 +37,15 @@ namespace {
 
 const std::string scenes = LGI_SCENES_DIR;
 
-struct Run {
-  system::State x;
-  integrators::RunStats stats;
-};
-
+using Run = testing::RegisteredRun;
 Run run_scheme(const std::string& name, const system::AnyModel& model, const system::State& x0, double t_end,
                double h, integrators::Observer* observer = nullptr, std::int64_t save_every = 1 << 30) {
-  const integrators::SchemeInfo* scheme = integrators::find_scheme(name);
-  REQUIRE(scheme != nullptr);
-  Run r{x0, {}};
-  integrators::RunConfig cfg;
-  cfg.t_end = t_end;
-  cfg.dt = h;
-  cfg.save_every = save_every;
-  integrators::NullObserver none;
-  r.stats = scheme->run(model, r.x, cfg, observer ? *observer : none);
-  return r;
+  return testing::run_registered(name, model, x0, t_end, h, observer, save_every);
 }
 
 system::State run_ok(const std::string& name, const system::AnyModel& model, const system::State& x0, double t_end,
                      double h) {
-  Run r = run_scheme(name, model, x0, t_end, h);
-  INFO(name << " h = " << h << ": " << r.stats.status);
-  REQUIRE(r.stats.ok);
-  return r.x;
+  return testing::final_state_ok(testing::registered_scheme(name), model, x0, t_end, h);
 }
 
 /// The largest relative deviation of a scalar along a run, observed at every step.
@@ -148,14 +133,6 @@ std::vector<double> halving(double h0, int n) {
   return hs;
 }
 
-void report(const std::string& name, const std::string& problem, const testing::SlopeFit& fit,
-            const std::vector<ConvergencePoint>& pts) {
-  std::cout << "order " << name << " on " << problem << ": slope " << fit.slope << " from " << fit.points
-            << " points;";
-  for (const auto& p : pts) std::cout << " (" << p.h << ", " << p.error << ")";
-  std::cout << '\n';
-}
-
 system::Scene undamped_spring() {
   system::Scene scene = experiments::read_scene(scenes + "/stiff_damped_spring.toml");
   REQUIRE(scene.spring);
@@ -215,7 +192,7 @@ TEST_CASE("dmv, lgvi and dmv-pre* converge at their nominal orders on the asymme
     for (double h = c.h0; pts.size() < 6; h *= c.ratio)
       pts.push_back({h, testing::global_error(run_ok(c.name, model, scene.initial, T, h), exact)});
     const auto fit = testing::fitted_slope(pts, 1e-13);
-    report(c.name, "free_body_hlw", fit, pts);
+    testing::report_slope(c.name, "free_body_hlw", fit, pts);
     INFO(c.name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - c.order) <= 0.2);
@@ -233,7 +210,7 @@ TEST_CASE("lgvi and the split dmv-pre* have order 2 on the Kovalevskaya top", "[
     for (double h : halving(0.1, 6))
       pts.push_back({h, testing::global_error(run_ok(name, model, scene.initial, T, h), ref)});
     const auto fit = testing::fitted_slope(pts);
-    report(name, "kovalevskaya", fit, pts);
+    testing::report_slope(name, "kovalevskaya", fit, pts);
     INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - 2.0) <= 0.2);
@@ -250,7 +227,7 @@ TEST_CASE("lgvi has order 2 on an undamped spring", "[variational][order]") {
   for (double h : halving(0.01, 6))
     pts.push_back({h, testing::global_error(run_ok("lgvi", model, scene.initial, T, h), ref)});
   const auto fit = testing::fitted_slope(pts);
-  report("lgvi", "undamped spring", fit, pts);
+  testing::report_slope("lgvi", "undamped spring", fit, pts);
   CHECK(fit.points >= 3);
   CHECK(std::abs(fit.slope - 2.0) <= 0.2);
   // The damped original is refused: a damper is not a potential force.
@@ -430,8 +407,8 @@ TEST_CASE("steps beyond DMV's reach are reported through the registry, with thei
       CHECK(r.stats.work.newton_failures == 1);
       CHECK_THAT(r.stats.status, Catch::StartsWith(c.what) && Catch::Contains("at step 1") &&
                                      Catch::Contains("residual") && Catch::Contains(c.detail));
-      CHECK(r.x.R == free_scene.initial.R);  // untouched, finite
-      CHECK(r.x.Pi == free_scene.initial.Pi);
+      CHECK(r.state.R == free_scene.initial.R);  // untouched, finite
+      CHECK(r.state.Pi == free_scene.initial.Pi);
     }
   }
 }

@@ -4,6 +4,8 @@
 // the pre-asymptotic regime (errors above `ceiling`), as in JuliaGNI's
 // verification tests.
 #include <cmath>
+#include <iostream>
+#include <string>
 #include <vector>
 
 #include "lie/so3.hpp"
@@ -34,6 +36,16 @@ inline SlopeFit fitted_slope(const std::vector<ConvergencePoint>& pts, double fl
   f.points = n;
   if (n >= 2) f.slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   return f;
+}
+
+/// One line on stdout with the fitted slope and every (h, error) point, so a
+/// test run records the orders it measured.
+inline void report_slope(const std::string& name, const std::string& problem, const SlopeFit& fit,
+                         const std::vector<ConvergencePoint>& pts) {
+  std::cout << "order " << name << " on " << problem << ": slope " << fit.slope << " from " << fit.points
+            << " points;";
+  for (const auto& p : pts) std::cout << " (" << p.h << ", " << p.error << ")";
+  std::cout << '\n';
 }
 
 /// Global error of conventions.md: the larger of the geodesic attitude
