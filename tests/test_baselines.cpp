@@ -306,6 +306,37 @@ TEST_CASE("controlled baselines: the error falls with tol and meets it within a 
     }
 }
 
+TEST_CASE("controlled baselines: the error falls with the steps taken at the stepper's nominal order",
+          "[baselines][order]") {
+  // Under tolerance-proportional control a method of order p takes N ∝ h⁻¹
+  // steps and reaches a global error ∝ hᵖ, so log(error) against log(1/N) has
+  // slope p whatever the tolerance-to-step relation: the nominal order of a
+  // controlled stepper observed through the registry's own runs (HNW I §II.4,
+  // work-precision diagrams). bs has no fixed order and is left to the
+  // tolerance test above.
+  const system::Scene sc = scene("heavy_top_trindade_1");
+  const system::AnyModel model = system::make_model(sc);
+  const double T = 2.0;
+  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, T, 1e-15);
+  for (bl::Coordinates c : bl::all_coordinates)
+    for (bl::Stepper s : {bl::Stepper::dopri5, bl::Stepper::rkf78, bl::Stepper::rosenbrock4}) {
+      std::vector<testing::ConvergencePoint> pts;
+      for (double tol = 1e-3; tol > 1e-12; tol *= 0.1) {
+        system::State x = sc.initial;
+        const RunStats st = run(c, s, model, x, T, tol);
+        REQUIRE(st.ok);
+        pts.push_back({1.0 / static_cast<double>(st.steps), testing::global_error(x, ref)});
+      }
+      const auto fit = testing::fitted_slope(pts, 1e-11, 1e-2);
+      testing::report_slope(bl::baseline_name(c, s), "heavy_top_trindade_1 (error against 1/steps)", fit, pts);
+      INFO(bl::baseline_name(c, s) << ": slope " << fit.slope << " from " << fit.points << " points");
+      CHECK(fit.points >= 3);
+      // ±0.6: the controller's step sequence is not a uniform refinement
+      // (measured slopes 3.95–4.01, 5.03–5.20, 7.49–8.00 for orders 4, 5, 8).
+      CHECK(std::abs(fit.slope - bl::stepper_order(s)) <= 0.6);
+    }
+}
+
 TEST_CASE("at tight tolerance every controlled baseline agrees with rkmk4 at a small step", "[baselines][agreement]") {
   // Trindade cases 1-3 to t = 10 s. rkmk4 at h = 2.5e-5 is converged well below
   // 1e-9 there (order 4, checked against h = 5e-5 below).
