@@ -113,7 +113,7 @@ if [ "$mode" = quick ]; then
   t1_tol=1e-6; t1_ref_tol=1e-11
   euler_tols="1e-6 1e-8"
 else
-  book_dt=1e-3; top_dt=5e-4; save=10; repeats=3
+  book_dt=1e-3; top_dt=5e-4; save=10; repeats=5
   t1_tol=1e-6; t1_ref_tol=1e-12
   euler_tols="1e-6 1e-8 1e-10 1e-12"
 fi
@@ -206,8 +206,8 @@ if has_sub long-time; then
   if [ "$mode" = quick ]; then
     lt_cases=("free_body_hlw|0.1|1e3|dmv rkmk4 split-exact quat/rk4" "heavy_top_trindade_1|2e-3|20|lgvi rkmk4 simo-wong")
   else
-    lt_cases=("free_body_hlw|0.1|1e6|dmv dmv-pre4 rkmk4 simo-wong split-exact quat/rk4 matrix/rk4"
-              "heavy_top_trindade_1|1e-3|1e3|lgvi rkmk4 split-exact simo-wong quat/rk4")
+    lt_cases=("free_body_hlw|0.1|1e6|dmv dmv-pre4 lgvi@suzuki4 rkmk4 cf4 rkmk-gauss4 simo-wong split-exact quat/rk4 matrix/rk4"
+              "heavy_top_trindade_1|1e-3|1e3|lgvi rkmk4 rkmk-gauss4 split-exact simo-wong quat/rk4")
   fi
   for spec in "${lt_cases[@]}"; do
     IFS='|' read -r scene dt t_end schemes_lt <<<"$spec"
@@ -275,6 +275,19 @@ plot animate.py --frames "$frames" "$data/traj/book_axis2_$lie_scheme.h5" "$data
 [ ${#lt_files[@]} -gt 0 ] && plot long_time.py "${lt_files[@]}"
 [ -n "$singularity_file" ] && plot singularity.py "$singularity_file"
 wait_plots
+
+# ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
+bench="$(dirname "$lgi")/lgi_bench"
+rm -f "$gen/benchmarks.tex"
+if [ -x "$bench" ]; then
+  if [ "$mode" = quick ]; then bench_min=0.005; else bench_min=0.1; fi
+  "$PY" "$root/scripts/benchmark_ratios.py" --bench "$bench" --min-time "$bench_min" --tex "$gen/benchmarks.tex" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/benchmark_ratios.py failed"; }
+else
+  missing_note benchmarks "No \\texttt{lgi\\_bench} next to this \\texttt{lgi} (configure with LGI\\_BUILD\\_BENCHMARKS=ON): no cost-per-step table."
+fi
+say "benchmarks done ($(( $(date +%s) - t_start )) s)"
+
 "$PY" "$plots/make_tables.py" --out "$gen" --schemes-json "$gen/schemes.json" --scenes-dir "$scenes" \
   --table1 "${table1_files[@]}" --table1-reference "${table1_refs[@]}" \
   ${wp_files[@]+--wp "${wp_files[@]}"} ${lt_files[@]+--lt "${lt_files[@]}"} \
