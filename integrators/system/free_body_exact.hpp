@@ -121,9 +121,9 @@
 //     functions, Numer. Math. 7 (1965) 78–90 (sn, cn, dn from k' by Gauss steps).
 //   M. Abramowitz, I. Stegun, Handbook of Mathematical Functions, 16.4.
 // (No code was taken from these; Principia's physics/euler_solver.hpp was not copied.)
-#include <array>
 #include <limits>
 
+#include "integrators/system/free_body_special.hpp"
 #include "integrators/system/inertia.hpp"
 #include "lie/product_state.hpp"
 
@@ -147,16 +147,8 @@ class FreeBodyExactFlow {
   double complementary_parameter() const { return kc2_; }
 
  private:
-  static constexpr int kMaxAgm = 24;
-
-  struct Jacobi {
-    double sn, cn, dn;
-  };
-  Jacobi jacobi_agm(double v) const;          // 0 ≤ v ≤ K/2
-  Jacobi jacobi_reduced(double r) const;      // |r| ≤ K (cn ≥ 0)
   // Π_w and the non-linear part of ψ at phase u (elliptic or separatrix).
   void momentum_and_angle(double u, lie::Vec3& pi_w, double& z) const;
-  static lie::Mat3 alignment(const lie::Vec3& pi_w);  // B(Π_w)
 
   Regime regime_ = Regime::rest;
   lie::SO3xR3 initial_;
@@ -175,15 +167,11 @@ class FreeBodyExactFlow {
   double a1_ = 0.0, b_ = 0.0, a3_ = 0.0;  // amplitudes
   double lambda_ = 0.0, u0_ = 0.0;
   double k2_ = 0.0, kc_ = 1.0;            // k², k'
-  double K_ = 0.0, half_K_ = 0.0, two_K_ = 0.0;
+  double K_ = 0.0;
   double n_ = 0.0, n_third_ = 0.0, two_zc_ = 0.0;  // characteristic, n/3, 2(Π(n) − K)
   double psi_rate_ = 0.0, c_pi_ = 0.0, z0_ = 0.0;   // ψ = psi_rate t + c_pi (Z − Z0)
   double sep_root_ = 0.0;                 // √(−n) (separatrix)
-  // AGM table for the Jacobi functions (level i = 0 … N−1): a_{i+1}, b_i,
-  // a_i/a_{i+1}; agm_scale_ = a_N.
-  int agm_n_ = 0;
-  double agm_scale_ = 1.0;
-  std::array<double, kMaxAgm> agm_a_{}, agm_b_{}, agm_ratio_{};
+  free_body_detail::Agm agm_;             // AGM table for the Jacobi functions of k
 };
 
 }  // namespace lgi::system

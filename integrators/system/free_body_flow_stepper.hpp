@@ -14,7 +14,7 @@
 //     working frames (Δ > 0 and Δ < 0) with their signed differences Iij,
 //     the characteristic n = −I3 I21/(I1 I32) and every ratio of moments;
 //     the regime of the inertia (spherical / two equal moments / asymmetric).
-//   per step (advance): G, 2T, Δ (double-double, as in free_body_exact.cpp),
+//   per step (advance): G, 2T, Δ (double-double, free_body_special.cpp),
 //     amplitudes a1, b, a3, λ, k², k'²; the AGM table for k (5–7 square
 //     roots; it also gives K = π/(2 a_N), so no R_F is needed); and
 //       Π:  the phase u0 is never formed. (cn, sn, dn)(u0) = (Π1/a1, Π2/b, Π3/a3)
@@ -57,8 +57,6 @@
 //   steady (per step, two principal components exactly 0): R exp(h G/I_i Π̂/G).
 // No allocation; nothing is cached between steps (the state changes between
 // them in a splitting), so advance() is const and re-entrant.
-#include <array>
-
 #include "integrators/system/inertia.hpp"
 #include "lie/product_state.hpp"
 
@@ -78,8 +76,6 @@ class FreeBodyFlowStepper {
   Shape shape() const { return shape_; }
 
  private:
-  static constexpr int kMaxAgm = 24;
-
   // One of the two working frames of free_body_exact.hpp (Δ > 0: moments
   // ascending; Δ < 0: reversed), with the ratios the per-step formulas use.
   struct Frame {
@@ -98,18 +94,6 @@ class FreeBodyFlowStepper {
     double cpi_coef = 0;          // c_Π = G cpi_coef/λ (I31/(I1 I3))
     double sep_root = 0, sep_coef = 0;  // √(−n), √(−n)/(1 − n)
   };
-
-  struct Jacobi {
-    double sn, cn, dn;
-  };
-  struct Agm {
-    int n = 0;
-    double scale = 1.0;  // a_N = π/(2K)
-    std::array<double, kMaxAgm> a{}, b{}, ratio{};
-  };
-  static void build_agm(double k, double kc, Agm& agm);
-  static Jacobi jacobi_small(const Agm& agm, double v);               // 0 ≤ v ≤ K/2
-  static Jacobi jacobi_reduced(const Agm& agm, double K, double kc, double r);  // |r| ≤ K
 
   void advance_asymmetric(lie::SO3xR3& s, double h) const;
 
