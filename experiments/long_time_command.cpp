@@ -27,6 +27,7 @@
 #include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
 #include "experiments/results_file.hpp"
+#include "experiments/run_parameters.hpp"
 #include "experiments/scene_reader.hpp"
 #include "experiments/trajectory_observer.hpp"  // interrupt_requested, Interrupted
 #include "integrators/registry.hpp"
@@ -266,20 +267,8 @@ int long_time(const LongTimeOptions& o) {
   ResultsFileOptions file_options;
   file_options.table = "series";
   ResultsFile file(o.out, o.force, columns, file_options);
-  ResultAttributes params;
-  params.text = {{"subcommand", "long-time"},
-                 {"scheme", scheme->name},
-                 {"scene_file", scene.file},
-                 {"scene_name", scene.name},
-                 {"scene_toml", scene.toml_text},
-                 {"command_line", o.command_line}};
-  if (scheme->properties.adaptive) {
-    params.number["tol"] = cfg.tol;
-    if (cfg.dt > 0.0) params.number["dt"] = cfg.dt;
-  } else {
-    params.number["dt"] = cfg.dt;
-  }
-  params.number["t_end"] = cfg.t_end;
+  ResultAttributes params = run_parameters(scene, *scheme, cfg, o.command_line);
+  params.text["subcommand"] = "long-time";
   params.integer["samples_per_decade"] = o.samples;
   file.write_parameters(params);
 

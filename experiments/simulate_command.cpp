@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include "experiments/exit_status.hpp"
+#include "experiments/run_parameters.hpp"
 #include "experiments/scene_reader.hpp"
 #include "experiments/trajectory_observer.hpp"
 #include "integrators/registry.hpp"
@@ -76,19 +77,8 @@ int simulate(const SimulateOptions& o) {
     throw RunError(why + "; scene " + scene.file + " is not one");
 
   const system::SceneInvariants invariants(scene, model);
-  Provenance prov;
-  prov.text_attributes = {{"scheme", scheme->name},
-                          {"scene_file", scene.file},
-                          {"scene_toml", scene.toml_text},
-                          {"scene_name", scene.name},
-                          {"command_line", o.command_line}};
-  if (scheme->properties.adaptive) {
-    prov.number_attributes["tol"] = cfg.tol;
-    if (cfg.dt > 0.0) prov.number_attributes["dt"] = cfg.dt;
-  } else {
-    prov.number_attributes["dt"] = cfg.dt;
-  }
-  prov.number_attributes["t_end"] = cfg.t_end;
+  const ResultAttributes run = run_parameters(scene, *scheme, cfg, o.command_line);
+  Provenance prov{run.text, run.number, run.integer};
   prov.integer_attributes["save_every"] = cfg.save_every;
   if (cfg.retry_halving > 0) prov.integer_attributes["retry_halving"] = cfg.retry_halving;
 

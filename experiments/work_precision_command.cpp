@@ -33,6 +33,7 @@
 #include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
 #include "experiments/results_file.hpp"
+#include "experiments/run_parameters.hpp"
 #include "experiments/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
@@ -274,13 +275,10 @@ int work_precision(const WorkPrecisionOptions& o) {
 
   ResultsFile file(o.out, o.force, columns);
 
-  ResultAttributes params;
-  params.text = {{"subcommand", "work-precision"},
-                 {"scene_file", scene.file},
-                 {"scene_name", scene.name},
-                 {"scene_toml", scene.toml_text},
-                 {"schemes", join(o.schemes, ",")},
-                 {"command_line", o.command_line}};
+  ResultAttributes params = scene_parameters(scene);
+  params.text["subcommand"] = "work-precision";
+  params.text["schemes"] = join(o.schemes, ",");
+  params.text["command_line"] = o.command_line;
   params.number["t_end"] = t_end;
   params.integer["repeat"] = o.repeat;
   if (!o.dt.empty()) params.number_array["dt"] = o.dt;
