@@ -289,6 +289,16 @@ def table1(files, ref_files):
 
 
 # ── work-precision / convergence ─────────────────────────────────────────────
+def load_work_precision(path):
+    """A work-precision result file: its table, its scene's label, and which rows
+    finished ok with a finite error."""
+    tab = c.load_table(path)
+    params = c.load_attrs(path, "parameters")
+    scene = c.scene_label(params.get("scene_file", path))
+    ok = np.array([st == "ok" for st in tab["status"]]) & np.isfinite(tab["error"])
+    return tab, scene, ok
+
+
 def wp_sentences(files, scheme_info):
     if not files:
         return (note("\\texttt{lgi work-precision} was not available in this build: no work-precision "
@@ -297,10 +307,7 @@ def wp_sentences(files, scheme_info):
     sent, order_rows = [], {}
     claimed = {s["name"]: s.get("order") for s in scheme_info}
     for p in files:
-        tab = c.load_table(p)
-        params = c.load_attrs(p, "parameters")
-        scene = c.scene_label(params.get("scene_file", p))
-        ok = np.array([st == "ok" for st in tab["status"]]) & np.isfinite(tab["error"])
+        tab, scene, ok = load_work_precision(p)
         errs = tab["error"]
         cpu = tab["cpu_seconds_median"]
         lo, hi = np.nanmin(errs[ok]) if ok.any() else np.nan, np.nanmax(errs[ok]) if ok.any() else np.nan
@@ -403,10 +410,7 @@ def best_at_target(files, target=BEST_TARGET):
         return missing_table(CAP_BEST, "tab:best", "\\texttt{lgi work-precision} was not available: no table.")
     rows = []
     for p in files:
-        tab = c.load_table(p)
-        params = c.load_attrs(p, "parameters")
-        scene = c.scene_label(params.get("scene_file", p))
-        ok = np.array([st == "ok" for st in tab["status"]]) & np.isfinite(tab["error"])
+        tab, scene, ok = load_work_precision(p)
         cost = {}
         for name in dict.fromkeys(tab["scheme"]):
             sel = np.array([x == name for x in tab["scheme"]]) & ok
@@ -574,10 +578,7 @@ def is_baseline(name):
 def discussion(wp_files, lt_files, t1_files):
     items = []
     for p in wp_files:
-        tab = c.load_table(p)
-        params = c.load_attrs(p, "parameters")
-        scene = c.scene_label(params.get("scene_file", p))
-        ok = np.array([st == "ok" for st in tab["status"]]) & np.isfinite(tab["error"])
+        tab, scene, ok = load_work_precision(p)
         errs, cpu, names = tab["error"], tab["cpu_seconds_median"], tab["scheme"]
         best = None
         for target in (1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2):
