@@ -357,6 +357,14 @@ void ResultsFile::close_files() {
   if (csv != 0) throw OutputFileError("cannot write results '" + csv_partial_path() + "': " + std::strerror(errno));
 }
 
+void ResultsFile::close_after_failure() noexcept {
+  if (!open_) return;
+  try {
+    close_files();
+  } catch (...) {  // the first failure is the one reported
+  }
+}
+
 void ResultsFile::finish(const ResultAttributes& diagnostics) {
   if (!open_) throw std::logic_error("results '" + path_ + "': finish after the file was closed");
   QuietHdf5Errors quiet;
@@ -366,12 +374,7 @@ void ResultsFile::finish(const ResultAttributes& diagnostics) {
     write_attributes(impl_->diagnostics.get(), diagnostics);
     close_files();
   } catch (...) {
-    if (open_) {
-      try {
-        close_files();
-      } catch (...) {  // report the first failure
-      }
-    }
+    close_after_failure();
     throw;
   }
   hdf5::publish(csv_partial_path(), csv_path_, force_, "the results are");
@@ -389,12 +392,7 @@ void ResultsFile::abandon(const ResultAttributes& diagnostics) {
     write_attributes(impl_->diagnostics.get(), diagnostics);
     close_files();
   } catch (...) {
-    if (open_) {
-      try {
-        close_files();
-      } catch (...) {
-      }
-    }
+    close_after_failure();
     throw;
   }
 }

@@ -131,6 +131,9 @@ class ResultsFile {
   void write_block();
   void write_attributes(std::int64_t group, const ResultAttributes& a);
   void close_files();
+  /// Closes what is still open after a failure, keeping quiet about further
+  /// errors (the caller rethrows the first one).
+  void close_after_failure() noexcept;
   [[noreturn]] void fail(const std::string& what) const;
 
   std::string path_, partial_path_, csv_path_;

@@ -835,15 +835,19 @@ Row run_row(const Variant& v, const SchemeInfo& scheme, double budget) {
   if (v.reference.kind == "converged")
     row.reference += " (" + v.reference.scheme + ", tol " + fmt(v.reference.tol, 3) + ")";
 
+  // What a run reports in the row: the SI run's, or the rescaled run's for a units case.
+  auto report_run = [&row](const RunResult& run) {
+    row.outcome = run.outcome;
+    row.reason = run.reason;
+    row.max_invariant_error = run.max_invariant_error;
+    row.max_invariant = run.max_invariant;
+    row.cpu_seconds = run.cpu_seconds;
+    row.steps = run.steps;
+    row.rejected_steps = run.rejected_steps;
+    row.rhs_evaluations = run.rhs_evaluations;
+  };
   const RunResult r = run_scheme(scheme, v.scene, v.t_end, v.dt, v.tol, v.first_step, budget);
-  row.outcome = r.outcome;
-  row.reason = r.reason;
-  row.max_invariant_error = r.max_invariant_error;
-  row.max_invariant = r.max_invariant;
-  row.cpu_seconds = r.cpu_seconds;
-  row.steps = r.steps;
-  row.rejected_steps = r.rejected_steps;
-  row.rhs_evaluations = r.rhs_evaluations;
+  report_run(r);
 
   if (v.units) {
     const UnitScale& u = v.scale;
@@ -851,14 +855,7 @@ Row run_row(const Variant& v, const SchemeInfo& scheme, double budget) {
     const double sPi = u.mass * u.length * u.length / sT;
     const double dt = v.dt * sT, first = v.first_step * sT;
     const RunResult s = run_scheme(scheme, v.scaled, v.t_end * sT, dt, v.tol, first, budget);
-    row.cpu_seconds = s.cpu_seconds;
-    row.steps = s.steps;
-    row.rejected_steps = s.rejected_steps;
-    row.rhs_evaluations = s.rhs_evaluations;
-    row.max_invariant_error = s.max_invariant_error;
-    row.max_invariant = s.max_invariant;
-    row.outcome = s.outcome;
-    row.reason = s.reason;
+    report_run(s);
     if (s.outcome != r.outcome) {
       row.outcome = s.outcome == Outcome::ok ? Outcome::failed : s.outcome;
       row.reason = "outcome differs from the SI run (rescaled: " + std::string(outcome_name(s.outcome)) +

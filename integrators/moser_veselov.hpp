@@ -244,6 +244,24 @@ struct ModifiedInertiaSeries {
 
 }  // namespace moser_veselov
 
+namespace moser_veselov {
+/// kick(½h) ∘ free_step(h) ∘ kick(½h) for lgvi and the preprocessed DMV
+/// schemes; the state is left untouched if the free step fails. One field
+/// evaluation per step is counted (the implicit stage; the potential torque
+/// at the new attitude is the next step's first kick).
+template <class Scheme, class Model>
+StepStatus strang_step(Scheme& scheme, const Model& model, State& s, double t, double h, WorkCounters& work) {
+  State x = s;
+  scheme.kick(model, x, t, 0.5 * h);
+  const StepStatus st = scheme.free_step(model, x, h);
+  if (!st.converged) return st;
+  scheme.kick(model, x, t + h, 0.5 * h);
+  s = x;
+  work.rhs_evaluations += 1;
+  return st;
+}
+}  // namespace moser_veselov
+
 /// `lgvi` (and `dmv`, the same algorithm, which the registry keeps to free
 /// bodies): kick(½h) ∘ DMV(h) ∘ kick(½h).
 class Lgvi {
@@ -263,14 +281,7 @@ class Lgvi {
 
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
-    State x = s;
-    kick(model, x, t, 0.5 * h);
-    const StepStatus st = free_step(model, x, h);
-    if (!st.converged) return st;
-    kick(model, x, t + h, 0.5 * h);
-    s = x;
-    work.rhs_evaluations += 1;  // one implicit stage (and the potential torque at the new attitude)
-    return st;
+    return moser_veselov::strang_step(*this, model, s, t, h, work);
   }
 
   // The kick/flow face that composition.hpp uses to merge neighbouring half kicks.
@@ -331,14 +342,7 @@ class DmvPreprocessed {
 
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    State x = s;
-    kick(model, x, t, 0.5 * h);
-    const StepStatus st = free_step(model, x, h);
-    if (!st.converged) return st;
-    kick(model, x, t + h, 0.5 * h);
-    s = x;
-    work.rhs_evaluations += 1;
-    return st;
+    return moser_veselov::strang_step(*this, model, s, t, h, work);
   }
 
  private:
