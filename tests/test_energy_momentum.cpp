@@ -24,6 +24,7 @@
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
+#include "support/shipped_scene.hpp"
 
 using namespace lgi;
 using lie::Mat3;
@@ -32,9 +33,6 @@ using testing::ConvergencePoint;
 
 namespace {
 
-const std::string scenes = LGI_SCENES_DIR;
-
-system::Scene scene_file(const std::string& name) { return experiments::read_scene(scenes + "/" + name + ".toml"); }
 
 const integrators::SchemeInfo& simo_wong() {
   const auto* s = integrators::find_scheme("simo-wong");
@@ -130,38 +128,32 @@ TEST_CASE("the Cayley identities behind simo-wong's conservation hold to round-o
 }
 
 TEST_CASE("simo-wong converges at order 2", "[simo-wong][order]") {
-  auto report = [](const char* what, const testing::SlopeFit& fit, const std::vector<ConvergencePoint>& pts) {
-    std::cout << "order simo-wong on " << what << ": slope " << fit.slope << " from " << fit.points << " points;";
-    for (const auto& p : pts) std::cout << " (" << p.h << ", " << p.error << ")";
-    std::cout << '\n';
+  // Halvings of h0 while h > h_min; at least four points fitted, slope 2 ± 0.2.
+  auto check_order2 = [](const char* what, const system::AnyModel& model, const system::State& x0, double T,
+                         const system::State& ref, double h0, double h_min) {
+    std::vector<ConvergencePoint> pts;
+    for (double h = h0; h > h_min; h *= 0.5)
+      pts.push_back({h, testing::global_error(run_ok(model, x0, T, h), ref)});
+    const auto fit = testing::fitted_slope(pts);
+    testing::report_slope("simo-wong", what, fit, pts);
+    CHECK(fit.points >= 4);
+    CHECK(std::abs(fit.slope - 2.0) <= 0.2);
   };
   SECTION("free_body_hlw against the exact flow") {
-    const system::Scene scene = scene_file("free_body_hlw");
+    const system::Scene scene = testing::shipped_scene("free_body_hlw");
     const system::AnyModel model = system::make_model(scene);
     const double T = 10.0;
     const system::State exact =
         system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
-    std::vector<ConvergencePoint> pts;
-    for (double h = 0.1; h > 0.002; h *= 0.5)
-      pts.push_back({h, testing::global_error(run_ok(model, scene.initial, T, h), exact)});
-    const auto fit = testing::fitted_slope(pts);
-    report("free_body_hlw", fit, pts);
-    CHECK(fit.points >= 4);
-    CHECK(std::abs(fit.slope - 2.0) <= 0.2);
+    check_order2("free_body_hlw", model, scene.initial, T, exact, 0.1, 0.002);
   }
   SECTION("the Kovalevskaya top against rkf78") {
-    const system::Scene scene = scene_file("kovalevskaya");
+    const system::Scene scene = testing::shipped_scene("kovalevskaya");
     const system::AnyModel model = system::make_model(scene);
     const double T = 5.0;
     const system::State ref =
         testing::reference_solution(std::get<system::HeavyTop>(model), scene.initial, 0.0, T, 1e-14);
-    std::vector<ConvergencePoint> pts;
-    for (double h = 0.1; h > 0.002; h *= 0.5)
-      pts.push_back({h, testing::global_error(run_ok(model, scene.initial, T, h), ref)});
-    const auto fit = testing::fitted_slope(pts);
-    report("kovalevskaya", fit, pts);
-    CHECK(fit.points >= 4);
-    CHECK(std::abs(fit.slope - 2.0) <= 0.2);
+    check_order2("kovalevskaya", model, scene.initial, T, ref, 0.1, 0.002);
   }
   SECTION("a heavy top with a damped spring and a drive against rkf78 (every discrete torque at once)") {
     const system::Scene scene = experiments::parse_scene(kitchen_sink_toml, "kitchen_sink.toml");
@@ -169,13 +161,7 @@ TEST_CASE("simo-wong converges at order 2", "[simo-wong][order]") {
     const double T = 2.0;
     const system::State ref = testing::reference_solution(std::get<system::DrivenHeavyTopSpring>(model),
                                                           scene.initial, 0.0, T, 1e-14);
-    std::vector<ConvergencePoint> pts;
-    for (double h = 0.05; h > 0.001; h *= 0.5)
-      pts.push_back({h, testing::global_error(run_ok(model, scene.initial, T, h), ref)});
-    const auto fit = testing::fitted_slope(pts);
-    report("gravity + damped spring + drive", fit, pts);
-    CHECK(fit.points >= 4);
-    CHECK(std::abs(fit.slope - 2.0) <= 0.2);
+    check_order2("gravity + damped spring + drive", model, scene.initial, T, ref, 0.05, 0.001);
   }
 }
 
@@ -200,7 +186,7 @@ TEST_CASE("simo-wong is symmetric: a step back undoes a step", "[simo-wong][symm
   for (double h : {1e-3, 0.05, 0.2}) {
     for (const char* name : {"free_body_hlw", "heavy_top_trindade_1", "kovalevskaya", "general_top_richter",
                              "stiff_damped_spring"}) {
-      const system::Scene scene = scene_file(name);
+      const system::Scene scene = testing::shipped_scene(name);
       if (name == std::string("heavy_top_trindade_1") && h > 0.05) continue;  // 50 rad/s: h|Ω| ≥ π
       check(system::make_model(scene), scene.initial, h, name);
     }
@@ -212,7 +198,7 @@ TEST_CASE("simo-wong is symmetric: a step back undoes a step", "[simo-wong][symm
 }
 
 TEST_CASE("simo-wong conserves H, |Pi| and m of the free body exactly over 1e5 steps", "[simo-wong][conservation]") {
-  const system::Scene scene = scene_file("free_body_hlw");
+  const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const auto model = std::get<system::FreeBody>(system::make_model(scene));
   integrators::SimoWong scheme;
   integrators::WorkCounters work;
@@ -236,7 +222,7 @@ TEST_CASE("simo-wong conserves H, |Pi| and m of the free body exactly over 1e5 s
 
 TEST_CASE("simo-wong conserves H and Pi.Gamma of the heavy top exactly over 1e5 steps", "[simo-wong][conservation]") {
   for (const char* name : {"heavy_top_trindade_1", "general_top_richter"}) {
-    const system::Scene scene = scene_file(name);
+    const system::Scene scene = testing::shipped_scene(name);
     const auto model = std::get<system::HeavyTop>(system::make_model(scene));
     integrators::SimoWong scheme;
     integrators::WorkCounters work;
@@ -289,7 +275,7 @@ TEST_CASE("simo-wong conserves the energy of an undamped spring exactly (discret
 }
 
 TEST_CASE("simo-wong's energy decays monotonically on the stiff damped spring", "[simo-wong][damping]") {
-  const system::Scene scene = scene_file("stiff_damped_spring");
+  const system::Scene scene = testing::shipped_scene("stiff_damped_spring");
   const auto model = std::get<system::SpringBody>(system::make_model(scene));
   for (double h : {1e-3, 0.1}) {  // 0.1: 100x the explicit stability limit
     integrators::SimoWong scheme;
@@ -313,7 +299,7 @@ TEST_CASE("simo-wong's energy decays monotonically on the stiff damped spring", 
 
 TEST_CASE("a simo-wong step that rotates by pi or more stops the run with a message", "[simo-wong][failure]") {
   for (const auto& [name, h] : {std::pair{"free_body_hlw", 5.0}, std::pair{"heavy_top_trindade_1", 0.1}}) {
-    const system::Scene scene = scene_file(name);
+    const system::Scene scene = testing::shipped_scene(name);
     const system::AnyModel model = system::make_model(scene);
     system::State x = scene.initial;
     const auto stats = run(model, x, 10.0 * h, h);
@@ -329,7 +315,7 @@ TEST_CASE("a simo-wong step that rotates by pi or more stops the run with a mess
 TEST_CASE("simo-wong's Newton iterations stay few", "[simo-wong][newton]") {
   // Printed for the record; bounded loosely.
   auto max_iterations = [](const char* name, double h, double T, double max_rotation) {
-    const system::Scene scene = scene_file(name);
+    const system::Scene scene = testing::shipped_scene(name);
     const system::AnyModel model = system::make_model(scene);
     return std::visit(
         [&](const auto& m) {

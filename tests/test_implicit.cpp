@@ -17,6 +17,7 @@
 // the issue's report, and checks the iteration counts.
 #include <hdf5.h>
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <iostream>
@@ -31,6 +32,7 @@
 #include "support/convergence.hpp"
 #include "support/h5_read.hpp"
 #include "support/reference_solution.hpp"
+#include "support/shipped_scene.hpp"
 #include "support/registered_run.hpp"
 #include "support/run_command.hpp"
 
@@ -43,7 +45,6 @@ namespace {
 
 const std::string scenes = LGI_SCENES_DIR;
 
-system::Scene scene(const std::string& name) { return experiments::read_scene(scenes + "/" + name + ".toml"); }
 
 using Run = testing::RegisteredRun;
 using testing::run_registered;
@@ -97,70 +98,57 @@ TEST_CASE("the derivative of dexp^-1 behind the Newton matrix matches central di
   CHECK(std::abs(integrators::detail::dexpinv_coefficient_derivative(0.0) - 1.0 / 720.0) <= 1e-18);
 }
 
-TEST_CASE("implicit schemes converge at their nominal order on the asymmetric free body", "[implicit][order]") {
-  const system::Scene sc = scene("free_body_hlw");
-  const system::AnyModel model = system::make_model(sc);
-  const double T = 10.0;
-  const system::State exact = system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, sc.initial).at(T);
-  for (const auto& [name, h0] : {std::pair{"rkmk-gauss2", 0.1}, {"rkmk-gauss4", 0.4}, {"rkmk-radau5", 0.4}}) {
+namespace {
+/// rkmk-gauss2, rkmk-gauss4 and rkmk-radau5 over six halvings of their first
+/// steps h0: each fitted slope lies within ±0.2 of the registry's order.
+void check_implicit_orders(const system::AnyModel& model, const system::State& x0, double T,
+                           const system::State& ref, const char* problem, const std::array<double, 3>& h0) {
+  const std::array<const char*, 3> names{"rkmk-gauss2", "rkmk-gauss4", "rkmk-radau5"};
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const char* name = names[i];
     std::vector<ConvergencePoint> pts;
-    for (double h = h0, k = 0; k < 6; ++k, h *= 0.5) {
-      const Run r = run_registered(name, model, sc.initial, T, h);
+    for (double h = h0[i], k = 0; k < 6; ++k, h *= 0.5) {
+      const Run r = run_registered(name, model, x0, T, h);
       REQUIRE(r.stats.ok);
-      pts.push_back({h, testing::global_error(r.state, exact)});
+      pts.push_back({h, testing::global_error(r.state, ref)});
     }
     const auto fit = testing::fitted_slope(pts);
-    testing::report_slope(name, "free_body_hlw", fit, pts);
+    testing::report_slope(name, problem, fit, pts);
     INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - registered(name).order) <= 0.2);
   }
 }
+}  // namespace
+
+TEST_CASE("implicit schemes converge at their nominal order on the asymmetric free body", "[implicit][order]") {
+  const system::Scene sc = testing::shipped_scene("free_body_hlw");
+  const system::AnyModel model = system::make_model(sc);
+  const double T = 10.0;
+  const system::State exact = system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, sc.initial).at(T);
+  check_implicit_orders(model, sc.initial, T, exact, "free_body_hlw", {0.1, 0.4, 0.4});
+}
 
 TEST_CASE("implicit schemes converge at their nominal order on the Kovalevskaya top", "[implicit][order]") {
-  const system::Scene sc = scene("kovalevskaya");
+  const system::Scene sc = testing::shipped_scene("kovalevskaya");
   const system::AnyModel model = system::make_model(sc);
   const double T = 5.0;
   const system::State ref =
       testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, T, 1e-14);
-  for (const auto& [name, h0] : {std::pair{"rkmk-gauss2", 0.1}, {"rkmk-gauss4", 0.4}, {"rkmk-radau5", 0.4}}) {
-    std::vector<ConvergencePoint> pts;
-    for (double h = h0, k = 0; k < 6; ++k, h *= 0.5) {
-      const Run r = run_registered(name, model, sc.initial, T, h);
-      REQUIRE(r.stats.ok);
-      pts.push_back({h, testing::global_error(r.state, ref)});
-    }
-    const auto fit = testing::fitted_slope(pts);
-    testing::report_slope(name, "kovalevskaya", fit, pts);
-    INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
-    CHECK(fit.points >= 3);
-    CHECK(std::abs(fit.slope - registered(name).order) <= 0.2);
-  }
+  check_implicit_orders(model, sc.initial, T, ref, "kovalevskaya", {0.1, 0.4, 0.4});
 }
 
 TEST_CASE("implicit schemes converge at their nominal order with a time-dependent torque", "[implicit][order]") {
   // Richter's general top (χ off every axis) with a harmonic body-fixed
   // drive, as in test_scheme_order.cpp: the stage times c_i h matter.
-  system::Scene sc = scene("general_top_richter");
+  system::Scene sc = testing::shipped_scene("general_top_richter");
   sc.drive = system::DriveSpec{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
   const system::AnyModel model = system::make_model(sc);
   REQUIRE(std::holds_alternative<system::DrivenHeavyTop>(model));
   const double T = 5.0;
   const system::State ref =
       testing::reference_solution(std::get<system::DrivenHeavyTop>(model), sc.initial, 0.0, T, 1e-14);
-  for (const auto& [name, h0] : {std::pair{"rkmk-gauss2", 0.1}, {"rkmk-gauss4", 0.2}, {"rkmk-radau5", 0.2}}) {
-    std::vector<ConvergencePoint> pts;
-    for (double h = h0, k = 0; k < 6; ++k, h *= 0.5) {
-      const Run r = run_registered(name, model, sc.initial, T, h);
-      REQUIRE(r.stats.ok);
-      pts.push_back({h, testing::global_error(r.state, ref)});
-    }
-    const auto fit = testing::fitted_slope(pts);
-    testing::report_slope(name, "driven general top", fit, pts);
-    INFO(name << ": slope " << fit.slope << " from " << fit.points << " points");
-    CHECK(fit.points >= 3);
-    CHECK(std::abs(fit.slope - registered(name).order) <= 0.2);
-  }
+  check_implicit_orders(model, sc.initial, T, ref, "driven general top", {0.1, 0.2, 0.2});
 }
 
 namespace {
@@ -186,16 +174,16 @@ double symmetry_defect(const Scheme& scheme, const Model& model, system::State x
 }  // namespace
 
 TEST_CASE("the Gauss schemes are symmetric to round-off", "[implicit][symmetry]") {
-  const system::Scene free = scene("free_body_hlw");
+  const system::Scene free = testing::shipped_scene("free_body_hlw");
   const auto free_model = std::get<system::FreeBody>(system::make_model(free));
-  const system::Scene kova = scene("kovalevskaya");
+  const system::Scene kova = testing::shipped_scene("kovalevskaya");
   const auto kova_model = std::get<system::HeavyTop>(system::make_model(kova));
-  system::Scene driven = scene("general_top_richter");
+  system::Scene driven = testing::shipped_scene("general_top_richter");
   driven.drive = system::DriveSpec{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};  // time-dependent: the stage times reverse too
   const auto driven_model = std::get<system::DrivenHeavyTop>(system::make_model(driven));
   // The spring scene with a mild damper: the stiff damper (c = 1000) makes
   // Φ₋ₕ expand by ~e^(h c/J), which measures conditioning, not symmetry.
-  system::Scene spring = scene("stiff_damped_spring");
+  system::Scene spring = testing::shipped_scene("stiff_damped_spring");
   spring.spring->damping = 1.0;
   const auto spring_model = std::get<system::SpringBody>(system::make_model(spring));
 
@@ -233,7 +221,7 @@ namespace {
 /// quaternions at tolerance 1e-13 (support/reference_solution.hpp, shares
 /// nothing with the schemes but the model's Π̇).
 struct StiffCase {
-  system::Scene sc = scene("stiff_damped_spring");
+  system::Scene sc = testing::shipped_scene("stiff_damped_spring");
   system::SpringBody model = std::get<system::SpringBody>(system::make_model(sc));
 };
 
@@ -244,7 +232,7 @@ TEST_CASE("for a free body the Gauss schemes conserve |Pi| and the energy to rou
   // RKMK applies the Gauss collocation method to it unchanged; Gauss methods
   // conserve every quadratic invariant (HLW, GNI, Theorem IV.2.1), here |Π|²
   // and Π·J⁻¹Π. Radau IIA does not (checked as a control).
-  const system::Scene sc = scene("free_body_hlw");
+  const system::Scene sc = testing::shipped_scene("free_body_hlw");
   const auto model = std::get<system::FreeBody>(system::make_model(sc));
   auto drift = [&](const auto& scheme, double h, int steps) {
     system::State x = sc.initial;
@@ -363,7 +351,7 @@ TEST_CASE("stiff damped spring: radau5 against its own h = 1e-4 run, and its err
 
 TEST_CASE("a Newton solve that does not converge stops the run with iterations and residual", "[implicit][failure]") {
   SECTION("iteration limit of 1") {
-    const system::Scene sc = scene("free_body_hlw");
+    const system::Scene sc = testing::shipped_scene("free_body_hlw");
     const auto model = std::get<system::FreeBody>(system::make_model(sc));
     integrators::NewtonSettings ns;
     ns.max_iterations = 1;
@@ -382,7 +370,7 @@ TEST_CASE("a Newton solve that does not converge stops the run with iterations a
   }
   SECTION("a step that rotates past the dexp^-1 singularity at 2 pi") {
     // heavy_top_trindade_1 spins at 50 rad/s: h = 0.5 asks for a 25 rad increment.
-    const system::Scene sc = scene("heavy_top_trindade_1");
+    const system::Scene sc = testing::shipped_scene("heavy_top_trindade_1");
     const system::AnyModel model = system::make_model(sc);
     for (const char* name : {"rkmk-gauss4", "rkmk-radau5"}) {
       const Run r = run_registered(name, model, sc.initial, 10.0, 0.5);
@@ -398,7 +386,7 @@ TEST_CASE("a Newton solve that does not converge stops the run with iterations a
 
 TEST_CASE("retry by halving recovers a step whose solve fails, and says so", "[implicit][retry]") {
   // heavy_top_trindade_1 at h = 0.5 asks radau5 for 25 rad per step; 0.0625 (3 halvings) is fine.
-  const system::Scene sc = scene("heavy_top_trindade_1");
+  const system::Scene sc = testing::shipped_scene("heavy_top_trindade_1");
   const system::AnyModel model = system::make_model(sc);
   const auto& radau5 = registered("rkmk-radau5");
   auto run = [&](double h, int halvings, double t_end) {
@@ -540,12 +528,12 @@ TEST_CASE("Newton iterations and cost per step relative to rkmk4", "[.bench][slo
                              {integrators::NewtonJacobian::simplified, "simplified"}}) {
     std::cout << "== Newton: " << label << '\n';
     {
-      const system::Scene sc = scene("free_body_hlw");
+      const system::Scene sc = testing::shipped_scene("free_body_hlw");
       bench_scene("free_body_hlw", std::get<system::FreeBody>(system::make_model(sc)), sc.initial,
                   {{1e-3, 10.0}, {1e-1, 100.0}}, mode);
     }
     {
-      const system::Scene sc = scene("heavy_top_trindade_1");
+      const system::Scene sc = testing::shipped_scene("heavy_top_trindade_1");
       bench_scene("heavy_top_trindade_1", std::get<system::HeavyTop>(system::make_model(sc)), sc.initial,
                   {{1e-3, 10.0}, {1e-1, 10.0}}, mode);
     }

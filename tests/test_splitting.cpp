@@ -30,6 +30,7 @@
 #include "integrators/system/invariants.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
+#include "support/shipped_scene.hpp"
 #include "support/registered_run.hpp"
 
 using namespace lgi;
@@ -39,9 +40,6 @@ using testing::ConvergencePoint;
 
 namespace {
 
-const std::string scenes = LGI_SCENES_DIR;
-
-system::Scene scene_file(const std::string& name) { return experiments::read_scene(scenes + "/" + name + ".toml"); }
 
 const integrators::SchemeInfo& split_exact() { return testing::registered_scheme("split-exact"); }
 
@@ -147,7 +145,7 @@ TEST_CASE("the free-flow stepper agrees with FreeBodyExactFlow from arbitrary st
 }
 
 TEST_CASE("split-exact on a free body is the exact flow", "[split-exact][free-flow]") {
-  const system::Scene scene = scene_file("free_body_hlw");
+  const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel model = system::make_model(scene);
   const double T = 10.0;
   const system::State exact =
@@ -174,12 +172,12 @@ TEST_CASE("split-exact converges at order 2", "[split-exact][order]") {
     CHECK(std::abs(fit.slope - 2.0) <= 0.2);
   };
   SECTION("Kovalevskaya top") {
-    const system::Scene scene = scene_file("kovalevskaya");
+    const system::Scene scene = testing::shipped_scene("kovalevskaya");
     const system::AnyModel any = system::make_model(scene);
     check(std::get<system::HeavyTop>(any), any, scene.initial, 5.0, 0.1, "kovalevskaya");
   }
   SECTION("general heavy top (asymmetric free part)") {
-    const system::Scene scene = scene_file("general_top_richter");
+    const system::Scene scene = testing::shipped_scene("general_top_richter");
     const system::AnyModel any = system::make_model(scene);
     check(std::get<system::HeavyTop>(any), any, scene.initial, 5.0, 0.1, "general_top_richter");
   }
@@ -221,7 +219,7 @@ TEST_CASE("split-exact is symmetric and its half kicks merge", "[split-exact][sy
       // h = 0.05 on the stiff spring, c/J = 1000): the inverse of a strongly
       // contracting map amplifies round-off, so the stiff scene is checked at h = 1e-3.
       if (name == std::string("stiff_damped_spring") && h > 1e-3) continue;
-      const system::Scene scene = scene_file(name);
+      const system::Scene scene = testing::shipped_scene(name);
       check(system::make_model(scene), scene.initial, h, name);
     }
     const system::Scene scene = experiments::parse_scene(damped_driven_toml, "damped_driven.toml");
@@ -231,7 +229,7 @@ TEST_CASE("split-exact is symmetric and its half kicks merge", "[split-exact][sy
 
 TEST_CASE("split-exact conserves Pi.Gamma of a heavy top exactly", "[split-exact][conservation]") {
   for (const char* name : {"general_top_richter", "heavy_top_trindade_1"}) {
-    const system::Scene scene = scene_file(name);
+    const system::Scene scene = testing::shipped_scene(name);
     const auto model = std::get<system::HeavyTop>(system::make_model(scene));
     integrators::SplitExact scheme;
     scheme.start(model, scene.initial, 0.0);
@@ -314,7 +312,7 @@ EnergyRecord energy_record(Scheme& scheme, const system::HeavyTop& model, const 
 }
 
 void check_no_drift(std::int64_t n) {
-  const system::Scene scene = scene_file("heavy_top_trindade_1");
+  const system::Scene scene = testing::shipped_scene("heavy_top_trindade_1");
   const auto model = std::get<system::HeavyTop>(system::make_model(scene));
   const double h = 1e-3;
   integrators::SplitExact split;
@@ -348,7 +346,7 @@ TEST_CASE("split-exact's energy error on the heavy top is bounded, with no drift
 }
 
 TEST_CASE("split-exact keeps the Kovalevskaya integral bounded", "[split-exact][kovalevskaya]") {
-  const system::Scene scene = scene_file("kovalevskaya");
+  const system::Scene scene = testing::shipped_scene("kovalevskaya");
   const system::AnyModel any = system::make_model(scene);
   const auto& model = std::get<system::HeavyTop>(any);
   const system::SceneInvariants inv(scene, any);
