@@ -19,6 +19,7 @@
 
 #include "lie/charts.hpp"
 #include "lie/so3.hpp"
+#include "support/worst_error.hpp"
 
 namespace {
 
@@ -30,34 +31,7 @@ constexpr double pi = std::numbers::pi;
 
 double maxabs(const Mat3& m) { return m.cwiseAbs().maxCoeff(); }
 
-/// Keeps the worst value of an error measure over a test case and prints it
-/// at the end of the test case when LGI_TEST_REPORT is set.
-class Worst {
- public:
-  explicit Worst(std::string name) : name_(std::move(name)) {}
-  Worst(const Worst&) = delete;
-  Worst& operator=(const Worst&) = delete;
-  ~Worst() {
-    if (std::getenv("LGI_TEST_REPORT") != nullptr) {
-      std::printf("[worst] %-62s %.3e  (%s)\n", name_.c_str(), worst_, where_.c_str());
-    }
-  }
-  double operator()(double err, const std::string& where) {
-    const double e = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
-    if (!seen_ || e > worst_) {
-      seen_ = true;
-      worst_ = e;
-      where_ = where;
-    }
-    return err;
-  }
-
- private:
-  std::string name_;
-  bool seen_ = false;
-  double worst_ = 0.0;
-  std::string where_;
-};
+using lgi::testing::Worst;
 
 std::string describe(const EulerZXZ& e) {
   std::ostringstream o;

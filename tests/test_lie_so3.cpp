@@ -32,6 +32,7 @@
 #include "lie/product_state.hpp"
 #include "lie/quaternion.hpp"
 #include "lie/so3.hpp"
+#include "support/worst_error.hpp"
 
 namespace {
 
@@ -91,34 +92,7 @@ const Vec3 kEta2(-1.1, 0.4, 0.25);
 double maxabs(const Mat3& m) { return m.cwiseAbs().maxCoeff(); }
 double maxabs(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
 
-/// Keeps the worst value of an error measure over a test case and prints it
-/// at the end of the test case when LGI_TEST_REPORT is set.
-class Worst {
- public:
-  explicit Worst(std::string name) : name_(std::move(name)) {}
-  Worst(const Worst&) = delete;
-  Worst& operator=(const Worst&) = delete;
-  ~Worst() {
-    if (std::getenv("LGI_TEST_REPORT") != nullptr) {
-      std::printf("[worst] %-62s %.3e  (%s)\n", name_.c_str(), worst_, where_.c_str());
-    }
-  }
-  double operator()(double err, const std::string& where) {
-    const double e = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
-    if (!seen_ || e > worst_) {
-      seen_ = true;
-      worst_ = e;
-      where_ = where;
-    }
-    return err;
-  }
-
- private:
-  std::string name_;
-  bool seen_ = false;
-  double worst_ = 0.0;
-  std::string where_;
-};
+using lgi::testing::Worst;
 
 // ---------------------------------------------------------------------------
 // Long-double references (80-bit on x86-64: about 3 more decimal digits)
