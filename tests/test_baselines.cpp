@@ -497,15 +497,7 @@ TEST_CASE("steps, rejected steps and right-hand-side evaluations reach /diagnost
                                       " --t-end 0.5 --save-every 1000 --out " + file);
       INFO(name << ": " << r.err << r.out);
       REQUIRE(r.status == 0);
-      auto attr = [&](const char* a) {
-        const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-        const hid_t at = H5Aopen_by_name(f, "/diagnostics", a, H5P_DEFAULT, H5P_DEFAULT);
-        std::int64_t v = -1;
-        H5Aread(at, H5T_NATIVE_INT64, &v);
-        H5Aclose(at);
-        H5Fclose(f);
-        return v;
-      };
+      auto attr = [&](const char* a) { return testing::read_integer_attribute(file, "/diagnostics", a); };
       const std::int64_t steps = attr("steps"), rejected = attr("rejected_steps"), rhs = attr("rhs_evaluations");
       INFO("steps " << steps << " rejected " << rejected << " rhs " << rhs);
       CHECK(steps > 0);
@@ -599,28 +591,9 @@ TEST_CASE("the full singularity study: guarded Euler angles stop, everything tha
   const auto r = testing::run_lgi("singularity --quiet --out " + out);
   INFO(r.err);
   REQUIRE(r.status == 0);
-  const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  REQUIRE(f >= 0);
-  auto strings = [&](const char* name) {
-    const hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
-    const hid_t sp = H5Dget_space(d);
-    hsize_t n = 0;
-    H5Sget_simple_extent_dims(sp, &n, nullptr);
-    std::vector<char*> p(n);
-    const hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, H5T_VARIABLE);
-    H5Tset_cset(t, H5T_CSET_UTF8);
-    H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data());
-    std::vector<std::string> out_strings(p.begin(), p.end());
-    H5Dvlen_reclaim(t, sp, H5P_DEFAULT, p.data());
-    H5Tclose(t);
-    H5Sclose(sp);
-    H5Dclose(d);
-    return out_strings;
-  };
+  auto strings = [&](const char* name) { return testing::read_string_dataset(out, name); };
   const auto scene_col = strings("/results/scene"), method = strings("/results/method"),
              outcome = strings("/results/outcome"), status = strings("/results/status");
-  H5Fclose(f);
   const auto dev = testing::read_dataset(out, "/results/com_max_deviation");
   REQUIRE(method.size() == dev.data.size());
   int guarded_failures = 0;

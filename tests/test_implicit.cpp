@@ -15,7 +15,6 @@
 // The [.bench] case (hidden; also in the [slow] CTest entry) prints the
 // Newton iteration counts and the cost per step relative to rkmk4 quoted in
 // the issue's report, and checks the iteration counts.
-#include <hdf5.h>
 
 #include <array>
 #include <catch2/catch.hpp>
@@ -62,18 +61,6 @@ Run run_scheme(Scheme& scheme, const Model& model, const system::State& x0, doub
   return r;
 }
 
-std::int64_t integer_attribute(const std::string& file, const std::string& object, const std::string& name) {
-  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  REQUIRE(f >= 0);
-  const hid_t a = H5Aopen_by_name(f, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-  std::int64_t v = -999;
-  if (a >= 0) {
-    H5Aread(a, H5T_NATIVE_INT64, &v);
-    H5Aclose(a);
-  }
-  H5Fclose(f);
-  return v;
-}
 
 }  // namespace
 
@@ -425,9 +412,9 @@ TEST_CASE("lgi simulate runs radau5 on the stiff scene end to end, and reports a
     const auto r = testing::run_lgi("simulate --scene " + scenes + "/stiff_damped_spring.toml --scheme rkmk-radau5 --dt 0.1 --out " + out);
     INFO("stdout: " << r.out << "\nstderr: " << r.err);
     REQUIRE(r.status == 0);
-    CHECK(integer_attribute(out, "/diagnostics", "steps") == 500);
-    CHECK(integer_attribute(out, "/diagnostics", "newton_iterations_max") > 0);
-    CHECK(integer_attribute(out, "/diagnostics", "newton_failures") == 0);
+    CHECK(testing::read_integer_attribute(out, "/diagnostics", "steps") == 500);
+    CHECK(testing::read_integer_attribute(out, "/diagnostics", "newton_iterations_max") > 0);
+    CHECK(testing::read_integer_attribute(out, "/diagnostics", "newton_failures") == 0);
     CHECK(testing::read_string_attribute(out, "/diagnostics", "status") == "ok");
     // The final sample is the state at t = 50, close to the reference.
     const auto Pi = testing::read_dataset(out, "/particles/body/angular_momentum_body/value");
@@ -446,7 +433,7 @@ TEST_CASE("lgi simulate runs radau5 on the stiff scene end to end, and reports a
     CHECK(r.err.find("iterations, residual") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(out));
     REQUIRE(std::filesystem::exists(out + ".partial"));
-    CHECK(integer_attribute(out + ".partial", "/diagnostics", "newton_failures") == 1);
+    CHECK(testing::read_integer_attribute(out + ".partial", "/diagnostics", "newton_failures") == 1);
     CHECK(testing::read_string_attribute(out + ".partial", "/diagnostics", "status").find("did not converge") !=
           std::string::npos);
   }
@@ -456,9 +443,9 @@ TEST_CASE("lgi simulate runs radau5 on the stiff scene end to end, and reports a
                                     "/heavy_top_trindade_1.toml --scheme rkmk-radau5 --dt 0.5 --t-end 2 --retry-halving 4 --out " + out);
     INFO("stderr: " << r.err);
     REQUIRE(r.status == 0);
-    CHECK(integer_attribute(out, "/diagnostics", "steps") == 4);
-    CHECK(integer_attribute(out, "/diagnostics", "rejected_steps") > 0);
-    CHECK(integer_attribute(out, "/parameters", "retry_halving") == 4);
+    CHECK(testing::read_integer_attribute(out, "/diagnostics", "steps") == 4);
+    CHECK(testing::read_integer_attribute(out, "/diagnostics", "rejected_steps") > 0);
+    CHECK(testing::read_integer_attribute(out, "/parameters", "retry_halving") == 4);
     const auto bad = testing::run_lgi("simulate --scene " + scenes +
                                       "/heavy_top_trindade_1.toml --scheme rkmk-radau5 --dt 0.5 --retry-halving -1 --out " + dir + "/bad.h5");
     CHECK(bad.status == 2);

@@ -3,9 +3,11 @@
 // doubles with its shape, and string attributes.
 #include <hdf5.h>
 
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lgi::testing {
@@ -15,7 +17,9 @@ struct H5Array {
   std::vector<hsize_t> shape;
 };
 
-inline H5Array read_dataset(const std::string& file, const std::string& name) {
+/// The file (read-only) and one of its datasets; throws naming what is missing.
+/// The caller closes both.
+inline std::pair<hid_t, hid_t> open_dataset(const std::string& file, const std::string& name) {
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) throw std::runtime_error("cannot open " + file);
   const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
@@ -23,6 +27,11 @@ inline H5Array read_dataset(const std::string& file, const std::string& name) {
     H5Fclose(f);
     throw std::runtime_error("no dataset " + name + " in " + file);
   }
+  return {f, d};
+}
+
+inline H5Array read_dataset(const std::string& file, const std::string& name) {
+  const auto [f, d] = open_dataset(file, name);
   const hid_t sp = H5Dget_space(d);
   const int rank = H5Sget_simple_extent_ndims(sp);
   H5Array a;
@@ -69,13 +78,7 @@ inline std::string read_string_attribute(const std::string& file, const std::str
 
 /// A 1-D dataset of strings (variable- or fixed-length) as a vector.
 inline std::vector<std::string> read_string_dataset(const std::string& file, const std::string& name) {
-  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) throw std::runtime_error("cannot open " + file);
-  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
-  if (d < 0) {
-    H5Fclose(f);
-    throw std::runtime_error("no dataset " + name + " in " + file);
-  }
+  const auto [f, d] = open_dataset(file, name);
   const hid_t sp = H5Dget_space(d);
   hsize_t n = 0;
   H5Sget_simple_extent_dims(sp, &n, nullptr);
@@ -111,6 +114,21 @@ inline double read_double_attribute(const std::string& file, const std::string& 
   const hid_t a = H5Aopen_by_name(f, object.c_str(), attr.c_str(), H5P_DEFAULT, H5P_DEFAULT);
   if (a >= 0) {
     H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+    H5Aclose(a);
+  }
+  H5Fclose(f);
+  return v;
+}
+
+/// A scalar integer attribute (-999 if absent).
+inline std::int64_t read_integer_attribute(const std::string& file, const std::string& object,
+                                           const std::string& attr) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open " + file);
+  std::int64_t v = -999;
+  const hid_t a = H5Aopen_by_name(f, object.c_str(), attr.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  if (a >= 0) {
+    H5Aread(a, H5T_NATIVE_INT64, &v);
     H5Aclose(a);
   }
   H5Fclose(f);
