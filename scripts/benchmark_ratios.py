@@ -4,14 +4,16 @@
 Runs build/release/lgi_bench (Google Benchmark) once, so every figure and its
 baseline come from the same run, and prints a table (and, with --tex FILE, a
 LaTeX table for the paper). The baseline is quat/rk4 where registered, else
-rkmk4 (the table says which).
+rkmk4 (the table says which). Progress goes to stderr, one line per benchmark.
 
 usage: scripts/benchmark_ratios.py [--bench PATH] [--min-time S] [--tex FILE] [--json FILE]
 """
 import argparse
 import json
+import os
 import subprocess
 import sys
+import tempfile
 
 
 def tex_escape(s):
@@ -51,6 +53,30 @@ def write_tex(path, per_scene, maps, ctx):
         f.write("\n".join(lines) + "\n")
 
 
+def run_bench(bench, min_time):
+    """Run every benchmark of `bench` once and return its JSON report; on stderr, one
+    progress line per benchmark ("benchmark_ratios: 3/52 free_body_hlw/rkmk4") as it finishes."""
+    names = subprocess.run([bench, "--benchmark_list_tests=true"], check=True, capture_output=True,
+                           text=True).stdout.split()
+    print(f"benchmark_ratios: {len(names)} benchmarks, min time {min_time} s each", file=sys.stderr, flush=True)
+    with tempfile.TemporaryDirectory(prefix="lgi_bench_") as tmp:
+        report = os.path.join(tmp, "report.json")
+        proc = subprocess.Popen([bench, "--benchmark_format=console", "--benchmark_color=false",
+                                 f"--benchmark_out={report}", "--benchmark_out_format=json",
+                                 f"--benchmark_min_time={min_time}"],
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        done = 0
+        for line in proc.stdout:
+            first = line.split(maxsplit=1)[0] if line.strip() else ""
+            if first in names:
+                done += 1
+                print(f"benchmark_ratios: {done}/{len(names)} {first}", file=sys.stderr, flush=True)
+        if proc.wait() != 0:
+            raise subprocess.CalledProcessError(proc.returncode, bench)
+        with open(report) as f:
+            return f.read()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bench", default="build/release/lgi_bench")
@@ -58,8 +84,7 @@ def main():
     ap.add_argument("--tex")
     ap.add_argument("--json")
     a = ap.parse_args()
-    out = subprocess.run([a.bench, "--benchmark_format=json", f"--benchmark_min_time={a.min_time}"],
-                         check=True, capture_output=True, text=True).stdout
+    out = run_bench(a.bench, a.min_time)
     data = json.loads(out)
     if a.json:
         with open(a.json, "w") as f:

@@ -3,9 +3,13 @@
 # (scripts/plots/*.py, Debian's /usr/bin/python3), writes the generated tables
 # and sentences (paper/generated/), and builds paper/build/lgi.pdf with latexmk.
 #
-# Usage: scripts/build_paper.sh [--quick] [--build-dir DIR] [--lgi PATH]
+# Usage: scripts/build_paper.sh [--quick] [--out DIR] [--build-dir DIR] [--lgi PATH]
 #   --quick        coarse steps, short spans, one timed repeat: a few minutes on
 #                  2 cores, the same PDF structure (CI runs this, CTest paper_quick)
+#   --out DIR      output folder (default paper/build): DIR/lgi.pdf, DIR/lgi.log,
+#                  DIR/build_paper.log, DIR/figures, DIR/data, and then also
+#                  DIR/generated and DIR/tex (links to paper/'s sources): with
+#                  --out nothing is written in the source tree
 #   --build-dir D  the CMake build folder holding lgi (default build/release)
 #   --lgi PATH     the lgi executable itself (overrides --build-dir)
 #
@@ -15,7 +19,8 @@
 # worked, a bad input, a plot or LaTeX error) stops the script with a non-zero
 # status. Runs of baselines that may legitimately stop (an Euler-angle chart
 # at its singularity) are kept as data, with their status.
-# Outputs: paper/build/lgi.pdf, paper/build/figures/*.{pdf,png,gif},
+# Outputs (default): paper/build/lgi.pdf, paper/build/figures/*.{pdf,png,gif}
+# (animations dzhanibekov_book_axis2.gif, prism_edurev.gif),
 # paper/build/data/*.h5 (+ .csv), paper/generated/*.tex.
 set -euo pipefail
 
@@ -23,14 +28,17 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 mode=full
 build_dir="$root/build/release"
 lgi=""
+out_arg=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) mode=quick ;;
+    --out) [ $# -ge 2 ] || { echo "build_paper: --out needs a folder" >&2; exit 2; }; out_arg="$2"; shift ;;
+    --out=*) out_arg="${1#*=}" ;;
     --build-dir) build_dir="$2"; shift ;;
     --build-dir=*) build_dir="${1#*=}" ;;
     --lgi) lgi="$2"; shift ;;
     --lgi=*) lgi="${1#*=}" ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "build_paper: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -45,11 +53,18 @@ PY=/usr/bin/python3
   || die "$PY lacks matplotlib/h5py/numpy (scripts/install-deps.sh)"
 command -v latexmk >/dev/null || die "latexmk not found (scripts/install-deps.sh)"
 
+export PYTHONDONTWRITEBYTECODE=1  # no __pycache__ beside the plot scripts
 paper="$root/paper"
-out="$paper/build"
+if [ -n "$out_arg" ]; then
+  mkdir -p "$out_arg"
+  out="$(cd "$out_arg" && pwd)"
+  gen="$out/generated"
+else
+  out="$paper/build"
+  gen="$paper/generated"
+fi
 data="$out/data"
 figs="$out/figures"
-gen="$paper/generated"
 notes="$gen/notes"
 plots="$root/scripts/plots"
 scenes="$root/experiments/scenes"
@@ -298,9 +313,24 @@ printf '\\renewcommand{\\DataWallSeconds}{%s}\n' "$t_data" >> "$gen/machine.tex"
 say "figures and tables done (${t_data} s)"
 
 # ── the PDF ──────────────────────────────────────────────────────────────────
-cd "$paper"
-latexmk -pdf -interaction=nonstopmode -halt-on-error -file-line-error -outdir=build lgi.tex >>"$log" 2>&1 \
-  || { grep -A3 -E '^(!|.*:[0-9]+:)' build/lgi.log | head -30 >&2; die "latexmk failed (see $out/lgi.log)"; }
-figures=$(sed -n 's/^LGI-FIGURES: \([0-9]*\).*/\1/p' build/lgi.log | tail -1)
-missing=$(sed -n 's/^LGI-MISSING: \([0-9]*\).*/\1/p' build/lgi.log | tail -1)
+# lgi.tex reads build/figures/ and generated/ relative to the folder LaTeX runs in:
+# paper/ by default; with --out, DIR/tex, which links paper/'s sources and maps
+# build -> DIR and generated -> DIR/generated (so nothing is written in paper/).
+if [ -n "$out_arg" ]; then
+  texdir="$out/tex"
+  rm -rf "$texdir"
+  mkdir -p "$texdir"
+  for f in "$paper"/*; do
+    case "$(basename "$f")" in build|generated) ;; *) ln -s "$f" "$texdir/" ;; esac
+  done
+  ln -s "$out" "$texdir/build"
+  ln -s "$gen" "$texdir/generated"
+else
+  texdir="$paper"
+fi
+cd "$texdir"
+latexmk -pdf -interaction=nonstopmode -halt-on-error -file-line-error -outdir="$out" lgi.tex >>"$log" 2>&1 \
+  || { grep -A3 -E '^(!|.*:[0-9]+:)' "$out/lgi.log" | head -30 >&2; die "latexmk failed (see $out/lgi.log)"; }
+figures=$(sed -n 's/^LGI-FIGURES: \([0-9]*\).*/\1/p' "$out/lgi.log" | tail -1)
+missing=$(sed -n 's/^LGI-MISSING: \([0-9]*\).*/\1/p' "$out/lgi.log" | tail -1)
 say "wrote $out/lgi.pdf: ${figures:-?} figures, ${missing:-?} notes about missing data; total $(( $(date +%s) - t_start )) s"

@@ -15,6 +15,7 @@ packages=(
   libbenchmark-dev         # Google Benchmark
   python3-matplotlib python3-h5py python3-numpy  # Debian's /usr/bin/python3 for plots
   python3-pil                                     # GIF animations (matplotlib's PillowWriter)
+  python3-pytest                                  # tests/python (CTest scripts_pytest): the scripts as a user runs them
   latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended lmodern  # the paper (scripts/build_paper.sh)
 )
 

@@ -5,7 +5,9 @@ attitude from trajectory files, and a filmstrip of the same frames for the paper
 Usage: animate.py --out DIR [--frames N] [--fps F] TRAJ.h5 ...
 
 For each trajectory (e.g. dzhanibekov_book_axis2.toml and prism_edurev.toml)
-writes DIR/<scene>.gif; all of them together give DIR/tumbling_frames.{pdf,png}
+writes DIR/<scene>.gif (<scene> the stem of the scene file, e.g.
+dzhanibekov_book_axis2.gif; DIR/<scene>_<input stem>.gif when several inputs
+share a scene; DIR is created if missing); all of them together give DIR/tumbling_frames.{pdf,png}
 (one row per file, six snapshots). The box is the uniform box with the scene's
 principal moments: side_i² = (6/m)(ΣI − 2 I_i) (m from the scene, else 1;
 a 4 × 1 × 2 prism of mass 12 has I = (5, 20, 17)). Its vertices are drawn in
@@ -13,6 +15,8 @@ space coordinates x = R(t) X with R from the file's quaternions; opposite faces
 share a colour, the body axis of the initial spin is drawn as an arrow, and the
 constant spatial angular momentum m = RΠ as a black arrow.
 """
+import os
+
 import numpy as np
 from matplotlib.animation import PillowWriter
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
@@ -100,12 +104,13 @@ def main():
     runs = [c.load_trajectory(f) for f in args.files]
     if not runs:
         c.die("no trajectory files given")
-    for r in runs:
+    names = c.unique_names([c.scene_label(r["parameters"]) for r in runs], args.files)
+    for r, name in zip(runs, names):
         fig = c.plt.figure(figsize=(3.2, 3.2), dpi=80)
         ax = fig.add_axes([0, 0, 1, 1], projection="3d")
         art = BoxArtist(ax, r, scene_title(r))
         frames = np.unique(np.linspace(0, len(r["t"]) - 1, args.frames).round().astype(int))
-        path = f"{args.out}/{c.scene_label(r['parameters'])}.gif"
+        path = c.claim(os.path.join(args.out, name + ".gif"))
         writer = PillowWriter(fps=args.fps)
         with c.plt.rc_context({"savefig.bbox": None}), writer.saving(fig, path, dpi=80):
             for k in frames:  # a fixed frame size: no tight bounding box here

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Seed 000, Figures 4 and 9: the book's body angular velocity against time for
+"""Seed 000 (docs/sources.md), Figures 4 and 9: the book's body angular velocity against time for
 the three book scenes (spin about axis 1, 2, 3), a Lie-group scheme beside the
 exact solution (lgi's `exact` scheme: Jacobi elliptic functions).
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Seed 000, Figures 5 and 6: the energy and momentum ellipsoids of the book in
+"""Seed 000 (docs/sources.md), Figures 5 and 6: the energy and momentum ellipsoids of the book in
 angular-velocity space and their intersection curves, computed analytically
 from the inertia and the initial angular velocity of each scene, with the
 numerical Ω(t) of the trajectory drawn on top as a check.
@@ -19,6 +19,8 @@ Writes DIR/ellipsoids_stable.{pdf,png} (scenes whose curve circles the axis of
 spin: 3-D view and a projection of the loop) and DIR/ellipsoids_intermediate.{pdf,png}
 (the others: the curves wrap between +ω_2 and −ω_2).
 """
+import sys
+
 import numpy as np
 from mpl_toolkits.mplot3d import Axes3D  # noqa: F401
 
@@ -103,12 +105,26 @@ def draw_projection(ax, I, w0, traj_w, axes_pair, title, legend=True):
         ax.legend(fontsize=6, loc="center")
 
 
+def legend_above_3d(fig, ax):
+    """The 3-D panel's legend (and the red Ω(0) dot of the projections) in one row above
+    the figure, so that it covers neither the ellipsoids nor a title."""
+    h, l = ax.get_legend_handles_labels()
+    h.append(c.plt.Line2D([], [], marker="o", color="tab:red", ls="", ms=4))
+    l.append("$\\Omega(0)$")
+    fig.legend(h, l, fontsize=6.5, ncol=len(h), loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
+
+
 def main():
     args = c.parser(__doc__.split("\n\n")[0]).parse_args()
     runs = {}
     for p in args.files:
         r = c.load_trajectory(p)
-        runs.setdefault(c.scene_label(r["parameters"]), r)
+        scene = c.scene_label(r["parameters"])
+        if scene in runs:
+            print(f"ellipsoids.py: {p}: scene {scene} already drawn from {runs[scene]['path']}; "
+                  "one trajectory per scene, this one is not drawn", file=sys.stderr)
+            continue
+        runs[scene] = r
     if not runs:
         c.die("no trajectory files given")
     stable, intermediate = [], []
@@ -123,14 +139,15 @@ def main():
         fig = c.plt.figure(figsize=(7.0, 3.2 * len(stable)))
         for n, (scene, r, I, w0, ax_i) in enumerate(stable):
             ax = fig.add_subplot(len(stable), 2, 2 * n + 1, projection="3d")
-            i = draw_3d(ax, I, w0, r["Omega"], f"spin about axis {ax_i + 1}: the curves are tiny loops at $\\pm\\omega_{ax_i + 1}$")
+            i = draw_3d(ax, I, w0, r["Omega"], f"spin about axis {ax_i + 1}:\ntiny loops at $\\pm\\omega_{ax_i + 1}$")
             if n == 0:
-                ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(-0.05, 1.02))
+                legend_above_3d(fig, ax)
             ax2 = fig.add_subplot(len(stable), 2, 2 * n + 2)
             pair = tuple(a for a in range(3) if a != i)
             draw_projection(ax2, I, w0, r["Omega"], pair,
                             f"spin about axis {ax_i + 1}: the loop around $+\\omega_{i + 1}$, projected")
             ax2.set_aspect("equal", adjustable="datalim")
+            ax2.xaxis.set_major_locator(c.plt.MaxNLocator(5))  # no colliding tick labels
         fig.subplots_adjust(wspace=0.45, hspace=0.3)
         c.save(fig, args.out, "ellipsoids_stable")
     if intermediate:
@@ -139,10 +156,8 @@ def main():
         for n, (scene, r, I, w0, ax_i) in enumerate(intermediate):
             ax = fig.add_subplot(gs[n, 0], projection="3d")
             draw_3d(ax, I, w0, r["Omega"], f"spin about axis {ax_i + 1}")
-            h3, l3 = ax.get_legend_handles_labels()
-            h3.append(c.plt.Line2D([], [], marker="o", color="tab:red", ls="", ms=4))
-            l3.append("$\\Omega(0)$")
-            ax.legend(h3, l3, fontsize=5.5, loc="upper left", bbox_to_anchor=(-0.1, 1.05))
+            if n == 0:
+                legend_above_3d(fig, ax)
             others = [a for a in range(3) if a != ax_i]
             for m, o in enumerate(others):
                 axp = fig.add_subplot(gs[n, 1 + m])

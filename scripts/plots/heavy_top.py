@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Seed 001 (Trindade & Sampaio 2001), Figures 3-10: the heavy top.
+"""Seed 001 (Trindade & Sampaio 2001; docs/sources.md), Figures 3-10: the heavy top.
 
 Usage: heavy_top.py --out DIR TRAJ.h5 ...
 
@@ -8,6 +8,8 @@ scheme in the paper) give one figure each, DIR/heavy_top_case{N}.{pdf,png}
 (their Figures 3-6): nutation θ(t), the centre of mass P = R χ, total and
 kinetic energy, Ω, the phase plane (θ, θ̇), the trajectory of P, the unwrapped
 precession ψ(t), and the relative errors of the two invariants (H and Π·Γ).
+Several files of one case give one figure each, DIR/heavy_top_case{N}_<file stem>.
+DIR is created if missing.
 
 Trajectories of heavy_top_trindade_singular.toml (and optionally singularity-study
 files of `lgi singularity`, whose unguarded euler-zxz runs supply the Euler angles) give
@@ -19,10 +21,11 @@ components, centre of mass) and whose angles are extracted from R only for
 comparison. The centre of mass of every run is drawn on one panel: the motion
 is the same whatever the angles do.
 θ, φ from Γ = Rᵀe3 = (sinθ sinφ, sinθ cosφ, cosθ); θ̇ = Ω1 cosφ − Ω2 sinφ
-(conventions.md, Trindade & Sampaio eq. 27).
+(docs/conventions.md §2, Trindade & Sampaio eq. 27).
 """
 import os
 import re
+import sys
 
 import h5py
 import numpy as np
@@ -53,7 +56,7 @@ def rel_error(x):
     return np.maximum(np.abs(x - x[0]) / scale, 1e-17)
 
 
-def case_figure(r, case, outdir):
+def case_figure(r, case, outdir, name):
     d = derived(r)
     t = r["t"]
     fig = c.plt.figure(figsize=(7.4, 3.9))
@@ -82,13 +85,19 @@ def case_figure(r, case, outdir):
     ax = fig.add_subplot(gs[1, 1], projection="3d")
     ax.plot(d["P"][:, 0], d["P"][:, 1], d["P"][:, 2], "k", lw=0.5)
     ax.set_title("trajectory of P", fontsize=7.5, pad=0)
+    # The 3-D box drawn smaller than its cell, with three ticks per axis: its z tick labels
+    # must not reach the y label of the panel to its right.
+    ax.set_box_aspect(None, zoom=0.8)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(c.plt.MaxNLocator(3))
     ax.tick_params(labelsize=5, pad=-3)
     ax.set_xlabel("x", labelpad=-10, fontsize=6)
     ax.set_ylabel("y", labelpad=-10, fontsize=6)
     ax.set_zlabel("z", labelpad=-10, fontsize=6)
     ax = fig.add_subplot(gs[1, 2])
     ax.plot(t, np.unwrap(d["psi"]), "k")
-    ax.set(xlabel="t (s)", ylabel="precession ψ from R (rad)")
+    ax.set(xlabel="t (s)", ylabel="precession ψ (rad)")
+    ax.set_title("ψ extracted from R", fontsize=7, loc="left")
     ax = fig.add_subplot(gs[1, 3])
     ax.semilogy(t, rel_error(r["energy"]), label="H")
     inv = [k for k in r["observables"] if "vertical" in k]
@@ -98,7 +107,7 @@ def case_figure(r, case, outdir):
     ax.legend(fontsize=6, ncol=2, loc="lower left", bbox_to_anchor=(0, 1.0), frameon=False, handlelength=1.2)
     fig.suptitle(f"Heavy top, Trindade & Sampaio case {case} — {r['scheme']}, "
                  f"{_step_text(r)}", fontsize=8.5, y=1.0)
-    c.save(fig, outdir, f"heavy_top_case{case}")
+    c.save(fig, outdir, name)
 
 
 def _step_text(r):
@@ -225,16 +234,22 @@ def main():
     runs = [c.load_trajectory(p) for p in runs]
     if not runs:
         c.die("no trajectory files given")
-    singular = []
+    singular, cases = [], []
     for r in runs:
         name = c.scene_label(r["parameters"])
         m = re.fullmatch(r"heavy_top_trindade_(\d)", name)
         if m:
-            case_figure(r, m.group(1), args.out)
+            cases.append((r, m.group(1)))
         elif name == "heavy_top_trindade_singular":
             singular.append(r)
         else:
-            print(f"heavy_top.py: {os.path.basename(r['path'])}: scene {name} is not a Trindade scene, skipped")
+            print(f"heavy_top.py: {os.path.basename(r['path'])}: scene {name} is not a Trindade scene, skipped",
+                  file=sys.stderr)
+    # One figure per input: heavy_top_case{N}, or heavy_top_case{N}_<input stem> when
+    # several inputs are of case N (never one file written over another).
+    names = c.unique_names([f"heavy_top_case{case}" for _, case in cases], [r["path"] for r, _ in cases])
+    for (r, case), name in zip(cases, names):
+        case_figure(r, case, args.out, name)
     if singular:
         singular_figure(singular, studies, args.out)
 

@@ -3,9 +3,11 @@ python3-matplotlib, python3-h5py, python3-numpy; no network, no other package).
 
 Readers for the files lgi writes (experiments/OUTPUT.md: H5MD trajectories;
 experiments/RESULTS.md: result tables), the attitude helpers of
-shared/spec/conventions.md (quaternion (w, x, y, z), body -> space; Euler ZXZ),
+docs/conventions.md (quaternion (w, x, y, z), body -> space; Euler ZXZ),
 one colour and marker per scheme across every figure, and save() that writes
-PDF and PNG side by side.
+PDF and PNG side by side. Every script takes --out DIR (created when missing:
+out_dir), never writes one file twice in a run (claim, unique_names), and gets
+at least three labelled ticks on each log axis (fix_log_ticks, called by save).
 """
 import argparse
 import hashlib
@@ -74,10 +76,118 @@ def scheme_style(name):
     return {"color": color, "marker": marker, "linestyle": ls}
 
 
+# ── output folder, file names, log-axis ticks ────────────────────────────────
+_WRITTEN = set()
+
+
+def out_dir(path):
+    """The --out folder, created with its parents when missing (an argparse type)."""
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError as e:
+        raise argparse.ArgumentTypeError(f"cannot create output folder {path}: {e.strerror}")
+    if not os.path.isdir(path):
+        raise argparse.ArgumentTypeError(f"{path} exists and is not a folder")
+    return path
+
+
+def claim(path):
+    """Register an output path of this run; a second write to it (two inputs mapped to
+    one file name) stops the script instead of silently replacing the first file."""
+    key = os.path.realpath(path)
+    if key in _WRITTEN:
+        die(f"{path} would be written twice in one run (two inputs give the same name); nothing overwritten")
+    _WRITTEN.add(key)
+    return path
+
+
+def file_stem(path):
+    """An input file's name without folder and .h5/.hdf5 suffix."""
+    base = os.path.basename(path)
+    for suffix in (".h5", ".hdf5"):
+        if base.endswith(suffix):
+            return base[: -len(suffix)]
+    return os.path.splitext(base)[0]
+
+
+def unique_names(names, paths):
+    """One output name per input: names[i] where it is unique among the inputs, else
+    names[i] + "_" + the stem of paths[i] (and a counter if the stems agree too)."""
+    out = [n if names.count(n) == 1 else f"{n}_{file_stem(p)}" for n, p in zip(names, paths)]
+    clash = {n for n in out if out.count(n) > 1}
+    seen = {}
+    for i, n in enumerate(out):
+        if n in clash:
+            seen[n] = seen.get(n, 0) + 1
+            out[i] = f"{n}_{seen[n]}"
+    return out
+
+
+def _ticks_in_view(locs, lo, hi):
+    return [v for v in locs if lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9)]
+
+
+def fix_log_ticks(ax, min_labels=3):
+    """Give every log-scaled axis of ax at least min_labels labelled major ticks in view:
+    decades where the range holds enough of them, else 1-2-5 or 1..9 mantissas (labelled
+    as m×10^k), else a few geometric ticks. Minor labels are switched off, so labels never
+    collide; the limits are kept."""
+    from matplotlib import ticker
+    for axis, get_lim, set_lim, scale in ((ax.xaxis, ax.get_xlim, ax.set_xlim, ax.get_xscale()),
+                                         (ax.yaxis, ax.get_ylim, ax.set_ylim, ax.get_yscale())):
+        if scale != "log":
+            continue
+        lim = get_lim()
+        lo, hi = sorted(lim)
+        if not (lo > 0 and np.isfinite(lo) and np.isfinite(hi)):
+            continue
+        set_lim(lim)  # freeze: changing the locator must not move the limits
+        k0, k1 = int(np.floor(np.log10(lo))) - 1, int(np.ceil(np.log10(hi))) + 1
+        decades = 10.0 ** np.arange(k0, k1 + 1)
+        chosen = None
+        for subs in ((1.0,), (1.0, 3.0), (1.0, 2.0, 5.0), tuple(range(1, 10))):
+            locs = np.outer(decades, subs).ravel()
+            if len(_ticks_in_view(locs, lo, hi)) >= min_labels:
+                chosen = subs
+                break
+        if chosen == (1.0,):
+            axis.set_major_locator(ticker.LogLocator(base=10, numticks=12))
+            axis.set_major_formatter(ticker.LogFormatterSciNotation())
+        elif chosen is not None:
+            axis.set_major_locator(ticker.LogLocator(base=10, subs=chosen, numticks=40))
+            # minor_thresholds (inf, inf): label every tick of the locator, whatever the range
+            axis.set_major_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False,
+                                                                    minor_thresholds=(np.inf, np.inf)))
+        else:  # less than a factor of ~1.3: three geometric ticks
+            axis.set_major_locator(ticker.FixedLocator(np.geomspace(lo, hi, 5)[1:4]))
+            axis.set_major_formatter(ticker.FormatStrFormatter("%.3g"))
+        axis.set_minor_formatter(ticker.NullFormatter())
+        set_lim(lim)
+
+
+def labelled_ticks(ax, which):
+    """The (value, text) of the labelled major ticks in view on ax's x or y axis, after a
+    draw of its figure (what a reader sees)."""
+    ax.figure.canvas.draw()
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    lo, hi = sorted(ax.get_xlim() if which == "x" else ax.get_ylim())
+    out = []
+    for tick in axis.get_major_ticks():
+        v = tick.get_loc()
+        text = tick.label1.get_text()
+        if tick.label1.get_visible() and text.strip() and lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9):
+            out.append((v, text))
+    return out
+
+
 def save(fig, outdir, name, png_dpi=160):
-    """Write outdir/name.pdf and outdir/name.png; return the two paths."""
+    """Write outdir/name.pdf and outdir/name.png (the folder created if missing); every
+    log axis gets enough labelled ticks first (fix_log_ticks). Return the two paths."""
     os.makedirs(outdir, exist_ok=True)
-    paths = [os.path.join(outdir, name + ".pdf"), os.path.join(outdir, name + ".png")]
+    for ax in fig.axes:
+        if ax.name != "3d":
+            fix_log_ticks(ax)
+    paths = [claim(os.path.join(outdir, name + ".pdf")), claim(os.path.join(outdir, name + ".png"))]
     fig.savefig(paths[0])
     fig.savefig(paths[1], dpi=png_dpi)
     plt.close(fig)
@@ -88,7 +198,8 @@ def save(fig, outdir, name, png_dpi=160):
 def parser(description):
     p = argparse.ArgumentParser(description=description)
     p.add_argument("files", nargs="*", help="HDF5 files written by lgi")
-    p.add_argument("--out", required=True, help="output folder for the PDF and PNG files")
+    p.add_argument("--out", required=True, type=out_dir,
+                   help="output folder for the PDF and PNG files (created with its parents if missing)")
     return p
 
 
@@ -157,7 +268,7 @@ def scene_label(params_or_path):
     return os.path.splitext(os.path.basename(s))[0]
 
 
-# ── attitude (conventions.md) ────────────────────────────────────────────────
+# ── attitude (docs/conventions.md) ───────────────────────────────────────────
 def quat_to_matrix(q):
     """(n, 4) unit quaternions (w, x, y, z), body -> space, to (n, 3, 3) matrices."""
     q = np.asarray(q, dtype=float)
@@ -186,7 +297,7 @@ def euler_zxz_from_matrix(R):
 
 
 def continuous_quaternion(q):
-    """q and −q are one attitude (conventions.md); a file may switch between them
+    """q and −q are one attitude (docs/conventions.md §1); a file may switch between them
     (e.g. a matrix-to-quaternion conversion that keeps w ≥ 0). Flip signs so that
     consecutive samples are the closer of ±q: the curve is then as smooth as the motion."""
     q = np.array(q, dtype=float, copy=True)
