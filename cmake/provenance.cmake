@@ -1,4 +1,4 @@
-# Build provenance written into every output file (output-file.md):
+# Build provenance written into every output file (experiments/OUTPUT.md, /parameters):
 # git describe, compiler, flags and build type.
 find_package(Git QUIET)
 set(LGI_GIT_DESCRIBE "unknown")

@@ -22,7 +22,7 @@ std::string join_command_line(int argc, char** argv) {
   return s;
 }
 
-/// CLI11's messages can span lines; cli.md wants one.
+/// CLI11's messages can span lines; an lgi error is one line on stderr (README.md).
 std::string one_line(std::string s) {
   for (char& c : s)
     if (c == '\n' || c == '\r') c = ' ';

@@ -1,5 +1,5 @@
 #pragma once
-// The `lgi` command (../shared/spec/cli.md): subcommands, exit statuses
+// The `lgi` command (README.md, "Using lgi"): subcommands, exit statuses
 // (0 success, 1 the run failed, 2 bad command line or input) and one-line
 // errors on stderr.
 namespace lgi::experiments {

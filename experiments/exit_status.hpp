@@ -1,5 +1,5 @@
 #pragma once
-// Exit statuses of cli.md, and the exception that carries a usage error to
+// Exit statuses of lgi (README.md, "Using lgi"), and the exception that carries a usage error to
 // the top level, where it becomes one line on stderr.
 #include <stdexcept>
 

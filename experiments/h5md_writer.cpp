@@ -1,4 +1,4 @@
-// Trajectory writer: H5MD 1.1 layout of shared/spec/output-file.md, HDF5 C API.
+// Trajectory writer: H5MD 1.1 layout of experiments/OUTPUT.md, HDF5 C API.
 #include "experiments/h5md_writer.hpp"
 
 #include <fcntl.h>
@@ -257,7 +257,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
     Diagnostics running;
     running.steps = running.rejected_steps = running.rhs_evaluations = -1;
     running.newton_iterations_max = running.newton_failures = -1;
-    running.cpu_seconds = std::numeric_limits<double>::quiet_NaN();
+    running.cpu_seconds = running.output_seconds = std::numeric_limits<double>::quiet_NaN();
     running.status = "running";
     write_diagnostics(running);
 
@@ -369,6 +369,7 @@ void TrajectoryWriter::write_diagnostics(const Diagnostics& d) {
   write_int_attribute(g, "newton_iterations_max", H5T_STD_I64LE, d.newton_iterations_max, fail_fn);
   write_int_attribute(g, "newton_failures", H5T_STD_I64LE, d.newton_failures, fail_fn);
   write_double_attribute(g, "cpu_seconds", d.cpu_seconds, fail_fn);
+  write_double_attribute(g, "output_seconds", d.output_seconds, fail_fn);
   write_status(d.status);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Trajectory files after H5MD 1.1 (shared/spec/output-file.md; layout as
+// Trajectory files after H5MD 1.1 (layout as
 // written: experiments/OUTPUT.md). The writer knows nothing about schemes or
 // scenes: the caller says which series the file holds (TrajectoryLayout) and
 // hands over one TrajectorySample per saved step.
@@ -84,8 +84,10 @@ struct Provenance {
   std::map<std::string, std::int64_t> integer_attributes;
 };
 
-/// Attributes of /diagnostics: counts as int64, cpu_seconds float64,
+/// Attributes of /diagnostics: counts as int64, CPU times float64,
 /// status a variable-length UTF-8 string ("ok" or why the run stopped).
+/// cpu_seconds is the stepping alone (the scheme and the loop);
+/// output_seconds the invariants and the writing of samples (OUTPUT.md).
 struct Diagnostics {
   std::int64_t steps = 0;
   std::int64_t rejected_steps = 0;
@@ -93,6 +95,7 @@ struct Diagnostics {
   std::int64_t newton_iterations_max = 0;
   std::int64_t newton_failures = 0;
   double cpu_seconds = 0.0;
+  double output_seconds = 0.0;
   std::string status = "ok";
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 // The exception for bad input (a scene file, a command-line value): its
 // what() is the one-line message printed on stderr, and the command line
-// maps it to exit status 2 (cli.md). Scene-file messages have the form
+// maps it to exit status 2 (README.md). Scene-file messages have the form
 //   <file>:<line>: [table] key: what is wrong
 // (scene_reader.hpp).
 #include <stdexcept>

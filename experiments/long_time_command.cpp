@@ -29,6 +29,10 @@
 #include "experiments/results_file.hpp"
 #include "experiments/run_parameters.hpp"
 #include "experiments/scene_reader.hpp"
+#include "experiments/number_format.hpp"
+#include "experiments/output_timing.hpp"
+#include "experiments/scheme_lookup.hpp"
+#include "experiments/step_settings.hpp"
 #include "experiments/trajectory_observer.hpp"  // interrupt_requested, Interrupted
 #include "integrators/registry.hpp"
 #include "integrators/system/invariants.hpp"
@@ -219,37 +223,15 @@ class LongTimeObserver final : public integrators::Observer {
   bool emitted_ = false;
 };
 
-std::string format_number(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
 int long_time(const LongTimeOptions& o) {
   const system::Scene scene = read_scene(o.scene);
-  const integrators::SchemeInfo* scheme = integrators::find_scheme(o.scheme);
-  if (!scheme) throw UsageError("--scheme: unknown scheme '" + o.scheme + "' (lgi schemes lists them)");
-  if (!o.t_end) throw UsageError("--t-end: required (the length of the run)");
-  if (!(*o.t_end > 0.0 && std::isfinite(*o.t_end))) throw UsageError("--t-end: must be a finite number > 0");
+  const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
   if (o.samples < 1) throw UsageError("--samples: must be >= 1 (samples per decade of steps)");
-  if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a finite number > 0");
-  if (o.tol && !(*o.tol > 0.0 && std::isfinite(*o.tol))) throw UsageError("--tol: must be a finite number > 0");
-  integrators::RunConfig cfg;
-  cfg.t0 = 0.0;
-  cfg.t_end = *o.t_end;
+  // The command line, then the scene's [run] (step_settings.hpp).
+  integrators::RunConfig cfg = resolve_run_config({o.dt, o.tol, o.t_end}, scene, *scheme, /*allow_zero_t_end=*/false);
   cfg.save_every = 1;
-  std::int64_t last_step = 0;
-  if (scheme->properties.adaptive) {
-    if (!o.tol) throw UsageError("--tol: scheme '" + scheme->name + "' is adaptive and needs --tol");
-    cfg.tol = *o.tol;
-    cfg.dt = o.dt.value_or(0.0);
-  } else {
-    if (o.tol) throw UsageError("--tol: scheme '" + scheme->name + "' is fixed-step; give --dt instead");
-    if (!o.dt) throw UsageError("--dt: scheme '" + scheme->name + "' needs a step (--dt H)");
-    cfg.dt = *o.dt;
-    last_step = integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt);
-  }
+  const std::int64_t last_step =
+      scheme->properties.adaptive ? 0 : integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt);
   const system::AnyModel model = system::make_model(scene);
   if (const std::string why = integrators::unsupported_reason(*scheme, model); !why.empty())
     throw RunError(why + "; scene " + scene.file + " is not one");
@@ -275,6 +257,7 @@ int long_time(const LongTimeOptions& o) {
   Progress progress(!o.quiet && ::isatty(STDERR_FILENO) == 1);
   LongTimeObserver observer(invariants, file, names, SampleSchedule(o.samples, last_step), last_step, cfg.t0,
                             cfg.t_end, progress);
+  OutputTimingObserver timed(observer);
 
   interrupt_requested.store(false);
   auto previous_int = std::signal(SIGINT, long_time_request_interrupt);
@@ -284,7 +267,7 @@ int long_time(const LongTimeOptions& o) {
   bool interrupted = false;
   const double cpu0 = integrators::detail::cpu_now();
   try {
-    stats = scheme->run(model, state, cfg, observer);
+    stats = scheme->run(model, state, cfg, timed);
   } catch (const Interrupted& e) {
     interrupted = true;
     stats.ok = false;
@@ -306,7 +289,8 @@ int long_time(const LongTimeOptions& o) {
   diag.rhs_evaluations = stats.work.rhs_evaluations;
   diag.newton_iterations_max = stats.work.newton_iterations_max;
   diag.newton_failures = stats.work.newton_failures;
-  diag.cpu_seconds = stats.cpu_seconds;
+  diag.output_seconds = timed.output_seconds();
+  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
   diag.status = stats.status;
   ResultAttributes diag_attributes = diagnostics_attributes(diag);
   diag_attributes.integer["samples"] = file.rows();
@@ -321,13 +305,14 @@ int long_time(const LongTimeOptions& o) {
   file.finish(diag_attributes);
   if (!o.quiet) {
     std::ostringstream line;
-    line.precision(3);
-    line << std::scientific;
     line << "scheme=" << scheme->name << " steps=" << stats.steps << " samples=" << file.rows()
-         << " cpu_seconds=" << format_number(stats.cpu_seconds) << " t_end=" << format_number(stats.t_final);
+         << " cpu_seconds=" << format_sci(diag.cpu_seconds) << " output_seconds=" << format_sci(diag.output_seconds)
+         << " t_end=" << format_general(stats.t_final, 10);
     for (std::size_t i = 0; i < names.size(); ++i)
-      line << ' ' << names[i] << '=' << observer.current()[i] << ' ' << names[i] << "_max=" << observer.run_max()[i];
+      line << ' ' << names[i] << "_end=" << format_sci(observer.current()[i]) << ' ' << names[i]
+           << "_max=" << format_sci(observer.run_max()[i]);
     std::cout << line.str() << '\n';
+    std::cout << "wrote " << file.path() << " and " << file.csv_path() << '\n';
   }
   return exit_ok;
 }
@@ -342,12 +327,13 @@ Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context
       "samples, the largest error");
   sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
   sub->add_option("--scheme", o->scheme, "Scheme name (see `lgi schemes`)")->required();
-  sub->add_option("--dt", o->dt, "Step size (fixed-step schemes; first trial step of adaptive ones)");
-  sub->add_option("--tol", o->tol, "Tolerance (adaptive schemes)");
-  sub->add_option("--t-end", o->t_end, "Final time")->required();
+  sub->add_option("--dt", o->dt,
+                  "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
+  sub->add_option("--tol", o->tol, "Tolerance (adaptive schemes). Default: the scene's [run] tol");
+  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
   sub->add_option("--samples", o->samples, "Samples per decade of steps (plus the first and the last step)")
       ->capture_default_str();
-  sub->add_option("--out", o->out, "Output file (HDF5; a CSV with the same table is written beside it)")->required();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   sub->add_flag("--force", o->force, "Overwrite existing output files");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
   return {sub, [o, context] {

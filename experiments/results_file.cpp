@@ -52,6 +52,7 @@ ResultAttributes diagnostics_attributes(const Diagnostics& d) {
   a.integer["newton_iterations_max"] = d.newton_iterations_max;
   a.integer["newton_failures"] = d.newton_failures;
   a.number["cpu_seconds"] = d.cpu_seconds;
+  a.number["output_seconds"] = d.output_seconds;
   a.text["status"] = d.status;
   return a;
 }

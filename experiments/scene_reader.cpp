@@ -1,5 +1,5 @@
 // Scene files: TOML (toml++) → lgi::system::Scene, with every bad-input rule
-// of scene-file.md. See scene_reader.hpp for the message format and
+// of experiments/scenes/README.md. See scene_reader.hpp for the message format and
 // experiments/scenes/README.md for the format itself.
 #include "experiments/scene_reader.hpp"
 
@@ -35,7 +35,7 @@ using lie::Mat3;
 using lie::Vec3;
 using lgi::system::Scene;
 
-// Tolerances of scene-file.md.
+// Tolerances of experiments/scenes/README.md, "Bad input".
 constexpr double unit_norm_tolerance = 1e-12;      // | |q| − 1 |, rejected at or above
 constexpr double orthogonality_tolerance = 1e-12;  // |RᵀR − I| (Frobenius) and |det R − 1|
 constexpr double symmetry_tolerance = 1e-12;       // |J_ij − J_ji| relative to max |J_kl|
@@ -466,9 +466,9 @@ void read_initial(const Table& initial, Scene& s) {
 void read_run(const Table& run, Scene& s) {
   constexpr std::array<std::string_view, 3> keys = {"t_end", "dt", "tol"};
   run.check_keys(keys);
-  if (!run.present()) run.rd.fail(std::nullopt, "run", "t_end", "missing (no [run] table; t_end, the final time, is required)");
-  s.t_end = run.required_number("t_end", "the final time");
-  if (!(s.t_end >= 0.0)) run.fail(*run.get("t_end"), "t_end", "must be >= 0, got " + fmt(s.t_end));
+  // Every [run] key is optional: a command that needs a value the scene lacks asks for its flag.
+  s.t_end = run.optional_number("t_end");
+  if (s.t_end && !(*s.t_end >= 0.0)) run.fail(*run.get("t_end"), "t_end", "must be >= 0, got " + fmt(*s.t_end));
   s.dt = run.optional_number("dt");
   if (s.dt && !(*s.dt > 0.0)) run.fail(*run.get("dt"), "dt", "must be > 0, got " + fmt(*s.dt));
   s.tol = run.optional_number("tol");

@@ -1,6 +1,6 @@
 #pragma once
-// Reading scene files (../shared/spec/scene-file.md; the format is also
-// documented in experiments/scenes/README.md).
+// Reading scene files (the format and its bad-input rules are
+// specified in experiments/scenes/README.md).
 //
 // Every problem with the input throws InputError with one line
 //   <file>:<line>: [table] key: what is wrong

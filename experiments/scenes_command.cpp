@@ -5,6 +5,7 @@
 #include <iostream>
 #include <vector>
 
+#include "experiments/scenes_location.hpp"
 #include "experiments/commands.hpp"
 #include <memory>
 #include "experiments/exit_status.hpp"
@@ -44,10 +45,12 @@ int list_scenes(const std::string& directory) {
 }  // namespace
 
 Subcommand add_scenes_subcommand(CLI::App& app) {
-  auto directory = std::make_shared<std::string>(LGI_SCENES_DIR);
+  auto directory = std::make_shared<std::string>();
   auto* sub = app.add_subcommand("scenes", "List the scene files in a folder and the invariants that apply");
-  sub->add_option("DIR", *directory, "Folder of scene files")->capture_default_str();
-  return {sub, [directory] { return list_scenes(*directory); }};
+  sub->add_option("DIR", *directory,
+                  "Folder of scene files. Default: the shipped scenes (--scenes-dir rules: LGI_SCENES_DIR, else "
+                  "beside the lgi executable)");
+  return {sub, [directory] { return list_scenes(shipped_scenes_dir(*directory)); }};
 }
 
 }  // namespace lgi::experiments

@@ -1,15 +1,19 @@
 // lgi simulate: scene file → model → scheme → stepper loop → observer (HDF5).
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
-
-#include "experiments/commands.hpp"
 #include <memory>
 #include <optional>
+
+#include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
+#include "experiments/number_format.hpp"
+#include "experiments/output_timing.hpp"
 #include "experiments/run_parameters.hpp"
 #include "experiments/scene_reader.hpp"
+#include "experiments/scheme_lookup.hpp"
+#include "experiments/step_settings.hpp"
 #include "experiments/trajectory_observer.hpp"
 #include "integrators/registry.hpp"
 
@@ -32,34 +36,13 @@ struct SimulateOptions {
 
 extern "C" void request_interrupt(int) { interrupt_requested.store(true); }
 
-std::string format_number(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
-/// Validates flags against the scene and the scheme; fills the run config.
+/// Validates flags against the scene and the scheme; fills the run config
+/// (the command line, then the scene's [run], step_settings.hpp).
 integrators::RunConfig run_config(const SimulateOptions& o, const system::Scene& scene,
                                   const integrators::SchemeInfo& scheme) {
-  integrators::RunConfig cfg;
-  cfg.t_end = o.t_end.value_or(scene.t_end);
-  if (!(cfg.t_end >= 0.0) || !std::isfinite(cfg.t_end)) throw UsageError("--t-end: must be a finite number >= 0");
   if (o.save_every < 1) throw UsageError("--save-every: must be >= 1");
+  integrators::RunConfig cfg = resolve_run_config({o.dt, o.tol, o.t_end}, scene, scheme, /*allow_zero_t_end=*/true);
   cfg.save_every = o.save_every;
-  if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a finite number > 0");
-  if (o.tol && !(*o.tol > 0.0 && std::isfinite(*o.tol))) throw UsageError("--tol: must be a finite number > 0");
-  if (scheme.properties.adaptive) {
-    if (!o.tol && !scene.tol)
-      throw UsageError("--tol: scheme '" + scheme.name + "' is adaptive and needs a tolerance: give --tol or [run] tol in " + scene.file);
-    cfg.tol = o.tol ? *o.tol : *scene.tol;
-    cfg.dt = o.dt.value_or(0.0);  // first trial step; 0 lets the scheme choose
-  } else {
-    if (o.tol) throw UsageError("--tol: scheme '" + scheme.name + "' is fixed-step; give --dt instead");
-    if (!o.dt && !scene.dt)
-      throw UsageError("--dt: scheme '" + scheme.name + "' needs a step: give --dt or [run] dt in " + scene.file);
-    cfg.dt = o.dt ? *o.dt : *scene.dt;
-  }
   if (o.retry_halving < 0 || o.retry_halving > 30) throw UsageError("--retry-halving: must be between 0 and 30");
   if (o.retry_halving > 0 && scheme.properties.adaptive)
     throw UsageError("--retry-halving: scheme '" + scheme.name + "' is adaptive and controls its own steps");
@@ -67,10 +50,24 @@ integrators::RunConfig run_config(const SimulateOptions& o, const system::Scene&
   return cfg;
 }
 
+/// About 128 bytes a sample (time, step, quaternion, Pi, Omega, energy,
+/// invariants); a file over 100 MB deserves a word before it is written.
+void warn_if_large(const integrators::RunConfig& cfg, const system::SceneInvariants& invariants, bool adaptive,
+                   bool quiet) {
+  if (quiet || adaptive || cfg.dt <= 0.0) return;
+  const double samples = static_cast<double>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt)) /
+                             static_cast<double>(cfg.save_every) + 1.0;
+  const double bytes_per_sample = 8.0 * (16.0 + static_cast<double>(invariants.scalar_names().size()));
+  const double megabytes = samples * bytes_per_sample / 1e6;
+  if (megabytes < 100.0) return;
+  std::cerr << "lgi: warning: --save-every " << cfg.save_every << " writes " << format_general(samples, 3)
+            << " samples, about " << format_general(megabytes, 3)
+            << " MB; give --save-every N to keep every N-th step\n";
+}
+
 int simulate(const SimulateOptions& o) {
   const system::Scene scene = read_scene(o.scene);
-  const integrators::SchemeInfo* scheme = integrators::find_scheme(o.scheme);
-  if (!scheme) throw UsageError("--scheme: unknown scheme '" + o.scheme + "' (lgi schemes lists them)");
+  const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
   const integrators::RunConfig cfg = run_config(o, scene, *scheme);
   const system::AnyModel model = system::make_model(scene);
   if (const std::string why = integrators::unsupported_reason(*scheme, model); !why.empty())
@@ -82,8 +79,10 @@ int simulate(const SimulateOptions& o) {
   prov.integer_attributes["save_every"] = cfg.save_every;
   if (cfg.retry_halving > 0) prov.integer_attributes["retry_halving"] = cfg.retry_halving;
 
+  warn_if_large(cfg, invariants, scheme->properties.adaptive, o.quiet);
   TrajectoryWriter writer(o.out, o.force, trajectory_layout(invariants, scheme->properties.euler_angle_chart), prov);
   TrajectoryObserver observer(invariants, &writer);
+  OutputTimingObserver timed(observer);
 
   interrupt_requested.store(false);
   auto previous_int = std::signal(SIGINT, request_interrupt);
@@ -92,7 +91,7 @@ int simulate(const SimulateOptions& o) {
   system::State state = scene.initial;
   integrators::RunStats stats;
   try {
-    stats = scheme->run(model, state, cfg, observer);
+    stats = scheme->run(model, state, cfg, timed);
   } catch (const Interrupted& e) {
     stats.ok = false;
     stats.status = e.what();
@@ -106,7 +105,8 @@ int simulate(const SimulateOptions& o) {
   diag.rhs_evaluations = stats.work.rhs_evaluations;
   diag.newton_iterations_max = stats.work.newton_iterations_max;
   diag.newton_failures = stats.work.newton_failures;
-  diag.cpu_seconds = stats.cpu_seconds;
+  diag.output_seconds = timed.output_seconds();
+  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
   diag.status = stats.status;
   if (!stats.ok) {
     writer.abandon(diag);
@@ -117,8 +117,9 @@ int simulate(const SimulateOptions& o) {
   writer.finish(diag);
   if (!o.quiet) {
     std::cout << "scheme=" << scheme->name << " steps=" << stats.steps << " rejected=" << stats.work.rejected_steps
-              << " rhs_evaluations=" << stats.work.rhs_evaluations << " cpu_seconds=" << format_number(stats.cpu_seconds)
-              << " t_end=" << format_number(stats.t_final) << ' ' << observer.invariant_error_summary() << '\n';
+              << " rhs_evaluations=" << stats.work.rhs_evaluations << " cpu_seconds=" << format_sci(diag.cpu_seconds)
+              << " output_seconds=" << format_sci(diag.output_seconds)
+              << " t_end=" << format_general(stats.t_final, 10) << ' ' << observer.invariant_error_summary() << '\n';
   }
   return exit_ok;
 }
@@ -133,8 +134,10 @@ Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--dt", o->dt,
                   "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
   sub->add_option("--tol", o->tol, "Tolerance of adaptive schemes. Default: the scene's [run] tol");
-  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end");
-  sub->add_option("--save-every", o->save_every, "Save every N steps; the initial and final states are always saved")
+  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
+  sub->add_option("--save-every", o->save_every,
+                  "Save every N steps; the initial and final states are always saved (a warning when the file would "
+                  "exceed 100 MB)")
       ->capture_default_str();
   sub->add_option("--retry-halving", o->retry_halving,
                   "Fixed-step schemes: redo a step whose implicit solve did not converge as two half steps, at most "

@@ -26,6 +26,8 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/scenes_location.hpp"
+#include "experiments/step_settings.hpp"
 #include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
 #include "experiments/h5md_writer.hpp"
@@ -45,6 +47,7 @@ struct SingularityOptions {
   bool quick = false;
   bool force = false;
   bool quiet = false;
+  std::string scenes_dir;  // --scenes-dir; empty: found beside the executable
   std::string command_line;
 };
 
@@ -334,7 +337,7 @@ int singularity(const SingularityOptions& o) {
   if (!o.force && ::stat(csv.c_str(), &st) == 0)
     throw OutputFileError("output file '" + csv + "' exists (use --force to replace it)");
 
-  const std::string scenes_dir = LGI_SCENES_DIR;
+  const std::string scenes_dir = shipped_scenes_dir(o.scenes_dir);
   const std::vector<SceneCase> cases = {
       {"trindade_singular", scenes_dir + "/heavy_top_trindade_singular.toml", 2.5},
       {"trindade_4", scenes_dir + "/heavy_top_trindade_4.toml", 4.0},
@@ -359,7 +362,8 @@ int singularity(const SingularityOptions& o) {
     const SceneCase& sc = cases[ci];
     const system::Scene scene = read_scene(sc.file);
     const system::AnyModel model = system::make_model(scene);
-    const double t_end = o.quick ? std::min(sc.t_end_quick, scene.t_end) : scene.t_end;
+    const double scene_t_end = resolve_t_end(std::nullopt, scene, /*allow_zero=*/false);
+    const double t_end = o.quick ? std::min(sc.t_end_quick, scene_t_end) : scene_t_end;
     const double tol = o.tol ? *o.tol : scene.tol.value_or(1e-8);
     const double dt = o.dt ? *o.dt : scene.dt.value_or(1e-3);
     tol_used = tol;
@@ -624,10 +628,12 @@ Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& conte
       "singularity",
       "The Euler-angle singularity study: every baseline and several Lie-group schemes on "
       "heavy_top_trindade_singular and heavy_top_trindade_4 (layout: experiments/SINGULARITY.md)");
-  sub->add_option("--out", o->out, "Output file (HDF5); the summary table goes to <out>.csv beside it")->required();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   sub->add_option("--tol", o->tol, "Tolerance of the controlled steppers and adaptive schemes. Default: the scenes' [run] tol (1e-8)");
   sub->add_option("--dt", o->dt, "Step of the fixed-step steppers and schemes. Default: the scenes' [run] dt (1e-3)");
   sub->add_flag("--quick", o->quick, "A few methods over the first swings only (a CI check, seconds)");
+  sub->add_option("--scenes-dir", o->scenes_dir,
+                  "Folder of the shipped scenes. Default: LGI_SCENES_DIR, else found beside the lgi executable");
   sub->add_flag("--force", o->force, "Overwrite existing output files");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
   return {sub, [o, context] {

@@ -31,6 +31,8 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/scenes_location.hpp"
+#include "experiments/scheme_lookup.hpp"
 #include "experiments/commands.hpp"
 #include "experiments/exit_status.hpp"
 #include "experiments/h5md_writer.hpp"
@@ -65,6 +67,7 @@ struct StressOptions {
   bool force = false;
   bool quiet = false;
   std::optional<double> budget;  // CPU seconds per run
+  std::string scenes_dir;        // --scenes-dir; empty: found beside the executable
   std::string command_line;
 };
 
@@ -139,9 +142,7 @@ struct Variant {
   Scene scaled;
 };
 
-std::string scenes_dir() { return LGI_SCENES_DIR; }
-
-Scene shipped(const std::string& file) { return read_scene(scenes_dir() + "/" + file); }
+Scene shipped(const std::string& dir, const std::string& file) { return read_scene(dir + "/" + file); }
 
 Mat3 generic_attitude() { return lie::exp_so3(Vec3(0.3, -0.2, 0.5)); }
 
@@ -199,7 +200,7 @@ Scene rescaled(const Scene& si, const UnitScale& u) {
     s.drive->angular_frequency = si.drive->angular_frequency / sT;
   }
   s.initial.Pi = si.initial.Pi * (sJ / sT);  // kg m² s⁻¹
-  s.t_end = si.t_end * sT;
+  if (si.t_end) s.t_end = *si.t_end * sT;
   if (s.dt) *s.dt = *si.dt * sT;
   s.file = si.file + " (rescaled)";
   return s;
@@ -207,15 +208,16 @@ Scene rescaled(const Scene& si, const UnitScale& u) {
 
 struct SuiteSettings {
   bool quick = false;
+  std::string scenes_dir;  // the shipped scenes (scenes_location.hpp)
 };
 
 /// Builds every variant of the suite (STRESS.md lists them with their criteria).
 std::vector<Variant> build_suite(const SuiteSettings& set) {
   const bool quick = set.quick;
   std::vector<Variant> out;
-  const Scene book = shipped("dzhanibekov_book_axis2.toml");
-  const Scene top = shipped("heavy_top_trindade_1.toml");
-  const Scene spring = shipped("stiff_damped_spring.toml");
+  const Scene book = shipped(set.scenes_dir, "dzhanibekov_book_axis2.toml");
+  const Scene top = shipped(set.scenes_dir, "heavy_top_trindade_1.toml");
+  const Scene spring = shipped(set.scenes_dir, "stiff_damped_spring.toml");
 
   auto add = [&](Variant v) { out.push_back(std::move(v)); };
 
@@ -517,7 +519,7 @@ struct BudgetExceeded : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Tracks the largest invariant error over a run (conventions.md: relative to
+/// Tracks the largest invariant error over a run (docs/conventions.md §7: relative to
 /// the initial value, absolute where it is 0; the orthogonality error |RᵀR − I|
 /// as it is), keeps the latest state, and stops a run past its CPU budget or
 /// on SIGINT/SIGTERM.
@@ -700,8 +702,8 @@ struct StateError {
   double attitude = nan, momentum = nan, total = nan;
 };
 
-/// The geodesic angle (conventions.md) and |Π/unit − Π_ref| / scale, where scale is the
-/// largest |Π| along the reference trajectory (STRESS.md: conventions.md's |Π_ref(t_end)| is
+/// The geodesic angle (docs/conventions.md §7) and |Π/unit − Π_ref| / scale, where scale is the
+/// largest |Π| along the reference trajectory (STRESS.md: docs/conventions.md's |Π_ref(t_end)| is
 /// ill-conditioned where the reference passes near Π = 0, e.g. a pendulum's turning point).
 StateError state_error(const State& s, const State& ref, double scale, double unit = 1.0) {
   StateError e;
@@ -1002,8 +1004,7 @@ std::vector<const SchemeInfo*> selected_schemes(const std::string& list) {
     const auto e = name.find_last_not_of(" \t");
     name = b == std::string::npos ? "" : name.substr(b, e - b + 1);
     if (name.empty()) throw UsageError("--schemes: empty scheme name in '" + list + "'");
-    const SchemeInfo* s = integrators::find_scheme(name);
-    if (!s) throw UsageError("--schemes: unknown scheme '" + name + "' (lgi schemes lists them)");
+    const SchemeInfo* s = &scheme_by_name(name, "--schemes");
     if (seen.insert(name).second) out.push_back(s);
   }
   if (!list.empty() && list.back() == ',') throw UsageError("--schemes: empty scheme name in '" + list + "'");
@@ -1027,7 +1028,7 @@ int stress(const StressOptions& o) {
   const double budget = o.budget.value_or(o.quick ? 2.0 : 10.0);
   if (!(budget > 0.0) || !std::isfinite(budget)) throw UsageError("--budget: must be a finite number > 0");
 
-  std::vector<Variant> variants = build_suite({o.quick});
+  std::vector<Variant> variants = build_suite({o.quick, shipped_scenes_dir(o.scenes_dir)});
   for (auto& v : variants) v.criterion.text = criterion_text(v.criterion);
 
   std::string scheme_list;
@@ -1145,7 +1146,9 @@ Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context) {
   sub->add_option("--schemes", o->schemes,
                   "Comma-separated scheme names to run (default: every registered scheme, see `lgi schemes`)");
   sub->add_flag("--quick", o->quick, "Reduced suite (fewer parameters, short t_end) for CI: well under a minute");
-  sub->add_option("--out", o->out, "Output results file (HDF5); the CSV goes beside it (FILE.csv)")->required();
+  sub->add_option("--scenes-dir", o->scenes_dir,
+                  "Folder of the shipped scenes. Default: LGI_SCENES_DIR, else found beside the lgi executable");
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   sub->add_flag("--force", o->force, "Overwrite existing output files");
   sub->add_option("--budget", o->budget,
                   "CPU seconds allowed per run before it is stopped and counted as failed (default: 10, --quick: 2)");

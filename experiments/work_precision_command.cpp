@@ -5,19 +5,26 @@
 //
 // Reference (/reference in the file):
 //   free body      the exact flow (system::FreeBodyExactFlow) at t_end;
-//                  kind "exact", estimated_error 0.
+//                  kind "exact". Its estimated_error is the conditioning
+//                  floor of the problem (exact_conditioning_floor): the
+//                  spread of exact flows from initial states perturbed at
+//                  round-off, and the flow's own consistency under
+//                  splitting [0, T] in two. Near a separatrix it reaches
+//                  1e-7; rows under it are not measurements.
 //   any other      a converged run of rkmk-dp54 (adaptive RKMK of order 5;
 //                  supports every model: torques, damping, drives) at tol 1e-14;
 //                  its error is estimated by the distance (the global error
-//                  measure of conventions.md) to a run at tol 1e-13. That is
+//                  measure of docs/conventions.md §7) to a run at tol 1e-13. That is
 //                  about the error of the coarser run: on the shipped scenes
 //                  the DP5(4) error is proportional to tol down to 1e-14 or
 //                  1e-15 (distances 1e-12 -> 1e-13 -> 1e-14 shrink tenfold),
 //                  so the estimate exceeds the reference's own error about
 //                  tenfold. If a run fails (step size collapse), both
 //                  tolerances are relaxed tenfold, up to 1e-12 / 1e-11.
-// A row whose error is below the reference's estimated error is not a
-// measurement: its error columns hold NaN and below_reference_floor = 1.
+// A row whose error is below its floor (the reference's estimated error, or
+// for an exact reference the round-off its steps accumulate through the
+// problem's amplification, row_floor) is not a measurement: its error columns
+// hold NaN, below_reference_floor = 1, and error_floor says where the floor is.
 #include <unistd.h>
 
 #include <algorithm>
@@ -35,6 +42,8 @@
 #include "experiments/results_file.hpp"
 #include "experiments/run_parameters.hpp"
 #include "experiments/scene_reader.hpp"
+#include "experiments/scheme_lookup.hpp"
+#include "experiments/step_settings.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
@@ -76,7 +85,7 @@ struct GlobalError {
   double attitude = nan, momentum = nan, max = nan;
 };
 
-/// conventions.md: geodesic angle, relative momentum error, the larger.
+/// docs/conventions.md §7: geodesic angle, relative momentum error, the larger.
 GlobalError global_error(const system::State& s, const system::State& ref) {
   GlobalError e;
   if (!s.R.allFinite() || !s.Pi.allFinite()) return e;
@@ -140,19 +149,65 @@ struct Reference {
   double tol = nan;
   double comparison_tol = nan;
   double estimated_error = 0.0;
+  double amplification = 0.0;  // exact references: κ of exact_conditioning_floor
   std::int64_t steps = -1;
   double cpu_seconds = nan;
   system::State state{};
 };
+
+/// The conditioning floor of an exact reference: the larger of
+///  - the spread at t_end of exact flows from initial states perturbed at
+///    round-off (δ = 1e-15 relative, R → R exp(δ e_j), Π → Π + δ|Π| e_j), and
+///  - the flow's own consistency, |E_T(x0) − E_{T−s}(E_s(x0))| for s = T/3,
+///    T/2: the evaluation error of the elliptic functions, which near a
+///    separatrix (modulus near 1) exceeds the perturbation spread by far.
+struct ExactFloor {
+  double floor = 0.0;          // the reference's estimated error
+  double amplification = 0.0;  // κ: spread at t_end per unit relative perturbation of the initial state
+};
+
+ExactFloor exact_conditioning_floor(const system::Inertia& inertia, const system::State& initial,
+                                   const system::State& exact_end, double t_end) {
+  constexpr double delta = 1e-15;
+  double floor = 0.0;
+  auto widen = [&](double d) {
+    if (!(d <= floor)) floor = d;  // NaN propagates
+  };
+  for (int j = 0; j < 6; ++j) {
+    system::State x = initial;
+    if (j < 3) x.R = initial.R * lie::exp_so3(delta * lie::Vec3::Unit(j));
+    else x.Pi += delta * initial.Pi.norm() * lie::Vec3::Unit(j - 3);
+    widen(global_error(system::FreeBodyExactFlow(inertia, x).at(t_end), exact_end).max);
+  }
+  const double amplification = floor / delta;
+  const system::FreeBodyExactFlow from_initial(inertia, initial);
+  for (const double s : {t_end / 3.0, t_end / 2.0}) {
+    const system::State midway = from_initial.at(s);
+    widen(global_error(system::FreeBodyExactFlow(inertia, midway).at(t_end - s), exact_end).max);
+  }
+  return {floor, amplification};
+}
+
+/// The floor of one row: the reference's, or the round-off a run of `steps`
+/// steps accumulates (one unit round-off a step, worst case, amplified by κ,
+/// with a safety factor of 4), whichever is larger. Near a separatrix the
+/// second dominates: rkmk4 on a T-handle over 50 s bottoms out near 1e-7
+/// at 2e4 steps, as κ u N predicts.
+double row_floor(double reference_error, double amplification, std::int64_t steps) {
+  constexpr double unit_roundoff = 0x1p-53;
+  return std::max(reference_error, 4.0 * amplification * unit_roundoff * static_cast<double>(steps));
+}
 
 Reference compute_reference(const system::Scene& scene, const system::AnyModel& model, double t_end) {
   Reference ref;
   if (const auto* free = std::get_if<system::FreeBody>(&model)) {
     ref.kind = "exact";
     ref.scheme = "exact";
-    ref.estimated_error = 0.0;
     const system::FreeBodyExactFlow flow(free->inertia, scene.initial);
     ref.state = flow.at(t_end);
+    const ExactFloor floor = exact_conditioning_floor(free->inertia, scene.initial, ref.state, t_end);
+    ref.estimated_error = floor.floor;
+    ref.amplification = floor.amplification;
     ref.steps = 0;
     return ref;
   }
@@ -205,8 +260,7 @@ std::vector<Job> plan(const WorkPrecisionOptions& o) {
   std::set<std::string> seen;
   for (const auto& name : o.schemes) {
     if (name.empty()) throw UsageError("--schemes: empty scheme name in the list");
-    const integrators::SchemeInfo* s = integrators::find_scheme(name);
-    if (!s) throw UsageError("--schemes: unknown scheme '" + name + "' (lgi schemes lists them)");
+    const integrators::SchemeInfo* s = &scheme_by_name(name, "--schemes");
     if (!seen.insert(name).second) throw UsageError("--schemes: scheme '" + name + "' given twice");
     schemes.push_back(s);
   }
@@ -216,36 +270,38 @@ std::vector<Job> plan(const WorkPrecisionOptions& o) {
     if (!(t > 0.0 && std::isfinite(t)))
       throw UsageError("--tol: every tolerance must be a finite number > 0, got " + format_g(t, 6));
   if (o.repeat < 1) throw UsageError("--repeat: must be >= 1");
-  if (o.t_end && !(*o.t_end > 0.0 && std::isfinite(*o.t_end))) throw UsageError("--t-end: must be a finite number > 0");
 
   std::vector<Job> jobs;
-  bool any_fixed = false, any_adaptive = false;
   for (const auto* s : schemes) {
     if (s->properties.adaptive) {
-      any_adaptive = true;
       if (o.tol.empty())
-        throw UsageError("--tol: scheme '" + s->name + "' is adaptive and needs a list of tolerances (--tol A,B,...)");
+        throw UsageError("--tol: scheme '" + s->name +
+                         "' is adaptive and needs a list of tolerances: give --tol A,B,... or [run] tol in the scene");
       for (double t : o.tol) jobs.push_back({s, std::nullopt, t});
     } else {
-      any_fixed = true;
       if (o.dt.empty())
-        throw UsageError("--dt: scheme '" + s->name + "' is fixed-step and needs a list of steps (--dt A,B,...)");
+        throw UsageError("--dt: scheme '" + s->name +
+                         "' is fixed-step and needs a list of steps: give --dt A,B,... or [run] dt in the scene");
       for (double h : o.dt) jobs.push_back({s, h, std::nullopt});
     }
-  }
-  if (!o.quiet) {
-    if (!o.dt.empty() && !any_fixed) std::cerr << "lgi: warning: --dt ignored: no fixed-step scheme in --schemes\n";
-    if (!o.tol.empty() && !any_adaptive) std::cerr << "lgi: warning: --tol ignored: no adaptive scheme in --schemes\n";
   }
   return jobs;
 }
 
 int work_precision(const WorkPrecisionOptions& o) {
   const system::Scene scene = read_scene(o.scene);
-  const std::vector<Job> jobs = plan(o);
-  const double t_end = o.t_end.value_or(scene.t_end);
-  if (!(t_end > 0.0 && std::isfinite(t_end)))
-    throw UsageError("--t-end: the scene's [run] t_end is not > 0 (" + scene.file + "); give --t-end");
+  // The command line, then the scene's [run] (step_settings.hpp).
+  WorkPrecisionOptions resolved = o;
+  resolved.dt = default_step_list(o.dt, scene.dt);
+  resolved.tol = default_tolerance_list(o.tol, scene.tol);
+  const std::vector<Job> jobs = plan(resolved);
+  if (!o.quiet) {  // about the flags as given, not the scene's defaults
+    const bool any_fixed = std::any_of(jobs.begin(), jobs.end(), [](const Job& j) { return j.dt.has_value(); });
+    const bool any_adaptive = std::any_of(jobs.begin(), jobs.end(), [](const Job& j) { return j.tol.has_value(); });
+    if (!o.dt.empty() && !any_fixed) std::cerr << "lgi: warning: --dt ignored: no fixed-step scheme in --schemes\n";
+    if (!o.tol.empty() && !any_adaptive) std::cerr << "lgi: warning: --tol ignored: no adaptive scheme in --schemes\n";
+  }
+  const double t_end = resolve_t_end(o.t_end, scene, /*allow_zero=*/false);
   const system::AnyModel model = system::make_model(scene);
   const system::SceneInvariants invariants(scene, model);
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO) == 1;
@@ -272,6 +328,7 @@ int work_precision(const WorkPrecisionOptions& o) {
   columns.push_back({"repeats", ColumnType::integer, ""});
   columns.push_back({"status", ColumnType::text, ""});
   columns.push_back({"below_reference_floor", ColumnType::integer, ""});
+  columns.push_back({"error_floor", ColumnType::real, ""});
 
   ResultsFile file(o.out, o.force, columns);
 
@@ -281,8 +338,8 @@ int work_precision(const WorkPrecisionOptions& o) {
   params.text["command_line"] = o.command_line;
   params.number["t_end"] = t_end;
   params.integer["repeat"] = o.repeat;
-  if (!o.dt.empty()) params.number_array["dt"] = o.dt;
-  if (!o.tol.empty()) params.number_array["tol"] = o.tol;
+  if (!resolved.dt.empty()) params.number_array["dt"] = resolved.dt;
+  if (!resolved.tol.empty()) params.number_array["tol"] = resolved.tol;
   file.write_parameters(params);
 
   const double cpu0 = integrators::detail::cpu_now();
@@ -303,6 +360,7 @@ int work_precision(const WorkPrecisionOptions& o) {
     a.text["kind"] = ref.kind;
     a.text["scheme"] = ref.scheme;
     a.number["estimated_error"] = ref.estimated_error;
+    if (ref.kind == "exact") a.number["amplification"] = ref.amplification;
     a.number["t_end"] = t_end;
     if (ref.kind == "converged") {
       a.number["tol"] = ref.tol;
@@ -364,10 +422,12 @@ int work_precision(const WorkPrecisionOptions& o) {
     }
 
     const GlobalError err = global_error(first.final, ref.state);
-    const bool below_floor = err.max < ref.estimated_error;
+    const double floor = row_floor(ref.estimated_error, ref.amplification, first.stats.steps);
+    row.set("error_floor", floor);
+    const bool below_floor = err.max < floor;
     if (below_floor) {
       row.set("below_reference_floor", 1);
-      p.error = "<" + format_e(ref.estimated_error);
+      p.error = "<" + format_e(floor);
     } else {
       row.set("error_attitude", err.attitude);
       row.set("error_momentum", err.momentum);
@@ -460,17 +520,26 @@ Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& co
       "estimated against tol 1e-13) and CPU time "
       "(min and median of N runs) for each scheme and step or tolerance");
   sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
-  sub->add_option("--schemes", o->schemes, "Comma-separated scheme names (see `lgi schemes`)")
+  sub->add_option("--schemes", o->schemes, "Comma-separated scheme names, no spaces (see `lgi schemes`)")
       ->required()
       ->allow_extra_args(false)
-      ->delimiter(',');
-  sub->add_option("--dt", o->dt, "Comma-separated steps for the fixed-step schemes")->allow_extra_args(false)->delimiter(',');
-  sub->add_option("--tol", o->tol, "Comma-separated tolerances for the adaptive schemes")
+      ->delimiter(',')
+      ->type_name("A,B,...");
+  sub->add_option("--dt", o->dt,
+                  "Comma-separated steps for the fixed-step schemes. Default: the scene's [run] dt times 1, 1/2, 1/4, "
+                  "1/8")
       ->allow_extra_args(false)
-      ->delimiter(',');
-  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end");
+      ->delimiter(',')
+      ->type_name("H1,H2,...");
+  sub->add_option("--tol", o->tol,
+                  "Comma-separated tolerances for the adaptive schemes. Default: the scene's [run] tol times 1, 1e-1, "
+                  "1e-2, 1e-3")
+      ->allow_extra_args(false)
+      ->delimiter(',')
+      ->type_name("T1,T2,...");
+  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
   sub->add_option("--repeat", o->repeat, "Timed runs per row (CPU time: min and median)")->capture_default_str();
-  sub->add_option("--out", o->out, "Output file (HDF5; a CSV with the same table is written beside it)")->required();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   sub->add_flag("--force", o->force, "Overwrite existing output files");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
   return {sub, [o, context] {

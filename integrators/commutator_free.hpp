@@ -3,7 +3,7 @@
 //
 // Celledoni, Marthinsen & Owren, "Commutator-free Lie group methods",
 // Future Gener. Comput. Syst. 19 (2003) 341–352, the order-4 scheme of §4
-// (their eq. (12)), in body form (math.md):
+// (their eq. (12)), in body form (docs/math.md §4):
 //   R_2 = R_n exp(½h Ω_1),  R_3 = R_n exp(½h Ω_2),  R_4 = R_2 exp(h Ω_3 − ½h Ω_1),
 //   R_{n+1} = R_n exp(h(Ω_1/4 + Ω_2/6 + Ω_3/6 − Ω_4/12)) exp(h(−Ω_1/12 + Ω_2/6 + Ω_3/6 + Ω_4/4)),
 // with Π advanced by classical RK4 (nodes c = (0, ½, ½, 1)). Order 4; two

@@ -2,7 +2,7 @@
 // Crouch–Grossman methods on SO(3) × ℝ³ (body form).
 //
 // Crouch & Grossman, J. Nonlinear Sci. 3 (1993) 1–33; Owren & Marthinsen,
-// BIT 39 (1999) 116–142, eq. (2.3); math.md. For Ṙ = R Ω̂ the stage and update
+// BIT 39 (1999) 116–142, eq. (2.3); docs/math.md §3. For Ṙ = R Ω̂ the stage and update
 // products run left to right (the body-form mirror of Y_{n+1} = exp(h b_s F_s)⋯exp(h b_1 F_1) Y_n):
 //   R_i = R_n exp(h a_i1 Ω_1) exp(h a_i2 Ω_2) ⋯ exp(h a_i,i−1 Ω_{i−1}),
 //   Π_i = Π_n + h Σ_{j<i} a_ij K_j,  Ω_i = J⁻¹Π_i,  K_i = Π_i × Ω_i + τ(R_i, Π_i, Ω_i, t_n + c_i h),

@@ -5,7 +5,7 @@
 //
 // RKMK (Munthe-Kaas, Appl. Numer. Math. 29 (1999) 115–127, Algorithm 1;
 // Iserles, Munthe-Kaas, Nørsett & Zanna, Acta Numerica 9 (2000), §5.3,
-// eq. (5.14)) with a fully implicit tableau (a, b, c), body form (math.md):
+// eq. (5.14)) with a fully implicit tableau (a, b, c), body form (docs/math.md §9):
 // the unknowns are the stage increments Z_i = (w_i, δΠ_i) ∈ so(3) × ℝ³,
 //   w_i = h Σ_j a_ij k̃_j,   δΠ_i = h Σ_j a_ij K_j,
 //   R_i = R̄ exp(u_i),  Π_i = Π_n + δΠ_i,  Ω_i = J⁻¹Π_i,

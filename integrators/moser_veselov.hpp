@@ -7,7 +7,7 @@
 // Lee, Leok & McClamroch, "A Lie group variational integrator for the
 // attitude dynamics of a rigid body with applications to the 3D pendulum",
 // Proc. IEEE Conf. Control Applications (2005); and CMAME 196 (2007)
-// (../shared/design/math.md, which states the scheme in this project's
+// (docs/math.md §5, which states the scheme in this project's
 // body-form conventions). With M(R) the body torque of the
 // potential terms only (gravity m g Γ × χ, the spring −k log(R_restᵀR)) and
 // the non-standard inertia J_d = ½ tr(J) I − J:
@@ -20,7 +20,7 @@
 // Commun. Math. Phys. 139 (1991) 217–243) in the form of Hairer & Vilmart
 // (2006) eqs. (3)–(4) with Ω_nᵀ = F_k and D = J_d (their eq. (5)).
 // Writing F = cay(2f) = (I + f̂)(I − f̂)⁻¹, the first equation is the
-// 3-vector equation (math.md ✓; Hairer–Vilmart §5, eqs. (16)–(18), solve
+// 3-vector equation (docs/math.md §5 ✓; Hairer–Vilmart §5, eqs. (16)–(18), solve
 // the same step for diagonal J by a fixed-point iteration on a quaternion
 // form; the tests check that both give the same numbers)
 //   φ(f) = h g + h g × f + (h g·f) f − 2 J f = 0,   g = Π_k + ½ h M_k,

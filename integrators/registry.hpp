@@ -47,6 +47,7 @@ struct SchemeInfo {
   std::string notes;
   RunFunction run = nullptr;
   int order_with_torque = 0;  // order on scenes with torques where it differs (Strang splitting); 0: the same
+  std::string base_scheme{};  // a composition's base scheme (`lgi schemes --json` "base"); empty otherwise
 };
 
 const std::vector<SchemeInfo>& scheme_registry();

@@ -49,7 +49,7 @@ std::string coordinates_reference(Coordinates c) {
     case Coordinates::quat_normalized:
       return "unit quaternion and body angular velocity, q' = q (0, Omega)/2";
     case Coordinates::matrix:
-      return "attitude matrix in R^9 and body angular velocity, R' = R hat(Omega) (seed 002: R' = W R)";
+      return "attitude matrix in R^9 and body angular velocity, R' = R hat(Omega) (the R' = W R of the EduRev prism notes, seed 002)";
   }
   return {};
 }

@@ -58,6 +58,7 @@ void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_
     // A composition of a method that drops to order 2 with torques stays at 2 there.
     info.order_with_torque = base.order_with_torque ? 2 : 0;
     info.family = "composition of " + base.name;
+    info.base_scheme = base.name;
     info.reference = std::string(coefficients.citation) + "; base: " + base.name;
     info.notes = std::to_string(coefficients.stages) + " stages of " + base.name +
                  (base.notes.empty() ? "" : "; " + base.notes);

@@ -1,4 +1,4 @@
-// Registry lines for: dmv, lgvi, dmv-pre4..10 (issue: structure-preserving schemes).
+// Registry lines for: dmv, lgvi, dmv-pre4..10 (structure-preserving schemes, docs/math.md §5).
 #include "integrators/moser_veselov.hpp"
 #include "integrators/registry_support.hpp"
 
@@ -63,14 +63,18 @@ void add_variational_schemes(std::vector<SchemeInfo>& r) {
       "R Pi; Poisson for Pi, not symplectic); with a potential: Strang splitting kick(h/2) o preDMV(h) o "
       "kick(h/2), order 2 (Pi.Gamma still conserved); ";
   r.push_back({"dmv-pre4", 4, "Moser-Veselov", preprocessed, SceneSupport::conservative_only, hairer_vilmart,
-               pre_notes + newton, &run_variational<DmvPre4, pre4_name, SceneSupport::conservative_only>});
+               pre_notes + newton, &run_variational<DmvPre4, pre4_name, SceneSupport::conservative_only>,
+               /*order_with_torque=*/2});
   r.push_back({"dmv-pre6", 6, "Moser-Veselov", preprocessed, SceneSupport::conservative_only, hairer_vilmart,
-               pre_notes + newton, &run_variational<DmvPre6, pre6_name, SceneSupport::conservative_only>});
+               pre_notes + newton, &run_variational<DmvPre6, pre6_name, SceneSupport::conservative_only>,
+               /*order_with_torque=*/2});
   r.push_back({"dmv-pre8", 8, "Moser-Veselov", preprocessed, SceneSupport::conservative_only, hairer_vilmart,
-               pre_notes + newton, &run_variational<DmvPre8, pre8_name, SceneSupport::conservative_only>});
+               pre_notes + newton, &run_variational<DmvPre8, pre8_name, SceneSupport::conservative_only>,
+               /*order_with_torque=*/2});
   r.push_back({"dmv-pre10", 10, "Moser-Veselov", preprocessed, SceneSupport::conservative_only,
                hairer_vilmart + " (s9, d9 from DMV10.f only)", pre_notes + newton,
-               &run_variational<DmvPre10, pre10_name, SceneSupport::conservative_only>});
+               &run_variational<DmvPre10, pre10_name, SceneSupport::conservative_only>,
+               /*order_with_torque=*/2});
 }
 
 }  // namespace lgi::integrators

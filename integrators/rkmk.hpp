@@ -4,7 +4,7 @@
 // Munthe-Kaas, "High order Runge–Kutta methods on manifolds", Appl. Numer.
 // Math. 29 (1999) 115–127, Algorithm 1; Iserles, Munthe-Kaas, Nørsett &
 // Zanna, Acta Numerica 9 (2000) 215–365, §5.3, eq. (5.14); written in body
-// form (Ṙ = R Ω̂), see ../shared/design/math.md:
+// form (Ṙ = R Ω̂), see docs/math.md §2:
 //   for i = 1..s:  w_i = h Σ_{j<i} a_ij k̃_j,  R_i = R_n exp(w_i),
 //                  Π_i = Π_n + h Σ_{j<i} a_ij K_j,  Ω_i = J⁻¹Π_i,
 //                  k̃_i = dexp⁻¹_body(w_i) Ω_i = Ω_i + ½ w_i × Ω_i + c(|w_i|) w_i × (w_i × Ω_i),

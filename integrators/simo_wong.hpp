@@ -11,12 +11,12 @@
 // (the midpoint rule for the Lie–Poisson (Π, Γ) equations of the heavy top and
 // its reconstruction of R); O. Gonzalez, "Time integration and discrete
 // Hamiltonian systems", J. Nonlinear Sci. 6 (1996) 449–467 (the midpoint
-// discrete gradient used for potentials not linear in Γ); design/math.md,
+// discrete gradient used for potentials not linear in Γ); docs/math.md §6,
 // "Energy–momentum". (Equation numbers of the papers are not quoted: the
 // discrete equations below are derived and checked here, each identity by a
 // test in tests/test_energy_momentum.cpp.)
 //
-// ── The discrete equations (body form, conventions.md) ──────────────────────
+// ── The discrete equations (body form, docs/conventions.md) ─────────────────
 // Unknown W ∈ ℝ³ (the midpoint angular velocity). With ξ = hW, Ŵ v = W × v,
 //   Π_mid = J W,                                    (Π_mid = (Π_n + Π_{n+1})/2)
 //   Q = cay(ξ) = (I − ξ̂/2)⁻¹(I + ξ̂/2),   R_{n+1} = R_n Q,           (1)

@@ -5,7 +5,7 @@
 // Celledoni, Fassò, Säfström & Zanna, "The exact computation of the free rigid
 // body motion and its use in splitting methods", SIAM J. Sci. Comput. 30
 // (2008) 2084–2112, §4 (splitting with the exact free flow); Strang splitting
-// as in Hairer, Lubich & Wanner, GNI (2006), §II.5 / §VII.4; design/math.md,
+// as in Hairer, Lubich & Wanner, GNI (2006), §II.5 / §VII.4; docs/math.md §7,
 // "Splitting with the exact free flow". One step (t → t + h):
 //   kick(t, h/2):   Π ← exact flow over h/2 of  Ṙ = 0, Π̇ = τ(R, Π, t)   (R and t frozen)
 //   flow(h):        (R, Π) ← exact free-body flow over h  (system/free_body_flow_stepper.hpp)

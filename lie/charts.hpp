@@ -74,7 +74,7 @@ inline EulerZXZExtraction euler_zxz_from_matrix(const Mat3& R, double phi_hint =
   return out;
 }
 
-/// Body angular velocity from Euler angle rates (conventions.md).
+/// Body angular velocity from Euler angle rates (docs/conventions.md §2).
 inline Vec3 omega_from_euler_zxz_rates(const EulerZXZ& e, const Vec3& rates) {
   const double psid = rates.x(), thetad = rates.y(), phid = rates.z();
   const double st = std::sin(e.theta), ct = std::cos(e.theta);

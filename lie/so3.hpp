@@ -2,7 +2,7 @@
 // SO(3) and its Lie algebra so(3) ≅ ℝ³ (hat/vee), with the maps the schemes
 // need: exp, log, Cayley, Ad, and the trivialised derivatives of exp and cay.
 //
-// Conventions (../shared/spec/conventions.md): "body" trivialisation means
+// Conventions (docs/conventions.md §3): "body" trivialisation means
 // the derivative of R(t) = R0 · map(ξ(t)) expressed as a body velocity,
 //     Ω = dmap_body(ξ) ξ̇,   i.e.  d/dt map(ξ) = map(ξ) (dmap_body(ξ) ξ̇)^ ,
 // and "space" means the derivative of R(t) = map(ξ(t)) · R0 as a spatial one,
@@ -10,7 +10,7 @@
 // dexp_body is the "right Jacobian" of robotics texts, dexp_space the "left".
 // References: Iserles, Munthe-Kaas, Nørsett & Zanna, Acta Numerica 9 (2000),
 // §2–3 and Appendix; Hairer, Lubich & Wanner, GNI (2006), §III.4 and §IV.8;
-// the formulas are collected in ../shared/design/math.md.
+// the formulas are collected in docs/math.md §1.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
@@ -107,7 +107,7 @@ inline void dexp_coefficients(double theta2, double& a, double& b) {
   }
 }
 /// c(θ) = (1 − (θ/2) cot(θ/2))/θ² = 1/12 + θ²/720 + θ⁴/30240 + …, the
-/// coefficient of ξ̂² in dexp⁻¹ (math.md; singular at θ = 2π).
+/// coefficient of ξ̂² in dexp⁻¹ (docs/math.md §1; singular at θ = 2π).
 inline double dexpinv_coefficient(double theta2) {
   const double theta = std::sqrt(theta2);
   if (theta < series_angle_wide) {  // next term θ⁶/1209600 < 1e-18
@@ -131,7 +131,7 @@ inline Mat3 dexp_body(const Vec3& xi) {
 inline Mat3 dexp_space(const Vec3& xi) { return dexp_body(-xi); }
 
 /// Inverse of dexp_body, applied to a vector without forming a matrix:
-/// ξ̇ = Ω + ½ ξ × Ω + c(θ) ξ × (ξ × Ω)  (math.md ✓; Iserles et al. 2000,
+/// ξ̇ = Ω + ½ ξ × Ω + c(θ) ξ × (ξ × Ω)  (docs/math.md §1 ✓; Iserles et al. 2000,
 /// eq. (2.46) written in body form). Valid for |ξ| < 2π.
 inline Vec3 dexpinv_body(const Vec3& xi, const Vec3& omega) {
   const Vec3 xo = xi.cross(omega);
@@ -151,7 +151,7 @@ inline Mat3 dexpinv_space_matrix(const Vec3& xi) { return dexpinv_body_matrix(-x
 inline Mat3 dcay_body(const Vec3& xi) {
   return (4.0 / (4.0 + xi.squaredNorm())) * (Mat3::Identity() - 0.5 * hat(xi));
 }
-/// Its inverse, polynomial (math.md ✓): ξ̇ = Ω + ½ ξ × Ω + ¼ (ξ·Ω) ξ.
+/// Its inverse, polynomial (docs/math.md §1 ✓): ξ̇ = Ω + ½ ξ × Ω + ¼ (ξ·Ω) ξ.
 inline Vec3 dcayinv_body(const Vec3& xi, const Vec3& omega) {
   return omega + 0.5 * xi.cross(omega) + 0.25 * xi.dot(omega) * xi;
 }
@@ -162,7 +162,7 @@ inline Mat3 dcayinv_body_matrix(const Vec3& xi) {
 inline Mat3 dcay_space(const Vec3& xi) { return dcay_body(-xi); }
 inline Vec3 dcayinv_space(const Vec3& xi, const Vec3& omega) { return dcayinv_body(-xi, omega); }
 
-/// Geodesic distance |log(Aᵀ B)|, the attitude error of conventions.md.
+/// Geodesic distance |log(Aᵀ B)|, the attitude error of docs/conventions.md §7.
 inline double geodesic_distance(const Mat3& A, const Mat3& B) {
   return log_so3(A.transpose() * B).norm();
 }

@@ -63,7 +63,7 @@ system::State rkmk4_at(const system::AnyModel& model, const system::State& x0, d
   return x;
 }
 
-/// The attitude error of conventions.md; a non-orthogonal R (quat, matrix) is
+/// The attitude error of docs/conventions.md §7; a non-orthogonal R (quat, matrix) is
 /// compared through its nearest rotation (the quaternion Shepperd extracts).
 double attitude_error(const Mat3& R, const Mat3& ref) {
   return lie::quat_distance(lie::quat_from_matrix(ref), lie::quat_from_matrix(R).normalized());
@@ -343,7 +343,7 @@ TEST_CASE("at tight tolerance every controlled baseline agrees with rkmk4 at a s
   for (const char* name : {"heavy_top_trindade_1", "heavy_top_trindade_2", "heavy_top_trindade_3"}) {
     const system::Scene sc = scene(name);
     const system::AnyModel model = system::make_model(sc);
-    const double T = sc.t_end;
+    const double T = sc.t_end.value();
     const system::State ref = rkmk4_at(model, sc.initial, T, 2.5e-5);
     const system::State ref2 = rkmk4_at(model, sc.initial, T, 5e-5);
     REQUIRE(lie::geodesic_distance(ref.R, ref2.R) < 1e-9);
@@ -369,7 +369,7 @@ TEST_CASE("the Euler-angle singularity is detected and reported, never a silent 
     const system::AnyModel model = system::make_model(sc);
     for (bl::Stepper s : bl::all_steppers) {
       system::State x = sc.initial;
-      const RunStats st = run(bl::Coordinates::euler_zxz, s, model, x, sc.t_end, s == bl::Stepper::rk4 ? 1e-3 : 1e-8);
+      const RunStats st = run(bl::Coordinates::euler_zxz, s, model, x, sc.t_end.value(), s == bl::Stepper::rk4 ? 1e-3 : 1e-8);
       INFO(bl::stepper_name(s) << ": " << st.status);
       CHECK_FALSE(st.ok);
       CHECK(st.status.find("Euler-angle singularity") != std::string::npos);

@@ -1,5 +1,5 @@
 // The lgi command as a user runs it: exit statuses and one-line errors
-// (cli.md), no output file on bad input, and the trajectory of `simulate`.
+// (README.md, "Using lgi"), no output file on bad input, and the trajectory of `simulate`.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>

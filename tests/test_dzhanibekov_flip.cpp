@@ -1,4 +1,4 @@
-// The acceptance run, through lgi: the book spun about its
+// The demo's run (scripts/demo.sh), through lgi: the book spun about its
 // intermediate axis flips. Ω2 changes sign first near t = 1.6 s and then
 // about every 3.4 s, and rkmk4 at h = 1e-3 agrees with the exact flow to
 // the order-4 error expected at that step.

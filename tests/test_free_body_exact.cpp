@@ -1,14 +1,14 @@
 // The exact free-rigid-body flow (integrators/system/free_body_exact.hpp),
 // checked three ways:
 //   1. against Boost.Odeint's runge_kutta_fehlberg78 on (q, Π), q̇ = ½ q ⊗ (0, Ω),
-//      Π̇ = Π × Ω: in double at abs = rel = 1e-14 (the issue's reference), and
+//      Π̇ = Π × Ω: in double at abs = rel = 1e-14 (the usual double-precision reference), and
 //      in long double (x87, 64-bit mantissa) at 1e-19 and in binary128 at
 //      1e-22 … 1e-24, which certify the 1e-12 level (the double reference
 //      cannot, see the table below);
 //   2. conservation of H, |Π| and m = RΠ along at(t);
 //   3. consistency: at(0) is the initial state, and the flow property.
 // Attitude error: the geodesic angle (lie::quat_distance); momentum error:
-// |Π − Π_ref|/|Π_ref| (spec/conventions.md).
+// |Π − Π_ref|/|Π_ref| (docs/conventions.md §7).
 //
 // Measured (this file's samples: 997 over 100 periods of Π unless noted;
 // "quad": rkf78 in binary128 at tol 1e-25, 2000 samples, a scratch run, and
@@ -31,7 +31,7 @@
 //   symmetric (1,1,2) / (3,1,3)       3.5e-13  1.4e-13       1.1e-10  4.0e-11
 //   spherical (t ≤ 50)                4.2e-15  0             8.4e-15  0
 //   24 random bodies (5 T)            6.3e-13  5.1e-13
-// So the issue's double reference certifies only 1e-11 … 2e-7 over 100
+// So the double-precision reference certifies only 1e-11 … 2e-7 over 100
 // periods (its per-step errors change the energy, hence the period, most of
 // all near the separatrix: book axis 2 has k'² = 3.5e-6, the prism 1.5e-4);
 // its test below uses its measured error ×3 as the bound. The 1e-12 level is
@@ -299,7 +299,7 @@ TEST_CASE("exact free flow: regimes", "[free_body_exact]") {
   CHECK(Pi.dot(Vec3(1.0 / 2, 1.0 / 3, 1.0 / 6).cwiseProduct(Pi)) / Pi.squaredNorm() == 1.0 / 3);
 }
 
-TEST_CASE("exact free flow vs odeint rkf78 in double, tol 1e-14 (the issue's reference)", "[free_body_exact]") {
+TEST_CASE("exact free flow vs odeint rkf78 in double, tol 1e-14 (double-precision reference)", "[free_body_exact]") {
   // Bounds: the reference's own error (header table) with a margin of ~3;
   // 1e-12 where the reference reaches it. Not a test of the exact flow beyond
   // those levels: the long-double test below is.
@@ -376,7 +376,7 @@ TEST_CASE("exact free flow near the separatrix vs quad-precision odeint, 5 perio
 }
 
 TEST_CASE("exact free flow near the separatrix vs quad-precision odeint, 100 periods", "[free_body_exact][slow]") {
-  // The issue's span on the two near-separatrix scenes (about a minute).
+  // The 100-period span on the two near-separatrix scenes (about a minute).
   // Momentum: ≤ 1e-12. Attitude: 2.8e-12 and 4.9e-12 rad measured (tol 1e-25),
   // 3–4 ulps of the precession angle turned (ψ ≈ 7.1e3, 4.4e3 rad; its linear
   // part G t/I1 ≈ 1.0e4, 1.3e4 rad), the floor of a double evaluation at

@@ -1,5 +1,5 @@
 // TrajectoryWriter (experiments/h5md_writer.hpp): the H5MD layout of
-// shared/spec/output-file.md, read back with the HDF5 C API.
+// experiments/OUTPUT.md, read back with the HDF5 C API.
 #include <catch2/catch.hpp>
 #include <hdf5.h>
 #include <signal.h>

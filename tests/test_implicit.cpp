@@ -13,8 +13,8 @@
 //  - Newton failures reported, never silent; retry by halving;
 //    lgi simulate end to end.
 // The [.bench] case (hidden; also in the [slow] CTest entry) prints the
-// Newton iteration counts and the cost per step relative to rkmk4 quoted in
-// the report, and checks the iteration counts.
+// Newton iteration counts and the cost per step relative to rkmk4,
+// and checks the iteration counts.
 
 #include <array>
 #include <catch2/catch.hpp>

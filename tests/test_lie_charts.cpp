@@ -1,5 +1,5 @@
 // Property tests for lie/charts.hpp: Euler angles ZXZ and the rotation-vector
-// chart (conventions.md, "Charts"). R = Rz(ψ) Rx(θ) Rz(φ), body Ω with Ω̂ = RᵀṘ.
+// chart (docs/conventions.md §2). R = Rz(ψ) Rx(θ) Rz(φ), body Ω with Ω̂ = RᵀṘ.
 //
 // Set LGI_TEST_REPORT=1 to print the worst error observed for each property.
 #include <Eigen/Core>

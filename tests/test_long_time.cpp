@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -168,7 +169,11 @@ TEST_CASE("long-time: Ctrl-C keeps a readable .partial and exits 1", "[long-time
 
 TEST_CASE("long-time refuses bad input with exit 2 and no file", "[long-time]") {
   const std::string dir = scratch_dir("lt_bad");
-  const std::string base = "long-time --scene " + scenes + "/free_body_hlw.toml --out " + dir + "/bad.h5 ";
+  // A scene without [run], so every setting must come from the command line.
+  const std::string scene = scratch_dir("lt_bad_scene") + "/no_run.toml";
+  std::ofstream(scene) << "name = \"no run\"\n[body]\ninertia = [1.0, 2.0, 3.0]\n"
+                          "[initial]\nangular_velocity = [0.3, 0.8, -0.4]\n";
+  const std::string base = "long-time --scene " + scene + " --out " + dir + "/bad.h5 ";
   for (const auto& [flags, named] : std::vector<std::pair<std::string, std::string>>{
            {"--scheme nonesuch --dt 0.1 --t-end 1", "--scheme"},
            {"--scheme rkmk4 --dt 0 --t-end 1", "--dt"},

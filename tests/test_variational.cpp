@@ -445,7 +445,7 @@ TEST_CASE("lgi simulate runs lgvi on a heavy top and refuses dmv there", "[varia
   CHECK(refused.status == 1);
   CHECK_THAT(refused.err, Catch::Contains("free body"));
   CHECK(testing::line_count(refused.err) == 1);
-  const auto listing = testing::run_lgi("schemes");
+  const auto listing = testing::run_lgi("schemes --long");
   CHECK(listing.status == 0);
   for (const char* name : {"dmv ", "lgvi ", "dmv-pre4 ", "dmv-pre6 ", "dmv-pre8 ", "dmv-pre10 "})
     CHECK_THAT(listing.out, Catch::Contains(name));

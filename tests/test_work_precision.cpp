@@ -3,6 +3,7 @@
 // otherwise), the floor below which no error is reported, the CSV twin, and
 // bad input refused with exit 2 and no file.
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -40,7 +41,8 @@ TEST_CASE("work-precision on the free body: exact reference, orders 4 and 2", "[
   REQUIRE(fs::exists(out));
   REQUIRE_FALSE(fs::exists(out + ".partial"));
   CHECK(read_string_attribute(out, "/reference", "kind") == "exact");
-  CHECK(read_double_attribute(out, "/reference", "estimated_error") == 0.0);
+  // The conditioning floor of the exact flow (perturbed at round-off) on this well-conditioned body.
+  CHECK(read_double_attribute(out, "/reference", "estimated_error") < 1e-12);
   CHECK(read_string_attribute(out, "/diagnostics", "status") == "ok");
   CHECK(read_string_attribute(out, "/parameters", "subcommand") == "work-precision");
   CHECK_FALSE(read_string_attribute(out, "/parameters", "scene_toml").empty());
@@ -171,7 +173,11 @@ TEST_CASE("work-precision on a heavy top: converged reference and its floor", "[
 TEST_CASE("work-precision refuses bad input with exit 2 and no file", "[work-precision]") {
   const std::string dir = scratch_dir("wp_bad");
   const std::string out = dir + "/bad.h5";
-  const std::string scene = " --scene " + scenes + "/free_body_hlw.toml --t-end 1 --repeat 1 --out " + out;
+  // A scene without [run]: the steps and tolerances must come from the command line.
+  const std::string no_run = scratch_dir("wp_bad_scene") + "/no_run.toml";
+  std::ofstream(no_run) << "name = \"no run\"\n[body]\ninertia = [1.0, 2.0, 3.0]\n"
+                           "[initial]\nangular_velocity = [0.3, 0.8, -0.4]\n";
+  const std::string scene = " --scene " + no_run + " --t-end 1 --repeat 1 --out " + out;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"--schemes rkmk4,nonesuch --dt 0.1", "--schemes"},
       {"--schemes rkmk4 --dt 0.1,0", "--dt"},

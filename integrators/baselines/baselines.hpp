@@ -1,12 +1,12 @@
 #pragma once
-// The baselines by name: COORDINATES/STEPPER (schemes.md), what a researcher
+// The baselines by name: COORDINATES/STEPPER (`lgi schemes`), what a researcher
 // would write instead of using lgi, on the same rigid-body model as the
 // Lie-group schemes.
 //   COORDINATES  euler-zxz        euler_zxz.hpp        (Trindade & Sampaio 2001, eq. 26–27)
 //                rotvec           rotation_vector.hpp  (eq. 25)
 //                quat             quaternion.hpp       (q̇ = ½ q ⊗ (0, Ω))
 //                quat-normalized  quaternion.hpp       (the same, projected to |q| = 1 after every step)
-//                matrix           matrix.hpp           (Ṙ = R Ω̂ in ℝ⁹; seed 002's R' = W R)
+//                matrix           matrix.hpp           (Ṙ = R Ω̂ in ℝ⁹; R' = W R of seed 002, docs/sources.md)
 //   STEPPER      rk4 (fixed step, --dt), dopri5, rkf78, bs, rosenbrock4 (controlled, --tol)
 //                odeint_steppers.hpp; the error measure in error_control.hpp;
 //                the run loop and the Euler-angle singularity in runner.hpp.

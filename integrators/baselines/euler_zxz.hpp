@@ -3,7 +3,7 @@
 // velocity, x = (ψ, θ, φ, Ω1, Ω2, Ω3) ∈ ℝ⁶.
 //
 // Trindade & Sampaio (2001), eq. 26 with the kinematics inverted as in their
-// eq. 27 (conventions.md, "Charts"):
+// eq. 27 (docs/conventions.md §2):
 //   ψ̇ = (Ω1 sinφ + Ω2 cosφ)/sinθ
 //   θ̇ =  Ω1 cosφ − Ω2 sinφ
 //   φ̇ =  Ω3 − cosθ (Ω1 sinφ + Ω2 cosφ)/sinθ

@@ -3,7 +3,8 @@
 // the body angular velocity, x = (R00, R01, …, R22, Ω1, Ω2, Ω3) ∈ ℝ¹².
 //
 //   Ṙ = R Ω̂                                   (body form of seed 002's R' = W R,
-//                                               W = R Ω̂ Rᵀ the spatial spin)
+//                                               W = R Ω̂ Rᵀ the spatial spin;
+//                                               seed 002: docs/sources.md)
 //   Ω̇ = J⁻¹(JΩ × Ω + τ(R, JΩ, Ω, t))          (omega_dynamics.hpp)
 // R is integrated as nine independent numbers: nothing keeps RᵀR = I, and the
 // torque sees R as it is; /observables/orthogonality_error shows the drift.

@@ -5,7 +5,7 @@
 //   Ω̇ = J⁻¹ K(R, JΩ, Ω, t),   K = Π × Ω + τ   (model.momentum_rate)
 // i.e. Ω̇ = J⁻¹(JΩ × Ω + τ) (Trindade & Sampaio 2001, the first three rows of
 // eq. 25 and eq. 26, there written for a heavy top with the parallel-axis
-// moments I_i + mL²; conventions.md for the body form).
+// moments I_i + mL²; docs/conventions.md §4 for the body form).
 //
 // Its derivatives, for rosenbrock4, come from the model's analytic Jacobians
 // (RigidBody::momentum_rate_jacobian, body-side perturbation R → R exp(η̂)):

@@ -1,6 +1,6 @@
 #pragma once
 // Baseline coordinates `quat` and `quat-normalized`: the quaternion
-// q = (w, x, y, z) (scalar first, conventions.md) and the body angular
+// q = (w, x, y, z) (scalar first, docs/conventions.md §1) and the body angular
 // velocity, x = (w, x, y, z, Ω1, Ω2, Ω3) ∈ ℝ⁷.
 //
 //   q̇ = ½ q ⊗ (0, Ω) = ½ (−v·Ω, w Ω + v × Ω)         (v = (x, y, z))
@@ -10,7 +10,7 @@
 // keeps |q| = 1: the exact flow does, a numerical one drifts.
 //
 // `quat` never touches |q|. For the observer, R is the matrix of the map
-// v ↦ q v q* (conventions.md's v_space = q v q*), which for |q| ≠ 1 is
+// v ↦ q v q* (docs/conventions.md §1: v_space = q v q*), which for |q| ≠ 1 is
 // |q|² R(q/|q|): the file's /observables/orthogonality_error, |RᵀR − I|_F,
 // is then √3 ||q|⁴ − 1| ≈ 4√3 ||q| − 1|, the drift itself, whatever the
 // attitude. (Energy and the other observables see the same R.)

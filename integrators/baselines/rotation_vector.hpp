@@ -4,7 +4,7 @@
 // eq. 8, and eq. 25 for the dynamics).
 //
 //   Ψ̇ = dexp⁻¹_body(Ψ) Ω = Ω + ½ Ψ × Ω + c(|Ψ|) Ψ × (Ψ × Ω),
-//        c(θ) = (1 − (θ/2) cot(θ/2))/θ²                       (design/math.md)
+//        c(θ) = (1 − (θ/2) cot(θ/2))/θ²                       (docs/math.md §1)
 //   Ω̇ = J⁻¹(JΩ × Ω + τ(exp(Ψ̂), JΩ, Ω, t))                   (omega_dynamics.hpp)
 // (eq. 25 writes T(Ψ)Ψ̇ = w with T of eq. 10 and the heavy-top torque of
 // eq. 21 spelled out; T is dexp_body, so this is the same system.)

@@ -1,8 +1,8 @@
 #pragma once
 // The exact flow of the free rigid body (scheme `exact`, and the free part of
-// the Strang splitting of design/math.md, "Splitting with the exact free flow").
+// the Strang splitting of docs/math.md §7, "Splitting with the exact free flow").
 //
-// Conventions (spec/conventions.md): Ṙ = R Ω̂, Π = JΩ, Π̇ = Π × Ω, R maps body
+// Conventions (docs/conventions.md): Ṙ = R Ω̂, Π = JΩ, Π̇ = Π × Ω, R maps body
 // to space, m = RΠ is constant. Invariants: |Π| = G, 2T = Π·J⁻¹Π, m.
 //
 // ── Frames ───────────────────────────────────────────────────────────────────
@@ -44,14 +44,14 @@
 // Period of Π: 4K/λ, K = R_F(0, k'², 1) (DLMF 19.25.1).
 //
 // ── R(t) ────────────────────────────────────────────────────────────────────
-// Euler angles ZXZ (conventions.md) about the constant m: with S ∈ SO(3)
+// Euler angles ZXZ (docs/conventions.md §2) about the constant m: with S ∈ SO(3)
 // constant, S e3 = m/G,
 //   R_w(t) = S Rz(ψ(t)) B(Π_w(t)),   B = Rx(θ) Rz(φ),
 //   cos θ = Π3/G, sin θ = √(Π1² + Π2²)/G ∈ (0, 1], (sin φ, cos φ) ∝ (Π1, Π2),
 // so that Bᵀ e3 = Π_w/G (third row of B) and R_w Π_w = G S e3 = m.
 // B is smooth because Π3 > 0 keeps θ < π/2 and (Π1, Π2) ≠ 0 off the steady
 // rotations (handled apart). The precession rate is the one of
-// Landau & Lifshitz, Mechanics, §37 (conventions.md's inverse chart map):
+// Landau & Lifshitz, Mechanics, §37 (docs/conventions.md §2, inverse chart map):
 //   ψ̇ = (Ω1 sin φ + Ω2 cos φ)/sin θ = G (Π1²/I1 + Π2²/I2)/(Π1² + Π2²)
 //      = G/I3 + (G C13/(I3 a1²)) / (1 − n sn²u),   n = −I3 I21/(I1 I32) < 0,
 // integrated with the incomplete integral of the third kind

@@ -3,7 +3,7 @@
 // arbitrary state, for the free part of the Strang splitting `split-exact`
 // (integrators/splitting.hpp), which re-starts the free flow after every kick.
 //
-// FreeBodyExactFlow (free_body_exact.hpp, a colleague's) is built for one
+// FreeBodyExactFlow (free_body_exact.hpp) is built for one
 // initial state and many output times: its constructor sorts the inertia,
 // computes K, u0 = F(φ0), the complete integral Zc and the AGM table, and its
 // at(t) evaluates one more R_J. Re-constructing it every step costs 2 R_F and

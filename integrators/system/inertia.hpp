@@ -44,7 +44,7 @@ inline Inertia make_inertia(const Mat3& J) {
   return in;
 }
 
-/// Parallel-axis theorem (conventions.md): J = J_c + m(|χ|² I − χ χᵀ).
+/// Parallel-axis theorem (docs/conventions.md §5): J = J_c + m(|χ|² I − χ χᵀ).
 inline Mat3 parallel_axis(const Mat3& J_cm, double mass, const Vec3& chi) {
   return J_cm + mass * (chi.squaredNorm() * Mat3::Identity() - chi * chi.transpose());
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The invariants of conventions.md, each reported only for the scenes where
+// The invariants of docs/conventions.md §6, each reported only for the scenes where
 // it is one:
 //   free body:        H, |Π|, m = RΠ (three components)
 //   heavy top:        H, Π·Γ (vertical angular momentum)
@@ -52,7 +52,7 @@ class SceneInvariants {
   std::vector<std::string> names_;
 };
 
-/// Relative invariant error |I − I0|/|I0|, absolute where I0 = 0 (conventions.md).
+/// Relative invariant error |I − I0|/|I0|, absolute where I0 = 0 (docs/conventions.md §7).
 inline double relative_error(double value, double initial) {
   const double d = std::abs(value - initial);
   return initial != 0.0 ? d / std::abs(initial) : d;

@@ -1,7 +1,7 @@
 #pragma once
 // The rigid body with a fixed point (or free), in body form on SO(3) × ℝ³:
 //   Ṙ = R Ω̂,  Π̇ = Π × Ω + τ(R, Π, t),  Ω = J⁻¹ Π        (Euler–Poisson)
-// (conventions.md; Holm, Geometric Mechanics I, §6; seed 003).
+// (docs/conventions.md §4; Holm, Geometric Mechanics I, §6; seed 003 of docs/sources.md).
 // The model is a variadic template over the torque terms the scene declares,
 // so the torque is a fold over exactly those terms, resolved at compile time.
 #include <tuple>

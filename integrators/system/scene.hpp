@@ -41,7 +41,8 @@ struct Scene {
 
   lie::SO3xR3 initial;  // (R0, Π0)
 
-  double t_end = 0.0;
+  // [run]: defaults for the command line, which overrides each of them.
+  std::optional<double> t_end;
   std::optional<double> dt;
   std::optional<double> tol;
 

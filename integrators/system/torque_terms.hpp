@@ -4,7 +4,7 @@
 // assembled from only the terms it declares (rigid_body.hpp), so a free body
 // evaluates no torque at all.
 //
-// Conventions (conventions.md): gravity along −e3 in space, Γ = Rᵀ e3,
+// Conventions (docs/conventions.md §4): gravity along −e3 in space, Γ = Rᵀ e3,
 // V = m g χ·Γ, τ = m g Γ × χ. Torques are in body coordinates.
 //
 // Jacobians (for implicit schemes, integrators/implicit_rkmk.hpp). Each term
@@ -81,7 +81,7 @@ struct SpringTerm {
   /// With ξ = log(R_restᵀ R): exp(ξ + δξ) = exp(ξ) exp(η̂) to first order
   /// gives η = dexp_body(ξ) δξ (so3.hpp's body trivialisation), hence
   /// δξ = dexp⁻¹_body(ξ) η and ∂τ/∂η = −k dexp⁻¹_body(ξ)
-  /// (= −k (I + ½ ξ̂ + c(|ξ|) ξ̂²), math.md). Valid for |ξ| < π, where log
+  /// (= −k (I + ½ ξ̂ + c(|ξ|) ξ̂²), docs/math.md §1). Valid for |ξ| < π, where log
   /// is smooth; at |ξ| = π the torque itself jumps (the principal branch).
   Mat3 torque_jacobian_attitude(const Mat3& R, const Vec3& /*Pi*/, const Vec3& /*Omega*/, double /*t*/) const {
     return -stiffness * lie::dexpinv_body_matrix(deflection(R));

@@ -48,7 +48,7 @@ inline void report_slope(const std::string& name, const std::string& problem, co
   std::cout << '\n';
 }
 
-/// Global error of conventions.md: the larger of the geodesic attitude
+/// Global error of docs/conventions.md §7: the larger of the geodesic attitude
 /// error and the relative momentum error.
 inline double global_error(const system::State& s, const system::State& ref) {
   const double attitude = lie::geodesic_distance(ref.R, s.R);

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the lgi executable as a user would, capturing exit status, stdout and stderr.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -32,7 +33,8 @@ inline std::string scratch_dir(const std::string& name) {
 /// Runs `lgi <args>` (args already shell-quoted where needed).
 inline CommandResult run_lgi(const std::string& args, const std::string& workdir = LGI_TEST_TMPDIR) {
   static int counter = 0;
-  const std::string base = workdir + "/cmd" + std::to_string(++counter);
+  // The process id keeps test programs that CTest runs side by side (-j2) apart.
+  const std::string base = workdir + "/cmd" + std::to_string(::getpid()) + "_" + std::to_string(++counter);
   const std::string cmd = std::string(LGI_EXECUTABLE) + " " + args + " > " + base + ".out 2> " + base + ".err";
   const int raw = std::system(cmd.c_str());
   CommandResult r;

@@ -1,0 +1,161 @@
+// Every order `lgi schemes` states is the order the scheme shows.
+//
+// For each registered fixed-step scheme (Lie-group schemes, compositions of
+// any order, the rk4 baselines) and each problem it supports, the observed
+// order is fitted and compared with the registry: `order` on the free body,
+// `order_with_torque` (or `order` when it states none) on the two tops. The
+// three problems have stage fields that do not commute (a constant field
+// would prove nothing):
+//  - free_body_hlw (J = (2, 1, 2/3)) against the exact flow;
+//  - the Kovalevskaya top (a conservative torque, χ off the symmetry axis)
+//    against an independent rkf78 solution;
+//  - Richter's general top with a harmonic body-fixed drive (time-dependent
+//    torque, so the stage times matter), against rkf78.
+// The step range follows the order: h_k = h0 r^k with r = max(10^(-1/(2p)), 1/2),
+// so each step lowers the error by about √10, from h0 (1 for p ≥ 4, else
+// 0.2) down to the round-off floor or h_min (5e-5 for p = 1, else 1e-3).
+// The slope is fitted on the five finest points above the floor, the most
+// asymptotic ones. A step the scheme refuses (a Cayley step of π or
+// more) counts as "too coarse" and is left out.
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "integrators/registry.hpp"
+#include "integrators/system/free_body_exact.hpp"
+#include "support/convergence.hpp"
+#include "support/reference_solution.hpp"
+#include "support/registered_run.hpp"
+#include "support/shipped_scene.hpp"
+
+using namespace lgi;
+using testing::ConvergencePoint;
+
+namespace {
+
+constexpr double floor_error = 1e-10;  // compositions of 17 substeps reach round-off near 1e-12
+constexpr double ceiling_error = 1e-2;
+constexpr int fitted_points = 5;
+
+struct Problem {
+  std::string name;
+  system::Scene scene;
+  system::AnyModel model;
+  system::State reference;
+  double t_end = 0.0;
+  bool has_torque = false;
+};
+
+Problem free_body() {
+  Problem p{"free_body_hlw", testing::shipped_scene("free_body_hlw"), {}, {}, 10.0, false};
+  p.model = system::make_model(p.scene);
+  p.reference = system::FreeBodyExactFlow(std::get<system::FreeBody>(p.model).inertia, p.scene.initial).at(p.t_end);
+  return p;
+}
+
+Problem torque_problem(const std::string& name, system::Scene scene, double t_end) {
+  Problem p{name, std::move(scene), {}, {}, t_end, true};
+  p.model = system::make_model(p.scene);
+  p.reference = std::visit(
+      [&](const auto& m) { return testing::reference_solution(m, p.scene.initial, 0.0, t_end, 1e-14); }, p.model);
+  return p;
+}
+
+std::vector<Problem> problems() {
+  std::vector<Problem> out;
+  out.push_back(free_body());
+  out.push_back(torque_problem("kovalevskaya", testing::shipped_scene("kovalevskaya"), 5.0));
+  system::Scene driven = testing::shipped_scene("general_top_richter");
+  driven.drive = system::DriveSpec{lie::Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
+  out.push_back(torque_problem("driven general top", driven, 5.0));
+  return out;
+}
+
+int stated_order(const integrators::SchemeInfo& s, const Problem& p) {
+  return p.has_torque && s.order_with_torque ? s.order_with_torque : s.order;
+}
+
+struct Measured {
+  testing::SlopeFit fit;
+  std::vector<ConvergencePoint> points;
+  bool exact = false;  // every error at round-off: no slope to fit
+};
+
+Measured measure(const integrators::SchemeInfo& s, const Problem& p, int order) {
+  const double ratio = std::max(std::pow(10.0, -1.0 / (2.0 * order)), 0.5);
+  const double h0 = order >= 4 ? 1.0 : 0.2;
+  const double h_min = order == 1 ? 5e-5 : 1e-3;
+  std::vector<ConvergencePoint> all;
+  for (double h = h0; h >= h_min; h *= ratio) {
+    const testing::RegisteredRun run = testing::run_registered(s, p.model, p.scene.initial, p.t_end, h);
+    if (!run.stats.ok) continue;  // refused or failed at a coarse step
+    const double e = testing::global_error(run.state, p.reference);
+    all.push_back({h, e});
+    if (e < floor_error) break;
+  }
+  Measured m;
+  m.points = all;
+  std::vector<ConvergencePoint> usable;
+  for (const auto& pt : all)
+    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
+  if (usable.size() > static_cast<std::size_t>(fitted_points))
+    usable.erase(usable.begin(), usable.end() - fitted_points);
+  m.fit = testing::fitted_slope(usable, floor_error, ceiling_error);
+  m.exact = !all.empty() && usable.empty() &&
+            std::all_of(all.begin(), all.end(), [](const auto& pt) { return pt.error < floor_error; });
+  return m;
+}
+
+bool fixed_step_scheme(const integrators::SchemeInfo& s) { return s.order > 0 && !s.properties.adaptive; }
+
+}  // namespace
+
+TEST_CASE("every fixed-step scheme shows the order lgi schemes states, with and without torque", "[order][generic]") {
+  const std::vector<Problem> cases = problems();
+  std::map<std::string, int> tested_free, tested_torque;
+  for (const auto& s : integrators::scheme_registry()) {
+    if (!fixed_step_scheme(s)) continue;
+    for (const auto& p : cases) {
+      if (!integrators::unsupported_reason(s, p.model).empty()) continue;
+      const int order = stated_order(s, p);
+      const Measured m = measure(s, p, order);
+      testing::report_slope(s.name + " (stated " + std::to_string(order) + ")", p.name, m.fit, m.points);
+      if (m.points.empty()) {
+        // Every run stopped (the Euler-angle charts stop at their singularity): not measured here.
+        std::cout << "  " << s.name << " stops on " << p.name << " at every step tried\n";
+        continue;
+      }
+      if (m.exact) {
+        std::cout << "  " << s.name << " is exact on " << p.name << " (every error below " << floor_error << ")\n";
+      } else {
+        INFO(s.name << " on " << p.name << ": stated order " << order << ", slope " << m.fit.slope << " from "
+                    << m.fit.points << " points");
+        CHECK(m.fit.points >= 3);
+        CHECK(std::abs(m.fit.slope - order) <= std::max(0.25, 0.05 * order));
+      }
+      ++(p.has_torque ? tested_torque : tested_free)[s.name];
+    }
+  }
+  // Every stated order was measured somewhere, and every stated torque order on a scene with torque.
+  for (const auto& s : integrators::scheme_registry()) {
+    if (!fixed_step_scheme(s)) continue;
+    INFO(s.name << " states order " << s.order << " but no problem here supports it");
+    CHECK(tested_free[s.name] + tested_torque[s.name] > 0);
+    if (s.order_with_torque) {
+      INFO(s.name << " states order " << s.order_with_torque << " with torque but was not run with one");
+      CHECK(tested_torque[s.name] > 0);
+    }
+  }
+}
+
+TEST_CASE("the preprocessed DMV schemes state order 2 with a potential", "[order]") {
+  for (const char* name : {"dmv-pre4", "dmv-pre6", "dmv-pre8", "dmv-pre10"}) {
+    const auto& s = testing::registered_scheme(name);
+    INFO(name);
+    CHECK(s.order_with_torque == 2);
+    CHECK(s.order >= 4);
+  }
+}
