@@ -150,17 +150,8 @@ class LongTimeObserver final : public integrators::Observer {
       initial_ = v;
       have_initial_ = true;
     }
-    std::size_t c = 0;
-    if (invariants_.energy_conserved()) current_[c++] = system::relative_error(v.energy, initial_.energy);
-    for (std::size_t k = 0; k < invariants_.scalar_names().size(); ++k)
-      current_[c++] = system::relative_error(v.scalars[k], initial_.scalars[k]);
-    if (invariants_.free_body()) {
-      const double m0 = initial_.space_momentum.norm();
-      const double d = (v.space_momentum - initial_.space_momentum).norm();
-      current_[c++] = m0 > 0.0 ? d / m0 : d;
-    }
-    current_[c++] = v.orthogonality_error;
-    for (std::size_t i = 0; i < c; ++i)
+    invariants_.errors(initial_, v, current_);
+    for (std::size_t i = 0; i < current_.size(); ++i)
       if (!(window_max_[i] >= current_[i])) window_max_[i] = current_[i];
     step_ = step;
     time_ = t;
@@ -223,6 +214,20 @@ class LongTimeObserver final : public integrators::Observer {
   bool emitted_ = false;
 };
 
+/// The one parseable line (and the files written) of a finished run.
+void print_summary(const std::string& scheme, const Diagnostics& diag, double t_final,
+                   const std::vector<std::string>& names, const LongTimeObserver& observer, const ResultsFile& file) {
+  std::ostringstream line;
+  line << "scheme=" << scheme << " steps=" << diag.steps << " samples=" << file.rows()
+       << " cpu_seconds=" << format_sci(diag.cpu_seconds) << " output_seconds=" << format_sci(diag.output_seconds)
+       << " t_end=" << format_general(t_final, 10);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    line << ' ' << names[i] << "_end=" << format_sci(observer.current()[i]) << ' ' << names[i]
+         << "_max=" << format_sci(observer.run_max()[i]);
+  std::cout << line.str() << '\n';
+  std::cout << "wrote " << file.path() << " and " << file.csv_path() << '\n';
+}
+
 int long_time(const LongTimeOptions& o) {
   const system::Scene scene = read_scene(o.scene);
   const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
@@ -237,11 +242,8 @@ int long_time(const LongTimeOptions& o) {
     throw RunError(why + "; scene " + scene.file + " is not one");
   const system::SceneInvariants invariants(scene, model);
 
-  std::vector<std::string> names;
-  if (invariants.energy_conserved()) names.push_back("energy_error");
-  for (const auto& n : invariants.scalar_names()) names.push_back(n + "_error");
-  if (invariants.free_body()) names.push_back("angular_momentum_space_error");
-  names.push_back("orthogonality_error");
+  std::vector<std::string> names;  // the error columns, e.g. "energy_error"
+  for (const auto& n : invariants.error_names()) names.push_back(n + "_error");
   std::vector<Column> columns = {{"step", ColumnType::integer, ""}, {"time", ColumnType::real, "s"}};
   for (const auto& n : names) columns.push_back({n, ColumnType::real, ""});
   for (const auto& n : names) columns.push_back({n + "_window_max", ColumnType::real, ""});
@@ -303,17 +305,7 @@ int long_time(const LongTimeOptions& o) {
     return exit_run_failed;
   }
   file.finish(diag_attributes);
-  if (!o.quiet) {
-    std::ostringstream line;
-    line << "scheme=" << scheme->name << " steps=" << stats.steps << " samples=" << file.rows()
-         << " cpu_seconds=" << format_sci(diag.cpu_seconds) << " output_seconds=" << format_sci(diag.output_seconds)
-         << " t_end=" << format_general(stats.t_final, 10);
-    for (std::size_t i = 0; i < names.size(); ++i)
-      line << ' ' << names[i] << "_end=" << format_sci(observer.current()[i]) << ' ' << names[i]
-           << "_max=" << format_sci(observer.run_max()[i]);
-    std::cout << line.str() << '\n';
-    std::cout << "wrote " << file.path() << " and " << file.csv_path() << '\n';
-  }
+  if (!o.quiet) print_summary(scheme->name, diag, stats.t_final, names, observer, file);
   return exit_ok;
 }
 

@@ -29,11 +29,11 @@ void TrajectoryObserver::observe(std::int64_t step, double t, const system::Stat
   if (!have_initial_) {
     initial_ = latest_;
     have_initial_ = true;
-    errors_max_.assign(invariant_error_names().size(), 0.0);
   }
-  const std::vector<double> errors = invariant_errors(latest_);
-  for (std::size_t k = 0; k < errors.size(); ++k)
-    if (!(errors[k] <= errors_max_[k])) errors_max_[k] = errors[k];  // NaN propagates
+  invariants_.errors(initial_, latest_, errors_);
+  errors_max_.resize(errors_.size(), 0.0);
+  for (std::size_t k = 0; k < errors_.size(); ++k)
+    if (!(errors_[k] <= errors_max_[k])) errors_max_[k] = errors_[k];  // NaN propagates
   if (!writer_) return;
   TrajectorySample sample;
   sample.step = step;
@@ -50,36 +50,12 @@ void TrajectoryObserver::observe(std::int64_t step, double t, const system::Stat
   writer_->append(sample);
 }
 
-std::vector<std::string> TrajectoryObserver::invariant_error_names() const {
-  std::vector<std::string> names;
-  if (invariants_.energy_conserved()) names.push_back("energy_error");
-  for (const auto& n : invariants_.scalar_names()) names.push_back(n + "_error");
-  if (invariants_.free_body()) names.push_back("angular_momentum_space_error");
-  names.push_back("orthogonality_error");
-  return names;
-}
-
-std::vector<double> TrajectoryObserver::invariant_errors(const system::InvariantValues& v) const {
-  std::vector<double> e;
-  if (invariants_.energy_conserved()) e.push_back(system::relative_error(v.energy, initial_.energy));
-  for (std::size_t k = 0; k < invariants_.scalar_names().size(); ++k)
-    e.push_back(system::relative_error(v.scalars[k], initial_.scalars[k]));
-  if (invariants_.free_body()) {
-    const double m0 = initial_.space_momentum.norm();
-    const double d = (v.space_momentum - initial_.space_momentum).norm();
-    e.push_back(m0 > 0.0 ? d / m0 : d);
-  }
-  e.push_back(v.orthogonality_error);
-  return e;
-}
-
 std::string TrajectoryObserver::invariant_error_summary() const {
-  const std::vector<std::string> names = invariant_error_names();
-  const std::vector<double> end = invariant_errors(latest_);
+  const std::vector<std::string> names = invariants_.error_names();
   std::string out;
-  for (std::size_t k = 0; k < names.size(); ++k) {
+  for (std::size_t k = 0; k < names.size() && k < errors_.size(); ++k) {
     if (k) out += ' ';
-    out += names[k] + "_end=" + format_sci(end[k]) + ' ' + names[k] + "_max=" + format_sci(errors_max_[k]);
+    out += names[k] + "_error_end=" + format_sci(errors_[k]) + ' ' + names[k] + "_error_max=" + format_sci(errors_max_[k]);
   }
   return out;
 }

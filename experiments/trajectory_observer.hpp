@@ -35,14 +35,9 @@ class TrajectoryObserver final : public integrators::Observer {
   const system::InvariantValues& latest() const { return latest_; }
   const system::State& latest_state() const { return latest_state_; }
   double latest_time() const { return latest_time_; }
-  /// The invariant errors of the scene, each relative to its initial value
-  /// (orthogonality absolute), in the order of invariant_error_names().
-  std::vector<std::string> invariant_error_names() const;
-  std::vector<double> invariant_errors(const system::InvariantValues& v) const;
-  /// The largest error of each invariant over the observed samples.
-  const std::vector<double>& invariant_errors_max() const { return errors_max_; }
-  /// "name_end=value name_max=value" pairs: the error at the latest sample
-  /// and the largest over the observed samples.
+  /// "name_error_end=value name_error_max=value" pairs (SceneInvariants::
+  /// error_names()): the error at the latest sample and the largest over the
+  /// observed samples.
   std::string invariant_error_summary() const;
 
  private:
@@ -52,7 +47,7 @@ class TrajectoryObserver final : public integrators::Observer {
   system::InvariantValues initial_{}, latest_{};
   system::State latest_state_{};
   double latest_time_ = 0.0;
-  std::vector<double> errors_max_;
+  std::vector<double> errors_, errors_max_;  // at the latest sample; largest so far
   std::array<double, 3> euler_zxz_{};  // the last angles a chart-based scheme reported
 };
 

@@ -17,16 +17,9 @@ namespace fs = std::filesystem;
 namespace {
 const std::string scenes = LGI_SCENES_DIR;
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
-}
-
 /// The JSON object of one scheme in `lgi schemes --json` (one object a line).
 std::string json_entry(const std::string& json, const std::string& name) {
-  for (const auto& line : lines_of(json))
+  for (const auto& line : split_lines(json))
     if (line.find("{\"name\": \"" + name + "\"") != std::string::npos) return line;
   return {};
 }
@@ -67,7 +60,7 @@ TEST_CASE("lgi schemes states order 2 with torque for preprocessed DMV, and kind
   REQUIRE(table.status == 0);
   CHECK(table.out.find("order a/b: a on free bodies, b on scenes with torques") != std::string::npos);
   bool split_order_row = false;
-  for (const auto& line : lines_of(table.out)) {
+  for (const auto& line : split_lines(table.out)) {
     INFO(line);
     CHECK(line.size() <= 120);  // the compact view: no reference, no notes
     if (line.rfind("dmv-pre4 ", 0) == 0) split_order_row = line.find(" 4/2 ") != std::string::npos;
@@ -80,7 +73,7 @@ TEST_CASE("lgi schemes --scene and --family filter the listing", "[cli][schemes]
   const auto kova = run_lgi("schemes --scene " + scenes + "/kovalevskaya.toml");
   REQUIRE(kova.status == 0);
   std::string pre4, exact;
-  for (const auto& line : lines_of(kova.out)) {
+  for (const auto& line : split_lines(kova.out)) {
     if (line.rfind("dmv-pre4 ", 0) == 0) pre4 = line;
     if (line.rfind("exact ", 0) == 0) exact = line;
   }
@@ -92,7 +85,7 @@ TEST_CASE("lgi schemes --scene and --family filter the listing", "[cli][schemes]
   const auto comps = run_lgi("schemes --family composition --json");
   REQUIRE(comps.status == 0);
   int n = 0;
-  for (const auto& line : lines_of(comps.out))
+  for (const auto& line : split_lines(comps.out))
     if (line.find("\"name\"") != std::string::npos) {
       ++n;
       CHECK(line.find("\"kind\": \"composition\"") != std::string::npos);

@@ -18,13 +18,6 @@ namespace {
 
 const std::string scenes = LGI_SCENES_DIR;
 
-std::vector<std::string> split_lines(const std::string& s) {
-  std::vector<std::string> lines;
-  std::istringstream in(s);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 /// Observed order between consecutive steps halved.
 double slope(double e_coarse, double e_fine, double ratio) { return std::log(e_coarse / e_fine) / std::log(ratio); }
 

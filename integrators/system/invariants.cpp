@@ -70,4 +70,26 @@ InvariantValues SceneInvariants::evaluate(const State& s) const {
   return v;
 }
 
+std::vector<std::string> SceneInvariants::error_names() const {
+  std::vector<std::string> names;
+  if (energy_conserved_) names.push_back("energy");
+  names.insert(names.end(), names_.begin(), names_.end());
+  if (free_body_) names.push_back("angular_momentum_space");
+  names.push_back("orthogonality");
+  return names;
+}
+
+void SceneInvariants::errors(const InvariantValues& initial, const InvariantValues& v, std::vector<double>& out) const {
+  out.resize((energy_conserved_ ? 1 : 0) + names_.size() + (free_body_ ? 1 : 0) + 1);
+  std::size_t c = 0;
+  if (energy_conserved_) out[c++] = relative_error(v.energy, initial.energy);
+  for (std::size_t k = 0; k < names_.size(); ++k) out[c++] = relative_error(v.scalars[k], initial.scalars[k]);
+  if (free_body_) {
+    const double m0 = initial.space_momentum.norm();
+    const double d = (v.space_momentum - initial.space_momentum).norm();
+    out[c++] = m0 > 0.0 ? d / m0 : d;
+  }
+  out[c] = v.orthogonality_error;
+}
+
 }  // namespace lgi::system

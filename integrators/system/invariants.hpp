@@ -40,6 +40,16 @@ class SceneInvariants {
   /// Every invariant's name, energy and the spatial momentum included, for listings.
   std::vector<std::string> all_names() const;
 
+  /// The quantities whose errors a run reports, in a fixed order: "energy"
+  /// (where conserved), each scalar invariant, "angular_momentum_space"
+  /// (free body), "orthogonality". Output layouts prefix or suffix them.
+  std::vector<std::string> error_names() const;
+  /// Their errors at `v` against `initial`, in the order of error_names():
+  /// relative (relative_error; the spatial momentum as |m − m0|/|m0|), the
+  /// orthogonality error as it is. Writes into `out` (sized here; no
+  /// allocation once it has the size).
+  void errors(const InvariantValues& initial, const InvariantValues& v, std::vector<double>& out) const;
+
   InvariantValues evaluate(const State& s) const;
   double energy(const State& s) const;
   Vec3 omega(const State& s) const;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace lgi::testing {
 
@@ -42,6 +43,14 @@ inline CommandResult run_lgi(const std::string& args, const std::string& workdir
   r.out = read_text(base + ".out");
   r.err = read_text(base + ".err");
   return r;
+}
+
+/// The lines of a command's output or of a text file, without their newlines.
+inline std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> lines;
+  std::istringstream in(s);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
 }
 
 inline int line_count(const std::string& s) {
