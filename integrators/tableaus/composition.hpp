@@ -2,12 +2,14 @@
 // Coefficients γ_1..γ_s of symmetric compositions Ψ_h = Φ_{γ_s h} ∘ ⋯ ∘ Φ_{γ_1 h}
 // of a symmetric method Φ of order 2 (Hairer, Lubich & Wanner, Geometric
 // Numerical Integration, 2nd ed. (2006), §V.3.1–3.2). Checked at compile
-// time: Σγ = 1 and γ_{s+1−i} = γ_i. Values to 20 digits as in HLW §V.3.2
+// time: symmetry γ_{s+1−i} = γ_i and the order conditions up to order 6
+// (plus a necessary one of order 8). Values to 20 digits as in HLW §V.3.2
 // and Hairer's gni_comp.f, which agree with Kahan & Li, Math. Comp. 66
 // (1997) 1089–1099, Tables 3–4.
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
 
 #include "integrators/tableaus/explicit_tableau.hpp"
 
@@ -29,6 +31,72 @@ constexpr bool composition_consistent(const CompositionCoefficients<S>& c, doubl
   if (abs_value(sum - 1.0) > tolerance) return false;
   for (std::size_t i = 0; i < S; ++i)
     if (c.gamma[i] != c.gamma[S - 1 - i]) return false;
+  return true;
+}
+
+// Order conditions of a symmetric composition of a symmetric order-2 method
+// Φ_h = exp(h E1 + h³ E3 + h⁵ E5 + …) (HLW §V.3.2; McLachlan, SIAM J. Sci.
+// Comput. 16 (1995) 151–168). By the BCH formula, with Σγ_i = 1:
+//   order 4:  Σ γ_i³ = 0                       (E3 term)
+//   order 6:  Σ γ_i⁵ = 0                       (E5 term)
+//             Σ γ_i³ τ_i² = 0                  ([E1,[E1,E3]] term, given the others)
+//   order 8:  Σ γ_i⁷ = 0                       (E7 term; necessary, not sufficient)
+// where τ_i = γ_1 + … + γ_{i−1} + γ_i/2 − 1/2 is the midpoint of substep i
+// relative to that of the step; even powers of h are absent by symmetry.
+// Each sum Σ v_i is compared with tolerance · Σ |v_i|.
+
+/// Default relative tolerance for the 20-digit coefficients rounded to double.
+inline constexpr double composition_tolerance = 1e-14;
+
+namespace detail {
+constexpr double positive_power(double x, int k) {
+  double p = x;
+  for (int i = 1; i < k; ++i) p *= x;
+  return p;
+}
+}  // namespace detail
+
+/// Σ γ_i^k = target, relative to Σ |γ_i|^k.
+template <std::size_t S>
+constexpr bool power_sum_is(const std::array<double, S>& gamma, int k, double target,
+                            double tolerance = composition_tolerance) {
+  double sum = 0.0, scale = 0.0;
+  for (double g : gamma) {
+    const double p = detail::positive_power(g, k);
+    sum += p;
+    scale += abs_value(p);
+  }
+  return abs_value(sum - target) <= tolerance * (scale > abs_value(target) ? scale : abs_value(target));
+}
+
+/// Σ γ_i³ τ_i² = 0, relative to Σ |γ_i³| τ_i².
+template <std::size_t S>
+constexpr bool bracket_condition_order6(const std::array<double, S>& gamma,
+                                        double tolerance = composition_tolerance) {
+  double sum = 0.0, scale = 0.0, before = 0.0;
+  for (double g : gamma) {
+    const double tau = before + 0.5 * g - 0.5;
+    sum += g * g * g * tau * tau;
+    scale += abs_value(g * g * g) * tau * tau;
+    before += g;
+  }
+  return abs_value(sum) <= tolerance * scale;
+}
+
+/// Symmetry and the conditions above up to `order` ≤ 8 (a symmetric method
+/// has even order, so order 3 asks for the conditions of order 4, etc.).
+template <std::size_t S>
+constexpr bool composition_satisfies_order_conditions(const CompositionCoefficients<S>& c, int order,
+                                                      double tolerance = composition_tolerance) {
+  if (order < 1 || order > 8)
+    throw std::invalid_argument("composition order conditions are checked up to order 8 only");
+  for (std::size_t i = 0; i < S; ++i)
+    if (c.gamma[i] != c.gamma[S - 1 - i]) return false;
+  if (!power_sum_is(c.gamma, 1, 1.0, tolerance)) return false;
+  if (order >= 3 && !power_sum_is(c.gamma, 3, 0.0, tolerance)) return false;
+  if (order >= 5 && !(power_sum_is(c.gamma, 5, 0.0, tolerance) && bracket_condition_order6(c.gamma, tolerance)))
+    return false;
+  if (order >= 7 && !power_sum_is(c.gamma, 7, 0.0, tolerance)) return false;
   return true;
 }
 
@@ -86,5 +154,18 @@ static_assert(composition_consistent(kahan_li8));
 // The middle coefficients implied by Σγ = 1 match the published ones.
 static_assert(abs_value(kahan_li6.gamma[4] - 0.79854399093482996340) < 1e-15);
 static_assert(abs_value(kahan_li8.gamma[8] + 0.60550853383003451170) < 1e-15);
+
+// Each composition has its stated order (order 8: the necessary conditions only).
+static_assert(composition_satisfies_order_conditions(yoshida4, yoshida4.order));
+static_assert(composition_satisfies_order_conditions(suzuki4, suzuki4.order));
+static_assert(composition_satisfies_order_conditions(kahan_li6, kahan_li6.order));
+static_assert(composition_satisfies_order_conditions(kahan_li8, kahan_li8.order));
+// The checks can fail: the order-4 methods have Σγ⁵ ≠ 0 (and violate the
+// bracket condition), and Kahan–Li 6 has Σγ⁷ ≠ 0.
+static_assert(!power_sum_is(yoshida4.gamma, 5, 0.0) && !power_sum_is(suzuki4.gamma, 5, 0.0));
+static_assert(!bracket_condition_order6(yoshida4.gamma) && !bracket_condition_order6(suzuki4.gamma));
+static_assert(!composition_satisfies_order_conditions(yoshida4, 6) &&
+              !composition_satisfies_order_conditions(suzuki4, 6) &&
+              !composition_satisfies_order_conditions(kahan_li6, 8));
 
 }  // namespace lgi::tableaus

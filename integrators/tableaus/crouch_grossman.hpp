@@ -39,4 +39,28 @@ static_assert(weights_sum_to_one(cg3) && rows_sum_to_nodes(cg3) && strictly_lowe
 static_assert(weights_sum_to_one(cg4a, 1e-15) && rows_sum_to_nodes(cg4a, 1e-15) && strictly_lower(cg4a) &&
               second_order_condition(cg4a, 1e-15));
 
+/// The extra order-3 condition of Crouch–Grossman methods (Owren &
+/// Marthinsen, BIT 39 (1999)): Σ_i b_i² c_i + 2 Σ_{i<j} b_i c_i b_j = 1/3,
+/// with the relative tolerance of weights_satisfy_order_conditions.
+template <class T>
+constexpr bool crouch_grossman_third_order_condition(const T& t, double tolerance = order_condition_tolerance) {
+  double sum = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < T::stages; ++i) {
+    sum += t.b[i] * t.b[i] * t.c[i];
+    scale += abs_value(t.b[i] * t.b[i] * t.c[i]);
+    for (std::size_t j = i + 1; j < T::stages; ++j) {
+      sum += 2.0 * t.b[i] * t.c[i] * t.b[j];
+      scale += abs_value(2.0 * t.b[i] * t.c[i] * t.b[j]);
+    }
+  }
+  return detail::matches(sum, scale, 1.0 / 3.0, tolerance);
+}
+
+// The classical conditions are necessary for CG (it is the classical method
+// on a commutative group): both hold to their stated order, and CG3 is not
+// classically of order 4. The further order-4 CG conditions are not checked.
+static_assert(classical_order(cg3) == capped_order(cg3.order));
+static_assert(classical_order(cg4a) == capped_order(cg4a.order));
+static_assert(crouch_grossman_third_order_condition(cg3) && crouch_grossman_third_order_condition(cg4a));
+
 }  // namespace lgi::tableaus

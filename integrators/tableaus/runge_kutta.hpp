@@ -56,6 +56,18 @@ static_assert(consistent_explicit(heun));
 static_assert(consistent_explicit(kutta3));
 static_assert(consistent_explicit(classical_rk4));
 static_assert(consistent_explicit(dormand_prince54));
+
+// Classical order conditions (Butcher trees up to four vertices), against
+// the stated order: holds up to min(order, 4) and, below 4, fails at
+// order + 1 (Euler is not order 2, Heun not 3, Kutta not 4).
+static_assert(classical_order(euler) == capped_order(euler.order));
+static_assert(classical_order(heun) == capped_order(heun.order));
+static_assert(classical_order(kutta3) == capped_order(kutta3.order));
+static_assert(classical_order(classical_rk4) == capped_order(classical_rk4.order));
+static_assert(classical_order(dormand_prince54) == capped_order(dormand_prince54.order));
+static_assert(classical_order_of_weights(dormand_prince54, dormand_prince54.b_hat) ==
+              capped_order(dormand_prince54.embedded_order));
+static_assert(satisfies_order_conditions(heun, heun.order) && !satisfies_order_conditions(heun, heun.order + 1));
 static_assert([] {
   double s = 0.0;
   for (double x : dormand_prince54.b_hat) s += x;
