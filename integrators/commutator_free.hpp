@@ -14,6 +14,8 @@ namespace lgi::integrators {
 
 class Cf4 {
  public:
+  static constexpr SchemeFacts facts{
+      .order = 4, .reference = "Celledoni, Marthinsen & Owren, Future Gener. Comput. Syst. 19 (2003)"};
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
     const double half = 0.5 * h;

@@ -36,6 +36,15 @@ class Composition {
  public:
   static constexpr auto& coefficients = Coefficients;
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Coefficients)>::stages;
+  // The coefficients raise a symmetric order-2 base to their order; a base
+  // that drops to order 2 with torques stays at 2 there.
+  static_assert(Base::facts.order == 2 && Base::facts.properties.symmetric,
+                "compositions raise the order of a symmetric scheme of order 2");
+  static constexpr SchemeFacts facts{.order = Coefficients.order,
+                                     .order_with_torque = Base::facts.order_with_torque ? 2 : 0,
+                                     .properties = Base::facts.properties,
+                                     .support = Base::facts.support,
+                                     .reference = Coefficients.citation};
 
   template <class Model>
   void start(const Model& model, const State& initial, double t0) {

@@ -21,6 +21,7 @@ template <const auto& Tableau>
 class CrouchGrossman {
  public:
   static constexpr auto& tableau = Tableau;
+  static constexpr SchemeFacts facts{.order = Tableau.order, .reference = Tableau.citation};
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Tableau)>::stages;
 
   template <class Model>

@@ -12,6 +12,13 @@ namespace lgi::integrators {
 
 class ExactFreeFlow {
  public:
+  static constexpr SchemeFacts facts{
+      .order = 0,
+      .properties = {.symmetric = true, .conserves_energy = true, .conserves_momentum_norm = true,
+                     .conserves_spatial_momentum = true},
+      .support = SceneSupport::free_body_only,
+      .reference = "Jacobi elliptic functions for Pi; elliptic integral of the third kind for R (Celledoni, Fasso, "
+                   "Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008))"};
   void start(const system::FreeBody& model, const State& initial, double t0) {
     flow_.emplace(model.inertia, initial);
     t0_ = t0;

@@ -157,6 +157,16 @@ class ImplicitRkmk {
   using TableauType = std::remove_cvref_t<decltype(Tableau)>;
   static constexpr auto& tableau = Tableau;
   static constexpr std::size_t stages = TableauType::stages;
+  // A symmetric (Gauss) tableau conserves the quadratic invariant |Pi|^2 of
+  // the free body's Euler equations (HLW §IV.2).
+  static constexpr SchemeFacts facts{
+      .order = Tableau.order,
+      .properties = {.symmetric = Tableau.symmetric, .conserves_momentum_norm = Tableau.symmetric, .implicit = true},
+      .reference = Centred ? "Munthe-Kaas, Appl. Numer. Math. 29 (1999) 115-127; Iserles et al., Acta Numerica 9 "
+                             "(2000) 5.3; chart centred at the step midpoint (Zanna, Engo & Munthe-Kaas, BIT 41 "
+                             "(2001) 395-421)"
+                           : munthe_kaas_reference,
+      .tableau = Tableau.citation};
   static constexpr int n = 6 * static_cast<int>(stages);
   using VecN = Eigen::Matrix<double, n, 1>;
   using MatN = Eigen::Matrix<double, n, n>;

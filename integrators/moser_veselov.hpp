@@ -79,7 +79,6 @@
 #include <numbers>
 
 #include "integrators/scheme_interface.hpp"
-#include "integrators/system/torque_terms.hpp"
 
 namespace lgi::integrators {
 
@@ -87,26 +86,11 @@ namespace moser_veselov {
 
 inline constexpr int max_newton_iterations = 50;
 
-/// Whether the model has a potential torque (gravity or a spring); the drive
-/// and the spring's damping are not potential forces and are not included.
+/// Whether the model has any torque; its potential part M(R) is
+/// model.potential_torque(R), the sum of the terms' potential torques (a drive
+/// and a damper contribute none: schemes using M run on conservative scenes).
 template <class Model>
-inline constexpr bool has_potential =
-    Model::template has_term<system::GravityTerm> || Model::template has_term<system::SpringTerm>;
-
-/// M(R): the body torque of the potential terms only.
-template <class Model>
-Vec3 potential_torque(const Model& model, const Mat3& R) {
-  Vec3 M = Vec3::Zero();
-  if constexpr (Model::template has_term<system::GravityTerm>) {
-    const auto& gravity = model.template term<system::GravityTerm>();
-    M += system::GravityTerm::vertical_in_body(R).cross(gravity.mg_chi);  // m g Γ × χ
-  }
-  if constexpr (Model::template has_term<system::SpringTerm>) {
-    const auto& spring = model.template term<system::SpringTerm>();
-    M -= spring.stiffness * spring.deflection(R);  // −k log(R_restᵀ R)
-  }
-  return M;
-}
+inline constexpr bool has_potential = Model::has_torque;
 
 /// Newton solve of φ(f) = hg + hg × f + (hg·f) f − 2 J f = 0 (header
 /// comment). On return f holds the last iterate; the status has the Newton
@@ -266,10 +250,17 @@ StepStatus strang_step(Scheme& scheme, const Model& model, State& s, double t, d
 /// bodies): kick(½h) ∘ DMV(h) ∘ kick(½h).
 class Lgvi {
  public:
+  static constexpr SchemeFacts facts{
+      .order = 2,
+      .properties = {.symplectic = true, .symmetric = true, .conserves_momentum_norm = true,
+                     .conserves_spatial_momentum = true, .conserves_vertical_momentum = true, .implicit = true},
+      .support = SceneSupport::conservative_only,
+      .reference = "Lee, Leok & McClamroch, IEEE CCA (2005) and CMAME 196 (2007); Moser & Veselov, Commun. Math. "
+                   "Phys. 139 (1991)"};
   /// Π ← Π + τ M(R), the potential torque only (nothing for a free body).
   template <class Model>
   static void kick(const Model& model, State& s, double /*t*/, double tau) {
-    if constexpr (moser_veselov::has_potential<Model>) s.Pi += tau * moser_veselov::potential_torque(model, s.R);
+    if constexpr (moser_veselov::has_potential<Model>) s.Pi += tau * model.potential_torque(s.R);
   }
   /// The free DMV step of length h (no kicks).
   template <class Model>
@@ -296,7 +287,16 @@ class Lgvi {
   }
 };
 
-using Dmv = Lgvi;
+/// `dmv`: the same step, kept to free bodies, where it also conserves the energy.
+class Dmv : public Lgvi {
+ public:
+  static constexpr SchemeFacts facts{
+      .order = 2,
+      .properties = {.symplectic = true, .symmetric = true, .conserves_energy = true,
+                     .conserves_momentum_norm = true, .conserves_spatial_momentum = true, .implicit = true},
+      .support = SceneSupport::free_body_only,
+      .reference = Lgvi::facts.reference};
+};
 
 /// `dmv-pre4` … `dmv-pre10`: Hairer–Vilmart Algorithm 2.2, with a potential
 /// in Strang splitting kick(½h) ∘ preDMV(h) ∘ kick(½h) (order 2 then).
@@ -304,6 +304,15 @@ template <int Order>
 class DmvPreprocessed {
  public:
   static constexpr int order = Order;
+  // Not symplectic for order > 2 (Hairer-Vilmart Table 2, Sect. 4.3): a Poisson integrator for Pi.
+  static constexpr SchemeFacts facts{
+      .order = Order,
+      .order_with_torque = 2,
+      .properties = {.symmetric = true, .conserves_momentum_norm = true, .conserves_spatial_momentum = true,
+                     .conserves_vertical_momentum = true, .implicit = true},
+      .support = SceneSupport::conservative_only,
+      .reference = "Hairer & Vilmart, J. Phys. A 39 (2006) 13225-13235, Algorithm 2.2; modified inertia: Table 1 "
+                   "and the authors' DMV10.f"};
 
   template <class Model>
   void start(const Model& model, const State& /*initial*/, double /*t0*/) {

@@ -29,30 +29,25 @@ const SchemeInfo* find_scheme(std::string_view name) {
   return nullptr;
 }
 
-std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model) {
-  switch (scheme.support) {
+std::string support_refusal(SceneSupport support, const system::AnyModel& model) {
+  switch (support) {
     case SceneSupport::any:
       return {};
     case SceneSupport::free_body_only:
       if (!std::holds_alternative<system::FreeBody>(model))
-        return "scheme '" + scheme.name + "' needs a free body (no [gravity], [spring] or [drive])";
+        return "needs a free body (no torque term: no [gravity], [spring], [drive] or [magnetic])";
       return {};
-    case SceneSupport::conservative_only: {
-      const bool conservative = std::visit(
-          [](const auto& m) {
-            using M = std::decay_t<decltype(m)>;
-            if constexpr (M::time_dependent) return false;
-            else if constexpr (M::template has_term<system::SpringTerm>)
-              return m.template term<system::SpringTerm>().damping == 0.0;
-            else return true;
-          },
-          model);
-      if (!conservative)
-        return "scheme '" + scheme.name + "' needs torques from a potential (no damping, no [drive])";
+    case SceneSupport::conservative_only:
+      if (!std::visit([](const auto& m) { return m.is_conservative(); }, model))
+        return "needs torques from a potential (no damping, no [drive])";
       return {};
-    }
   }
   return {};
+}
+
+std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model) {
+  const std::string why = support_refusal(scheme.support, model);
+  return why.empty() ? why : "scheme '" + scheme.name + "' " + why;
 }
 
 }  // namespace lgi::integrators

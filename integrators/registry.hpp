@@ -7,30 +7,11 @@
 #include <string_view>
 #include <vector>
 
+#include "integrators/scheme_facts.hpp"
 #include "integrators/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::integrators {
-
-struct SchemeProperties {
-  bool symplectic = false;
-  bool symmetric = false;                    // Φ₋ₕ ∘ Φₕ = id (tested to round-off)
-  bool conserves_energy = false;             // exactly, to round-off
-  bool conserves_momentum_norm = false;      // |Π| for a free body
-  bool conserves_spatial_momentum = false;   // m = RΠ for a free body
-  bool conserves_vertical_momentum = false;  // Π·Γ for a heavy top
-  bool implicit = false;
-  bool adaptive = false;
-  bool baseline = false;                     // a Boost.Odeint baseline in coordinates, not a Lie-group scheme
-  bool euler_angle_chart = false;            // integrates Euler ZXZ angles: /particles/body/euler_zxz is written
-};
-
-/// Which scenes a scheme can run on; others are refused with exit 1.
-enum class SceneSupport {
-  any,
-  free_body_only,     // needs the free body (the exact flow, DMV without splitting)
-  conservative_only,  // torques from a potential only: no damping, no drive
-};
 
 /// Runs a scheme on a scene's model from the given state. Dispatches on the
 /// model once; the step loop inside is compiled for that model.
@@ -63,5 +44,8 @@ void add_baseline_schemes(std::vector<SchemeInfo>& registry);           // COORD
 const SchemeInfo* find_scheme(std::string_view name);
 /// Empty if the scheme can run on the model, else the reason it cannot.
 std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model);
+/// Empty if a scheme with this support can run on the model, else what it
+/// needs ("needs a free body (...)").
+std::string support_refusal(SceneSupport support, const system::AnyModel& model);
 
 }  // namespace lgi::integrators

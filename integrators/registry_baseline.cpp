@@ -91,20 +91,16 @@ std::string notes(Coordinates c, Stepper s) {
 void add_baseline_schemes(std::vector<SchemeInfo>& r) {
   for (Coordinates c : baselines::all_coordinates) {
     for (Stepper s : baselines::all_steppers) {
-      SchemeProperties p;
-      p.baseline = true;
-      p.adaptive = baselines::stepper_is_adaptive(s);
-      p.euler_angle_chart = c == Coordinates::euler_zxz;
-      SchemeInfo info;
-      info.name = baselines::baseline_name(c, s);
-      info.order = baselines::stepper_order(s);
-      info.family = "baseline (Boost.Odeint)";
-      info.properties = p;
-      info.support = SceneSupport::any;
-      info.reference = coordinates_reference(c) + "; " + stepper_reference(s);
-      info.notes = notes(c, s);
-      info.run = run_function(c, s);
-      r.push_back(std::move(info));
+      r.push_back({.name = baselines::baseline_name(c, s),
+                   .order = baselines::stepper_order(s),
+                   .family = "baseline (Boost.Odeint)",
+                   .properties = {.adaptive = baselines::stepper_is_adaptive(s),
+                                  .baseline = true,
+                                  .euler_angle_chart = c == Coordinates::euler_zxz},
+                   .support = SceneSupport::any,
+                   .reference = coordinates_reference(c) + "; " + stepper_reference(s),
+                   .notes = notes(c, s),
+                   .run = run_function(c, s)});
     }
   }
 }

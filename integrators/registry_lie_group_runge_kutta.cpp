@@ -1,5 +1,6 @@
 // Registry lines for the exact flow and the explicit Lie-group Runge–Kutta
-// family (RKMK, Crouch–Grossman, commutator-free).
+// family (RKMK, Crouch–Grossman, commutator-free). Orders, properties and
+// references come from each scheme's facts.
 #include "integrators/commutator_free.hpp"
 #include "integrators/crouch_grossman.hpp"
 #include "integrators/exact_free_flow.hpp"
@@ -10,37 +11,19 @@
 namespace lgi::integrators {
 
 void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& r) {
-  const std::string munthe_kaas =
-      "Munthe-Kaas, Appl. Numer. Math. 29 (1999) 115-127; Iserles et al., Acta Numerica 9 (2000) 5.3";
-  constexpr SchemeProperties explicit_lie_group{};
-  r.push_back({"exact", 0, "exact flow",
-               {.symmetric = true, .conserves_energy = true, .conserves_momentum_norm = true,
-                .conserves_spatial_momentum = true},
-               SceneSupport::free_body_only,
-               "Jacobi elliptic functions for Pi; elliptic integral of the third kind for R (Celledoni, Fasso, "
-               "Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008))",
-               "free bodies only; evaluated from the initial state at every output time",
-               &run_fixed_free_body<ExactFreeFlow>});
-  r.push_back({"lie-euler", 1, "RKMK", explicit_lie_group, SceneSupport::any,
-               munthe_kaas + "; tableau: explicit Euler", "", &run_fixed<LieEuler>});
-  r.push_back({"rkmk2", 2, "RKMK", explicit_lie_group, SceneSupport::any,
-               munthe_kaas + "; tableau: Heun (HNW I, Table 1.1)", "", &run_fixed<Rkmk2>});
-  r.push_back({"rkmk3", 3, "RKMK", explicit_lie_group, SceneSupport::any,
-               munthe_kaas + "; tableau: Kutta's third order (HNW I, Table 1.1)", "", &run_fixed<Rkmk3>});
-  r.push_back({"rkmk4", 4, "RKMK", explicit_lie_group, SceneSupport::any,
-               munthe_kaas + "; tableau: classical RK4 (HNW I, Table 1.2)", "", &run_fixed<Rkmk4>});
-  r.push_back({"rkmk-dp54", 5, "RKMK", {.adaptive = true}, SceneSupport::any,
-               munthe_kaas + "; tableau: Dormand & Prince, J. Comput. Appl. Math. 6 (1980)",
-               "adaptive (--tol); error estimated on the algebra and in Pi", &run_adaptive<RkmkDp54>});
-  r.push_back({"cg3", 3, "Crouch-Grossman", explicit_lie_group, SceneSupport::any,
-               "Crouch & Grossman, J. Nonlinear Sci. 3 (1993); Owren & Marthinsen, BIT 39 (1999)", "",
-               &run_fixed<Cg3>});
-  r.push_back({"cg4a", 4, "Crouch-Grossman", explicit_lie_group, SceneSupport::any,
-               "Jackiewicz, Marthinsen & Owren, Adv. Comput. Math. 13 (2000), App. A Ex. 1", "5 stages",
-               &run_fixed<Cg4a>});
-  r.push_back({"cf4", 4, "commutator-free", explicit_lie_group, SceneSupport::any,
-               "Celledoni, Marthinsen & Owren, Future Gener. Comput. Syst. 19 (2003)", "two exponentials per step",
-               &run_fixed<Cf4>});
+  add_scheme<ExactFreeFlow>(
+      r, {.name = "exact",
+          .family = "exact flow",
+          .notes = "free bodies only; evaluated from the initial state at every output time"});
+  add_scheme<LieEuler>(r, {.name = "lie-euler", .family = "RKMK"});
+  add_scheme<Rkmk2>(r, {.name = "rkmk2", .family = "RKMK"});
+  add_scheme<Rkmk3>(r, {.name = "rkmk3", .family = "RKMK"});
+  add_scheme<Rkmk4>(r, {.name = "rkmk4", .family = "RKMK"});
+  add_scheme<RkmkDp54>(
+      r, {.name = "rkmk-dp54", .family = "RKMK", .notes = "adaptive (--tol); error estimated on the algebra and in Pi"});
+  add_scheme<Cg3>(r, {.name = "cg3", .family = "Crouch-Grossman"});
+  add_scheme<Cg4a>(r, {.name = "cg4a", .family = "Crouch-Grossman", .notes = "5 stages"});
+  add_scheme<Cf4>(r, {.name = "cf4", .family = "commutator-free", .notes = "two exponentials per step"});
 }
 
 }  // namespace lgi::integrators

@@ -1,74 +1,91 @@
 #pragma once
-// Helpers for the registry_<family>.cpp files: the RunFunction of a scheme
-// type, dispatched once per run on the scene's model.
+// Registration from a scheme type's own facts (scheme_facts.hpp): a registry
+// line gives the name, the family and notes; order, properties, scene support
+// and references are read from Scheme::facts, and the run function is chosen
+// from them (fixed step or adaptive; the free body only where so stated).
+#include <string>
+#include <type_traits>
 #include <variant>
 
+#include "integrators/composition.hpp"
 #include "integrators/registry.hpp"
 
 namespace lgi::integrators {
 
-/// A fixed-step scheme, default-constructed per run, on any model.
-template <class Scheme>
-RunStats run_fixed(const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer) {
+/// What a registry line adds to a scheme's facts.
+struct SchemeEntry {
+  std::string name;
+  std::string family;
+  std::string notes{};
+  std::string base_scheme{};
+};
+
+/// Runs Scheme on the scene's model, dispatched once per run. A scene outside
+/// the scheme's support is refused here too: a caller that skipped
+/// unsupported_reason() gets a failed run with the reason, not a trajectory
+/// that silently ignores a drive or a damper.
+template <SchemeWithFacts Scheme>
+RunStats run_scheme(const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer) {
+  constexpr SchemeFacts facts = Scheme::facts;
+  if (std::string why = support_refusal(facts.support, model); !why.empty()) {
+    RunStats refused;
+    refused.ok = false;
+    refused.status = "the scheme " + why;
+    return refused;
+  }
   return std::visit(
-      [&](const auto& m) {
-        Scheme scheme;
-        return integrate_fixed(scheme, m, state, cfg, observer);
+      [&](const auto& m) -> RunStats {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (facts.support == SceneSupport::free_body_only && !std::is_same_v<M, system::FreeBody>) {
+          return {};  // refused above; not instantiated for torques
+        } else if constexpr (facts.properties.adaptive) {
+          Scheme scheme(cfg.tol);
+          return integrate_adaptive(scheme, m, state, cfg, observer);
+        } else {
+          Scheme scheme;
+          return integrate_fixed(scheme, m, state, cfg, observer);
+        }
       },
       model);
 }
 
-/// An adaptive scheme, constructed from the tolerance, on any model.
-template <class Scheme>
-RunStats run_adaptive(const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer) {
-  return std::visit(
-      [&](const auto& m) {
-        Scheme scheme(cfg.tol);
-        return integrate_adaptive(scheme, m, state, cfg, observer);
-      },
-      model);
+/// The registry line of Scheme.
+template <SchemeWithFacts Scheme>
+void add_scheme(std::vector<SchemeInfo>& registry, const SchemeEntry& entry) {
+  constexpr SchemeFacts facts = Scheme::facts;
+  std::string reference = facts.reference;
+  if (*facts.tableau) reference += std::string(reference.empty() ? "" : "; ") + "tableau: " + facts.tableau;
+  registry.push_back({.name = entry.name,
+                      .order = facts.order,
+                      .family = entry.family,
+                      .properties = facts.properties,
+                      .support = facts.support,
+                      .reference = reference,
+                      .notes = entry.notes,
+                      .run = &run_scheme<Scheme>,
+                      .order_with_torque = facts.order_with_torque,
+                      .base_scheme = entry.base_scheme});
 }
-
-/// A fixed-step scheme that exists only for the free body (the registry's
-/// SceneSupport::free_body_only keeps other models away).
-template <class Scheme>
-RunStats run_fixed_free_body(const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer) {
-  Scheme scheme;
-  return integrate_fixed(scheme, std::get<system::FreeBody>(model), state, cfg, observer);
-}
-
-}  // namespace lgi::integrators
-
-#include "integrators/composition.hpp"
-
-namespace lgi::integrators {
 
 /// Registers BASE@yoshida4, @suzuki4, @kahan-li6 and @kahan-li8 for a
-/// symmetric scheme of order 2 (the coefficients raise order 2 to 4, 6, 8;
-/// they do not do so for other orders, so other bases are refused here).
-template <class Base>
+/// symmetric scheme of order 2 (Composition checks that at compile time).
+template <SchemeWithFacts Base>
 void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_entry) {
   // A copy: base_entry is usually registry.back(), which push_back may move.
   const SchemeInfo base = base_entry;
-  if (!base.properties.symmetric || base.order != 2) return;
-  auto add = [&](const auto& coefficients, RunFunction run) {
-    SchemeInfo info = base;
-    info.name = base.name + "@" + coefficients.name;
-    info.order = coefficients.order;
-    // A composition of a method that drops to order 2 with torques stays at 2 there.
-    info.order_with_torque = base.order_with_torque ? 2 : 0;
-    info.family = "composition of " + base.name;
-    info.base_scheme = base.name;
-    info.reference = std::string(coefficients.citation) + "; base: " + base.name;
-    info.notes = std::to_string(coefficients.stages) + " stages of " + base.name +
-                 (base.notes.empty() ? "" : "; " + base.notes);
-    info.run = run;
-    registry.push_back(info);
+  auto add = [&]<const auto& Coefficients>() {
+    add_scheme<Composition<Base, Coefficients>>(
+        registry, {.name = base.name + "@" + Coefficients.name,
+                   .family = "composition of " + base.name,
+                   .notes = std::to_string(Coefficients.stages) + " stages of " + base.name +
+                            (base.notes.empty() ? "" : "; " + base.notes),
+                   .base_scheme = base.name});
+    registry.back().reference += "; base: " + base.name;
   };
-  add(tableaus::yoshida4, &run_fixed<Composition<Base, tableaus::yoshida4>>);
-  add(tableaus::suzuki4, &run_fixed<Composition<Base, tableaus::suzuki4>>);
-  add(tableaus::kahan_li6, &run_fixed<Composition<Base, tableaus::kahan_li6>>);
-  add(tableaus::kahan_li8, &run_fixed<Composition<Base, tableaus::kahan_li8>>);
+  add.template operator()<tableaus::yoshida4>();
+  add.template operator()<tableaus::suzuki4>();
+  add.template operator()<tableaus::kahan_li6>();
+  add.template operator()<tableaus::kahan_li8>();
 }
 
 }  // namespace lgi::integrators

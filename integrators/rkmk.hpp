@@ -26,6 +26,7 @@ template <const auto& Tableau>
 class Rkmk {
  public:
   static constexpr auto& tableau = Tableau;
+  static constexpr SchemeFacts facts{.order = Tableau.order, .reference = munthe_kaas_reference, .tableau = Tableau.citation};
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Tableau)>::stages;
 
   template <class Model>

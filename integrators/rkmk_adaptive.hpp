@@ -25,6 +25,10 @@ namespace lgi::integrators {
 class RkmkDp54 {
  public:
   static constexpr auto& tableau = tableaus::dormand_prince54;
+  static constexpr SchemeFacts facts{.order = tableau.order,
+                                     .properties = {.adaptive = true},
+                                     .reference = munthe_kaas_reference,
+                                     .tableau = tableau.citation};
   static constexpr std::size_t stages = 7;
 
   explicit RkmkDp54(double tol = 1e-8) : tol_(tol) {}

@@ -12,6 +12,7 @@
 // renormalise the attitude.
 #include <cstdint>
 
+#include "integrators/scheme_facts.hpp"
 #include "integrators/system/rigid_body.hpp"
 
 namespace lgi::integrators {

@@ -90,42 +90,36 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <type_traits>
+#include <tuple>
 
 #include "integrators/scheme_interface.hpp"
 
 namespace lgi::integrators {
 
-namespace detail {
-template <class T>
-inline constexpr bool em_known_term = std::is_same_v<T, system::GravityTerm> ||
-                                      std::is_same_v<T, system::SpringTerm> ||
-                                      std::is_same_v<T, system::HarmonicDriveTerm>;
-template <class M>
-struct em_supported : std::false_type {};
-template <class... Ts>
-struct em_supported<system::RigidBody<Ts...>> : std::bool_constant<(em_known_term<Ts> && ... && true)> {};
-}  // namespace detail
-
 class SimoWong {
  public:
+  static constexpr SchemeFacts facts{
+      .order = 2,
+      .properties = {.symmetric = true, .conserves_energy = true, .conserves_momentum_norm = true,
+                     .conserves_spatial_momentum = true, .conserves_vertical_momentum = true, .implicit = true},
+      .reference = "Simo & Wong, Int. J. Numer. Methods Eng. 31 (1991) 19-52; Austin, Krishnaprasad & Wang, "
+                   "J. Comput. Phys. 107 (1993) 105-117; discrete gradient: Gonzalez, J. Nonlinear Sci. 6 (1996) "
+                   "449-467"};
   static constexpr int max_iterations = 25;
   /// Steps rotating by h|W| ≥ this are refused (converged = false); see the header.
   double max_step_rotation = std::numbers::pi;
 
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
-    static_assert(detail::em_supported<Model>::value,
-                  "simo-wong has discrete torques for gravity, springs (with dampers) and harmonic drives only");
+    static_assert(Model::discrete_gradient,
+                  "simo-wong needs a discrete torque from every torque term (DiscreteGradientTerm)");
     constexpr double eps = std::numeric_limits<double>::epsilon();
     const double t_mid = t + 0.5 * h;
 
-    Start start;
+    Start<Model> start;
     start.R = &s.R;
     start.Pi = s.Pi;
-    if constexpr (Model::template has_term<system::GravityTerm>) start.gamma = s.R.row(2).transpose();
-    if constexpr (Model::template has_term<system::SpringTerm>)
-      start.V = model.template term<system::SpringTerm>().potential(s.R);
+    start.terms = std::apply([&](const auto&... term) { return std::tuple{term.discrete_start(s.R)...}; }, model.terms);
 
     const Vec3 omega_n = model.omega(s.Pi);
     Vec3 W = model.omega(s.Pi + (0.5 * h) * model.momentum_rate(s.R, s.Pi, omega_n, t));
@@ -161,93 +155,62 @@ class SimoWong {
     if (!status.converged) return status;
 
     // (1) and (2'): R_{n+1} = R_n Q, Π_{n+1} = QᵀΠ_n + h (I + A)⁻¹ τ_d.
-    if constexpr (Model::template has_term<system::SpringTerm>) s.R = e.R1;  // R_n Q, already formed
-    else s.R = s.R * e.Q;
+    s.R = e.R1;  // R_n Q, already formed
     s.Pi = e.Q.transpose() * start.Pi + h * (e.Ainv * e.tau);
     return status;
   }
 
  private:
-  struct Start {
+  template <class Model>
+  struct Start;
+  template <class... Terms>
+  struct Start<system::RigidBody<Terms...>> {
     const Mat3* R = nullptr;
     Vec3 Pi = Vec3::Zero();
-    Vec3 gamma = Vec3::Zero();  // Γ_n (gravity)
-    double V = 0.0;             // V_spring(R_n)
+    std::tuple<typename Terms::DiscreteStart...> terms;  // what each term keeps from R_n
   };
   struct Eval {
     Mat3 Q;         // cay(hW)
     Mat3 Ainv;      // (I + ξ̂/2)⁻¹
-    Mat3 R1;        // R_n Q (formed only with a spring)
+    Mat3 R1;        // R_n Q
     Vec3 tau;       // τ_d
     Vec3 F;         // residual
     Mat3 jacobian;  // ∂F/∂W
     double scale = 0.0;  // Σ of the magnitudes of the terms of F
-    double noise = 0.0;  // rounding of h σ ξ (spring): h·(rounding of σ|ξ|²)/|ξ|
+    double noise = 0.0;  // rounding a term's τ_d carries (a spring's discrete gradient)
   };
 
   template <class Model>
-  static void evaluate(const Model& model, const Start& st, const Vec3& W, double h, double t_mid, Eval& e) {
+  static void evaluate(const Model& model, const Start<Model>& st, const Vec3& W, double h, double t_mid, Eval& e) {
     const Mat3& J = model.inertia.J;
-    const Vec3 xi = h * W;
-    const double theta2 = xi.squaredNorm();
-    const Mat3 X = lie::hat(xi);
+    system::CayleyStep step;
+    step.R = st.R;
+    step.xi = h * W;
+    step.W = W;
+    step.h = h;
+    step.t_mid = t_mid;
+    step.theta2 = step.xi.squaredNorm();
+    const Mat3 X = lie::hat(step.xi);
     const Mat3 X2 = X * X;
-    e.Q = Mat3::Identity() + (4.0 / (4.0 + theta2)) * (X + 0.5 * X2);
-    e.Ainv = (Mat3::Identity() - 0.5 * X + 0.25 * (xi * xi.transpose())) / (1.0 + 0.25 * theta2);
+    e.Q = Mat3::Identity() + (4.0 / (4.0 + step.theta2)) * (X + 0.5 * X2);
+    e.Ainv = (Mat3::Identity() - 0.5 * X + 0.25 * (step.xi * step.xi.transpose())) / (1.0 + 0.25 * step.theta2);
+    e.R1 = *st.R * e.Q;
+    step.Ainv = e.Ainv;
+    step.R1 = e.R1;
     const Vec3 pi_mid = J * W;
     e.F = 2.0 * (pi_mid - st.Pi) - h * pi_mid.cross(W);
-    e.jacobian = 2.0 * J + h * (lie::hat(W) * J - lie::hat(pi_mid));
-    e.tau.setZero();
-    double tau_mag = 0.0;  // Σ |contributions to τ_d| (they may cancel in τ_d)
-    e.noise = 0.0;
-    if constexpr (Model::template has_term<system::GravityTerm>) {
-      const Vec3& c = model.template term<system::GravityTerm>().mg_chi;
-      const Vec3 gamma_mid = e.Ainv * st.gamma;
-      e.tau += gamma_mid.cross(c);
-      tau_mag += gamma_mid.norm() * c.norm();
-      e.jacobian += (0.5 * h * h) * (lie::hat(c) * e.Ainv * lie::hat(gamma_mid));
-    }
-    if constexpr (Model::template has_term<system::SpringTerm>) {
-      const auto& spring = model.template term<system::SpringTerm>();
-      const double k = spring.stiffness;
-      e.R1 = *st.R * e.Q;
-      const Vec3 delta1 = spring.deflection(e.R1);
-      const double V1 = 0.5 * k * delta1.squaredNorm();  // = spring.potential(R1), bit for bit
-      const double r = std::sqrt(1.0 + 0.25 * theta2);
-      const Vec3 eta = xi / (1.0 + r);
-      const Vec3 delta_m = spring.deflection(Mat3(*st.R * lie::cay(eta)));
-      const double power = k * delta_m.dot(xi);  // −τ_m·ξ
-      const double num = -(V1 - st.V) + power;
-      const double noise = 16.0 * std::numeric_limits<double>::epsilon() * (st.V + V1 + std::abs(power));
-      const double sigma = theta2 > 0.0 && std::abs(num) > noise ? num / theta2 : 0.0;
-      e.tau += -k * delta_m + sigma * xi;
-      tau_mag += k * delta_m.norm() + std::abs(sigma) * std::sqrt(theta2);
-      if (sigma != 0.0) e.noise = std::abs(h) * noise / std::sqrt(theta2);
-      // ∂τ_s/∂ξ
-      const Mat3 E_eta = Mat3::Identity() / (1.0 + r) - (xi * xi.transpose()) / (4.0 * r * (1.0 + r) * (1.0 + r));
-      const Mat3 Dm = lie::dexpinv_body_matrix(delta_m) * lie::dcay_body(eta) * E_eta;
-      Mat3 dtau = -k * Dm;
-      if (sigma != 0.0) {
-        const Mat3 D1 = lie::dexpinv_body_matrix(delta1) * lie::dcay_body(xi);
-        const Eigen::RowVector3d dnum =
-            -k * delta1.transpose() * D1 + k * xi.transpose() * Dm + k * delta_m.transpose();
-        const Eigen::RowVector3d dsigma = (dnum - 2.0 * sigma * xi.transpose()) / theta2;
-        dtau += xi * dsigma + sigma * Mat3::Identity();
-      }
-      e.jacobian -= (h * h) * dtau;
-      if (spring.damping != 0.0) {
-        e.tau -= spring.damping * W;
-        tau_mag += spring.damping * W.norm();
-        e.jacobian += (h * spring.damping) * Mat3::Identity();
-      }
-    }
-    if constexpr (Model::template has_term<system::HarmonicDriveTerm>) {
-      const Vec3 drive = model.template term<system::HarmonicDriveTerm>().torque(*st.R, st.Pi, W, t_mid);
-      e.tau += drive;
-      tau_mag += drive.norm();
-    }
+    system::DiscreteTorque d;  // the terms add τ_d, its magnitude and their part of ∂F/∂W
+    d.jacobian = 2.0 * J + h * (lie::hat(W) * J - lie::hat(pi_mid));
+    std::apply(
+        [&](const auto&... term) {
+          std::apply([&](const auto&... start) { (term.add_discrete_torque(start, step, d), ...); }, st.terms);
+        },
+        model.terms);
+    e.tau = d.tau;
+    e.jacobian = d.jacobian;
+    e.noise = d.noise;
     e.F -= h * e.tau;
-    e.scale = 2.0 * (st.Pi.norm() + pi_mid.norm()) + std::abs(h) * (pi_mid.norm() * W.norm() + tau_mag);
+    e.scale = 2.0 * (st.Pi.norm() + pi_mid.norm()) + std::abs(h) * (pi_mid.norm() * W.norm() + d.magnitude);
   }
 };
 

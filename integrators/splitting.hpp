@@ -25,6 +25,9 @@
 //   composition, or of two steps) merge: kick(t, a) ∘ kick(t, b) = kick(t, a + b).
 // kick() and flow() are exposed for compositions; step() is the composition.
 //
+// The kick asks each term for its frozen torque f(R, t) and damper c
+// (system/terms/frozen_kick_term.hpp); any model whose terms all have them runs.
+//
 // Order 2; symmetric (Φ₋ₕ ∘ Φₕ = id); symplectic where the torque derives from
 // a potential (composition of exact Hamiltonian flows). For a free body the
 // kick vanishes and the scheme IS the exact flow (re-started every step).
@@ -42,26 +45,24 @@
 // free_body_flow_stepper.hpp for what the free flow evaluates.
 #include <cmath>
 #include <optional>
-#include <type_traits>
 
 #include "integrators/scheme_interface.hpp"
 #include "integrators/system/free_body_flow_stepper.hpp"
 
 namespace lgi::integrators {
 
-namespace detail {
-template <class T>
-inline constexpr bool kick_solvable_term = std::is_same_v<T, system::GravityTerm> ||
-                                           std::is_same_v<T, system::SpringTerm> ||
-                                           std::is_same_v<T, system::HarmonicDriveTerm>;
-template <class M>
-struct kick_solvable : std::false_type {};
-template <class... Ts>
-struct kick_solvable<system::RigidBody<Ts...>> : std::bool_constant<(kick_solvable_term<Ts> && ... && true)> {};
-}  // namespace detail
-
 class SplitExact {
  public:
+  // Conservation flags mean "exact where the quantity is an invariant of the scene":
+  // Pi.Gamma for a heavy top (kick along Gamma x m g chi, free flow conserves m).
+  // |Pi| and m are not claimed: the per-step elliptic-function flow keeps them
+  // only to ~1e-12 over 1e5 steps (measured 1.3e-12 and 9.7e-12), not to round-off.
+  // The energy of a torqued scene is not conserved exactly (symplectic: bounded, no drift).
+  static constexpr SchemeFacts facts{
+      .order = 2,
+      .properties = {.symplectic = true, .symmetric = true, .conserves_vertical_momentum = true},
+      .reference = "Celledoni, Fasso, Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084-2112 (Strang "
+                   "splitting with the exact free flow)"};
   template <class Model>
   void start(const Model& model, const State& /*initial*/, double /*t0*/) {
     flow_.emplace(model.inertia);
@@ -70,21 +71,15 @@ class SplitExact {
   /// The exact flow over `length` (either sign) of Ṙ = 0, Π̇ = τ(R, Π, t) at frozen R and t.
   template <class Model>
   static void kick(const Model& model, State& s, double t, double length) {
-    static_assert(detail::kick_solvable<Model>::value,
-                  "split-exact solves the kick exactly for gravity, springs (with damping) and harmonic drives only");
+    static_assert(Model::frozen_kick,
+                  "split-exact needs every torque term to be affine in Omega at frozen attitude (FrozenKickTerm)");
     if constexpr (Model::has_torque) {
-      const Vec3 zero = Vec3::Zero();
       Vec3 f = Vec3::Zero();  // the part of τ that does not depend on Π
       double damping = 0.0;
-      if constexpr (Model::template has_term<system::GravityTerm>)
-        f += model.template term<system::GravityTerm>().torque(s.R, s.Pi, zero, t);
-      if constexpr (Model::template has_term<system::SpringTerm>) {
-        const auto& spring = model.template term<system::SpringTerm>();
-        f -= spring.stiffness * spring.deflection(s.R);
-        damping = spring.damping;
-      }
-      if constexpr (Model::template has_term<system::HarmonicDriveTerm>)
-        f += model.template term<system::HarmonicDriveTerm>().torque(s.R, s.Pi, zero, t);
+      model.for_each_term([&](const auto& term) {
+        f += term.frozen_torque(s.R, t);
+        damping += term.damping();
+      });
       if (damping == 0.0) {
         s.Pi += length * f;
       } else {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <new>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 
 namespace {

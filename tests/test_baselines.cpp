@@ -15,7 +15,7 @@
 // First: it includes odeint with a GCC false positive silenced (see there).
 #include "support/reference_solution.hpp"
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/baselines/baselines.hpp"
 #include "integrators/baselines/euler_zxz.hpp"
 #include "integrators/baselines/matrix.hpp"
@@ -137,10 +137,10 @@ template <class Coords>
 void check_chart_jacobians(const std::string& chart) {
   system::Scene top = scene("heavy_top_trindade_1");
   system::Scene driven = top;
-  driven.drive = system::DriveSpec{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
+  driven.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
   system::Scene spring = scene("stiff_damped_spring");
   system::Scene general = scene("general_top_richter");
-  general.drive = system::DriveSpec{Vec3(0.1, 0.2, -0.3), 1.5, 0.0};
+  general.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{Vec3(0.1, 0.2, -0.3), 1.5, 0.0};
   for (const auto& [name, sc] : {std::pair{"heavy top", top}, std::pair{"driven heavy top", driven},
                                  std::pair{"damped spring", spring}, std::pair{"driven general top", general}}) {
     const system::AnyModel model = system::make_model(sc);
@@ -150,8 +150,7 @@ void check_chart_jacobians(const std::string& chart) {
           typename Coords::Vector x{};
           Coords::from_state(m, s, x);
           if constexpr (std::is_same_v<Coords, bl::MatrixCoordinates>) {
-            using M = std::decay_t<decltype(m)>;
-            if constexpr (M::template has_term<system::SpringTerm>) {
+            if (sc.template declared<system::SpringTerm>()) {
               // The spring's dτ is taken on the rotation part of dR (matrix.hpp):
               // compare along tangent directions R ê_k and the Ω directions.
               std::vector<typename Coords::Vector> dirs;
@@ -213,7 +212,7 @@ TEST_CASE("the charts' analytic Jacobians match central differences", "[baseline
 
   SECTION("the rotation vector's Jacobian on both sides of the series switch and near |Psi| = pi") {
     const system::AnyModel model = system::make_model(scene("heavy_top_trindade_1"));
-    const auto& m = std::get<system::HeavyTop>(model);
+    const auto& m = std::get<system::SceneModel>(model);
     for (double a : {1e-7, 1e-3, 0.4999, 0.5001, 1.0, 3.0}) {
       const Vec3 psi = a * Vec3(0.6, -0.48, 0.64);
       const bl::RotationVectorCoordinates::Vector x{psi.x(), psi.y(), psi.z(), 2.0, -1.0, 30.0};
@@ -254,7 +253,7 @@ TEST_CASE("rk4 converges at order 4 in every chart on heavy_top_trindade_1", "[b
   const system::Scene sc = scene("heavy_top_trindade_1");
   const system::AnyModel model = system::make_model(sc);
   const double T = 1.0;
-  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, T, 1e-14);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), sc.initial, 0.0, T, 1e-14);
   for (bl::Coordinates c : bl::all_coordinates) {
     std::vector<testing::ConvergencePoint> pts;
     for (double h = 0.01; h > 3e-4; h *= 0.5) {
@@ -282,7 +281,7 @@ TEST_CASE("controlled baselines: the error falls with tol and meets it within a 
   const system::Scene sc = scene("heavy_top_trindade_1");
   const system::AnyModel model = system::make_model(sc);
   const double T = 2.0;
-  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, T, 1e-14);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), sc.initial, 0.0, T, 1e-14);
   constexpr double factor = 200.0;
   for (bl::Coordinates c : bl::all_coordinates)
     for (bl::Stepper s : {bl::Stepper::dopri5, bl::Stepper::rkf78, bl::Stepper::bs, bl::Stepper::rosenbrock4}) {
@@ -317,7 +316,7 @@ TEST_CASE("controlled baselines: the error falls with the steps taken at the ste
   const system::Scene sc = scene("heavy_top_trindade_1");
   const system::AnyModel model = system::make_model(sc);
   const double T = 2.0;
-  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, T, 1e-15);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), sc.initial, 0.0, T, 1e-15);
   for (bl::Coordinates c : bl::all_coordinates)
     for (bl::Stepper s : {bl::Stepper::dopri5, bl::Stepper::rkf78, bl::Stepper::rosenbrock4}) {
       std::vector<testing::ConvergencePoint> pts;
@@ -538,7 +537,7 @@ TEST_CASE("the rotation vector switches chart at |Psi| > pi and stays accurate",
   cfg.t_end = 1.0;
   cfg.tol = 1e-10;
   REQUIRE(bl::run_baseline(bl::Coordinates::rotvec, bl::Stepper::dopri5, model, x, cfg, obs).ok);
-  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, 1.0, 1e-14);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), sc.initial, 0.0, 1.0, 1e-14);
   CHECK(attitude_error(x.R, ref.R) < 1e-8);
   CHECK(obs.max_angle > 3.0);
 }

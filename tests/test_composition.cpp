@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
@@ -81,9 +81,9 @@ TEST_CASE("every composition reaches its order on the asymmetric free body", "[c
 TEST_CASE("every composition reaches its order on the Kovalevskaya top", "[composition][order]") {
   const system::Scene scene = experiments::read_scene(scenes + "/kovalevskaya.toml");
   const system::AnyModel model = system::make_model(scene);
-  REQUIRE(std::holds_alternative<system::HeavyTop>(model));
+  REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 10.0;
-  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), scene.initial, 0.0, T);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T);
   std::set<std::string> bases;
   for (const auto& scheme : integrators::scheme_registry()) {
     if (!is_composition(scheme) || !integrators::unsupported_reason(scheme, model).empty()) continue;

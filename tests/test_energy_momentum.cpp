@@ -18,7 +18,7 @@
 #include <utility>
 #include <string>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/simo_wong.hpp"
 #include "integrators/system/free_body_exact.hpp"
@@ -152,14 +152,14 @@ TEST_CASE("simo-wong converges at order 2", "[simo-wong][order]") {
     const system::AnyModel model = system::make_model(scene);
     const double T = 5.0;
     const system::State ref =
-        testing::reference_solution(std::get<system::HeavyTop>(model), scene.initial, 0.0, T, 1e-14);
+        testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T, 1e-14);
     check_order2("kovalevskaya", model, scene.initial, T, ref, 0.1, 0.002);
   }
   SECTION("a heavy top with a damped spring and a drive against rkf78 (every discrete torque at once)") {
     const system::Scene scene = experiments::parse_scene(kitchen_sink_toml, "kitchen_sink.toml");
     const system::AnyModel model = system::make_model(scene);
     const double T = 2.0;
-    const system::State ref = testing::reference_solution(std::get<system::DrivenHeavyTopSpring>(model),
+    const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model),
                                                           scene.initial, 0.0, T, 1e-14);
     check_order2("gravity + damped spring + drive", model, scene.initial, T, ref, 0.05, 0.001);
   }
@@ -223,7 +223,7 @@ TEST_CASE("simo-wong conserves H, |Pi| and m of the free body exactly over 1e5 s
 TEST_CASE("simo-wong conserves H and Pi.Gamma of the heavy top exactly over 1e5 steps", "[simo-wong][conservation]") {
   for (const char* name : {"heavy_top_trindade_1", "general_top_richter"}) {
     const system::Scene scene = testing::shipped_scene(name);
-    const auto model = std::get<system::HeavyTop>(system::make_model(scene));
+    const auto model = std::get<system::SceneModel>(system::make_model(scene));
     integrators::SimoWong scheme;
     integrators::WorkCounters work;
     system::State x = scene.initial;
@@ -246,7 +246,7 @@ TEST_CASE("simo-wong conserves H and Pi.Gamma of the heavy top exactly over 1e5 
 TEST_CASE("simo-wong conserves the energy of an undamped spring exactly (discrete gradient)",
           "[simo-wong][conservation][spring]") {
   const system::Scene scene = experiments::parse_scene(spring_toml, "spring.toml");
-  const auto model = std::get<system::SpringBody>(system::make_model(scene));
+  const auto model = std::get<system::SceneModel>(system::make_model(scene));
   integrators::SimoWong scheme;
   integrators::WorkCounters work;
   system::State x = scene.initial;
@@ -276,7 +276,7 @@ TEST_CASE("simo-wong conserves the energy of an undamped spring exactly (discret
 
 TEST_CASE("simo-wong's energy decays monotonically on the stiff damped spring", "[simo-wong][damping]") {
   const system::Scene scene = testing::shipped_scene("stiff_damped_spring");
-  const auto model = std::get<system::SpringBody>(system::make_model(scene));
+  const auto model = std::get<system::SceneModel>(system::make_model(scene));
   for (double h : {1e-3, 0.1}) {  // 0.1: 100x the explicit stability limit
     integrators::SimoWong scheme;
     integrators::WorkCounters work;

@@ -1,4 +1,4 @@
-// TrajectoryWriter (experiments/h5md_writer.hpp): the H5MD layout of
+// TrajectoryWriter (experiments/io/h5md_writer.hpp): the H5MD layout of
 // experiments/OUTPUT.md, read back with the HDF5 C API.
 #include <catch2/catch.hpp>
 #include <hdf5.h>
@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "experiments/h5md_writer.hpp"
+#include "experiments/io/h5md_writer.hpp"
 #include "lgi/build_info.hpp"
 
 namespace fs = std::filesystem;

@@ -23,7 +23,7 @@
 #include <limits>
 #include <string>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/implicit_rkmk.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/rkmk.hpp"
@@ -121,7 +121,7 @@ TEST_CASE("implicit schemes converge at their nominal order on the Kovalevskaya 
   const system::AnyModel model = system::make_model(sc);
   const double T = 5.0;
   const system::State ref =
-      testing::reference_solution(std::get<system::HeavyTop>(model), sc.initial, 0.0, T, 1e-14);
+      testing::reference_solution(std::get<system::SceneModel>(model), sc.initial, 0.0, T, 1e-14);
   check_implicit_orders(model, sc.initial, T, ref, "kovalevskaya", {0.1, 0.4, 0.4});
 }
 
@@ -129,12 +129,12 @@ TEST_CASE("implicit schemes converge at their nominal order with a time-dependen
   // Richter's general top (χ off every axis) with a harmonic body-fixed
   // drive, as in test_scheme_order.cpp: the stage times c_i h matter.
   system::Scene sc = testing::shipped_scene("general_top_richter");
-  sc.drive = system::DriveSpec{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
+  sc.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
   const system::AnyModel model = system::make_model(sc);
-  REQUIRE(std::holds_alternative<system::DrivenHeavyTop>(model));
+  REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 5.0;
   const system::State ref =
-      testing::reference_solution(std::get<system::DrivenHeavyTop>(model), sc.initial, 0.0, T, 1e-14);
+      testing::reference_solution(std::get<system::SceneModel>(model), sc.initial, 0.0, T, 1e-14);
   check_implicit_orders(model, sc.initial, T, ref, "driven general top", {0.1, 0.2, 0.2});
 }
 
@@ -164,15 +164,15 @@ TEST_CASE("the Gauss schemes are symmetric to round-off", "[implicit][symmetry]"
   const system::Scene free = testing::shipped_scene("free_body_hlw");
   const auto free_model = std::get<system::FreeBody>(system::make_model(free));
   const system::Scene kova = testing::shipped_scene("kovalevskaya");
-  const auto kova_model = std::get<system::HeavyTop>(system::make_model(kova));
+  const auto kova_model = std::get<system::SceneModel>(system::make_model(kova));
   system::Scene driven = testing::shipped_scene("general_top_richter");
-  driven.drive = system::DriveSpec{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};  // time-dependent: the stage times reverse too
-  const auto driven_model = std::get<system::DrivenHeavyTop>(system::make_model(driven));
+  driven.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};  // time-dependent: the stage times reverse too
+  const auto driven_model = std::get<system::SceneModel>(system::make_model(driven));
   // The spring scene with a mild damper: the stiff damper (c = 1000) makes
   // Φ₋ₕ expand by ~e^(h c/J), which measures conditioning, not symmetry.
   system::Scene spring = testing::shipped_scene("stiff_damped_spring");
-  spring.spring->damping = 1.0;
-  const auto spring_model = std::get<system::SpringBody>(system::make_model(spring));
+  spring.declared<system::SpringTerm>()->damping = 1.0;
+  const auto spring_model = std::get<system::SceneModel>(system::make_model(spring));
 
   auto check_all = [&](const auto& scheme, const char* name) {
     for (double h : {0.01, 0.1, 0.3}) {
@@ -209,7 +209,7 @@ namespace {
 /// nothing with the schemes but the model's Π̇).
 struct StiffCase {
   system::Scene sc = testing::shipped_scene("stiff_damped_spring");
-  system::SpringBody model = std::get<system::SpringBody>(system::make_model(sc));
+  system::SceneModel model = std::get<system::SceneModel>(system::make_model(sc));
 };
 
 }  // namespace
@@ -251,8 +251,8 @@ TEST_CASE("for a free body the Gauss schemes conserve |Pi| and the energy to rou
 
 TEST_CASE("stiff damped spring: radau5 is stable and accurate at h = 0.1, rkmk4 blows up", "[implicit][stiff]") {
   const StiffCase c;
-  REQUIRE(c.sc.spring->damping == 1000.0);
-  REQUIRE(c.sc.spring->stiffness == 100.0);
+  REQUIRE(c.sc.declared<system::SpringTerm>()->damping == 1000.0);
+  REQUIRE(c.sc.declared<system::SpringTerm>()->stiffness == 100.0);
   const double T = 50.0;
   const system::State ref = testing::reference_solution(c.model, c.sc.initial, 0.0, T, 1e-13);
   INFO("reference at t = 50: |Pi| = " << ref.Pi.norm() << ", |log R| = " << lie::log_so3(ref.R).norm());
@@ -521,7 +521,7 @@ TEST_CASE("Newton iterations and cost per step relative to rkmk4", "[.bench][slo
     }
     {
       const system::Scene sc = testing::shipped_scene("heavy_top_trindade_1");
-      bench_scene("heavy_top_trindade_1", std::get<system::HeavyTop>(system::make_model(sc)), sc.initial,
+      bench_scene("heavy_top_trindade_1", std::get<system::SceneModel>(system::make_model(sc)), sc.initial,
                   {{1e-3, 10.0}, {1e-1, 10.0}}, mode);
     }
   }

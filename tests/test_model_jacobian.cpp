@@ -1,4 +1,4 @@
-// The model's analytic Jacobians (torque_terms.hpp, rigid_body.hpp) against
+// The model's analytic Jacobians (system/terms/, rigid_body.hpp) against
 // central differences, for every torque term alone and for combined models:
 //   ∂τ/∂η for R → R exp(η̂) (body side), dτ/dΠ with Ω = J⁻¹Π following,
 //   and the momentum field K = Π × Ω + τ.
@@ -9,8 +9,9 @@
 #include <cmath>
 #include <string>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/system/model.hpp"
+#include "integrators/system/terms/callable_torque.hpp"
 
 using namespace lgi;
 using lie::Mat3;
@@ -124,7 +125,7 @@ TEST_CASE("drive and generic time-dependent torque Jacobians match central diffe
   drive.angular_frequency = 2.0;
   drive.phase = 0.3;
   // A callable that depends on R, Π and Ω at once, so the fallback is exercised in full.
-  const system::TimeDependentTorque custom{[](double t, const Mat3& R, const Vec3& Pi, const Vec3& W) -> Vec3 {
+  const system::CallableTorque custom{[](double t, const Mat3& R, const Vec3& Pi, const Vec3& W) -> Vec3 {
     return std::cos(t) * R.row(2).transpose().cross(Vec3(0.1, 0.2, 0.3)) - 0.5 * W + 0.01 * Pi.squaredNorm() * Pi;
   }};
   for (const auto& x : samples()) {
@@ -177,9 +178,9 @@ TEST_CASE("momentum-field Jacobians of combined models match central differences
   drive.angular_frequency = 3.0;
   check_model(system::FreeBody{in, {}}, "free body");
   check_model(system::HeavyTop{in, {g}}, "heavy top");
-  check_model(system::SpringBody{in, {sp}}, "spring body");
-  check_model(system::HeavyTopSpring{in, {g, sp}}, "heavy top + spring");
-  check_model(system::DrivenHeavyTopSpring{in, {g, sp, drive}}, "driven heavy top + spring");
+  check_model(system::RigidBody<system::SpringTerm>{in, {sp}}, "spring body");
+  check_model(system::RigidBody<system::GravityTerm, system::SpringTerm>{in, {g, sp}}, "heavy top + spring");
+  check_model(system::RigidBody<system::GravityTerm, system::SpringTerm, system::HarmonicDriveTerm>{in, {g, sp, drive}}, "driven heavy top + spring");
 }
 
 TEST_CASE("momentum-field Jacobians of every shipped scene match central differences", "[jacobian]") {

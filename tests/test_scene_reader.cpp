@@ -1,4 +1,4 @@
-// Scene files (experiments/scene_reader.hpp, experiments/scenes/README.md):
+// Scene files (experiments/io/scene_reader.hpp, experiments/scenes/README.md):
 // every shipped scene parses with the values its README table gives, and every
 // bad-input rule throws InputError with one line
 //   <file>:<line>: [table] key: what is wrong
@@ -13,8 +13,8 @@
 #include <set>
 #include <string>
 
-#include "experiments/input_error.hpp"
-#include "experiments/scene_reader.hpp"
+#include "experiments/errors/input_error.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "lie/charts.hpp"
 #include "lie/quaternion.hpp"
 #include "lie/so3.hpp"
@@ -78,7 +78,7 @@ TEST_CASE("every shipped scene parses", "[scene]") {
       "dzhanibekov_book_axis1.toml", "dzhanibekov_book_axis2.toml",     "dzhanibekov_book_axis3.toml",
       "prism_edurev.toml",           "gyroscope.toml",                  "heavy_top_trindade_1.toml",
       "heavy_top_trindade_2.toml",   "heavy_top_trindade_3.toml",       "heavy_top_trindade_4.toml",
-      "heavy_top_trindade_singular.toml", "free_body_hlw.toml",         "kovalevskaya.toml",
+      "heavy_top_trindade_singular.toml", "free_body_hlw.toml",         "kovalevskaya.toml", "magnetic_top.toml",
       "general_top_richter.toml",    "stiff_damped_spring.toml"};
   std::set<std::string> found;
   for (const auto& entry : std::filesystem::directory_iterator(scenes_dir)) {
@@ -109,10 +109,10 @@ TEST_CASE("shipped scene: heavy_top_trindade_1 (parallel axis, Euler rates)", "[
   CHECK(*s.mass == 5.0);
   REQUIRE(s.center_of_mass);
   CHECK(*s.center_of_mass == Vec3(0, 0, 1));
-  REQUIRE(s.gravity);
-  CHECK(s.gravity->g == 9.81);
-  CHECK(!s.spring);
-  CHECK(!s.drive);
+  REQUIRE(s.declared<lgi::system::GravityTerm>());
+  CHECK(s.declared<lgi::system::GravityTerm>()->g == 9.81);
+  CHECK(!s.declared<lgi::system::SpringTerm>());
+  CHECK(!s.declared<lgi::system::HarmonicDriveTerm>());
   CHECK(!s.is_free_body());
   CHECK(near(s.initial.R, lgi::lie::rot_x(0.3490658503988659), 0.0));
   CHECK(near(s.initial.Pi, Vec3(0, 0, 50), 1e-14));  // Ω = (0, 0, φ̇), J3 = 1
@@ -172,7 +172,7 @@ TEST_CASE("shipped scene: free bodies, Kovalevskaya, Richter, spring", "[scene]"
   const auto kov = read_scene(scenes_dir + "/kovalevskaya.toml");
   CHECK(kov.inertia == Vec3(2, 2, 1).asDiagonal().toDenseMatrix());
   CHECK(*kov.center_of_mass == Vec3(1, 0, 0));
-  CHECK(kov.gravity->g == 1.0);
+  CHECK(kov.declared<lgi::system::GravityTerm>()->g == 1.0);
   CHECK(near(kov.initial.R, lgi::lie::exp_so3(Vec3(0.3, 0.2, 0.0)), 0.0));
   CHECK(kov.initial.Pi == Vec3(1.0, 0.6, 1.2));
 
@@ -182,11 +182,11 @@ TEST_CASE("shipped scene: free bodies, Kovalevskaya, Richter, spring", "[scene]"
   CHECK(richter.initial.Pi == Vec3(1.0, 0.75, 1.0));
 
   const auto spring = read_scene(scenes_dir + "/stiff_damped_spring.toml");
-  REQUIRE(spring.spring);
-  CHECK(spring.spring->stiffness == 100.0);
-  CHECK(spring.spring->damping == 1000.0);
-  CHECK(spring.spring->rest == Mat3::Identity());
-  CHECK(!spring.gravity);
+  REQUIRE(spring.declared<lgi::system::SpringTerm>());
+  CHECK(spring.declared<lgi::system::SpringTerm>()->stiffness == 100.0);
+  CHECK(spring.declared<lgi::system::SpringTerm>()->damping == 1000.0);
+  CHECK(spring.declared<lgi::system::SpringTerm>()->rest == Mat3::Identity());
+  CHECK(!spring.declared<lgi::system::GravityTerm>());
   CHECK(spring.initial.Pi == Vec3(0.0, 0.0, 15.0));
   CHECK(spring.t_end == 50.0);
 }
@@ -228,12 +228,12 @@ tol = 1e-6
   Mat3 J;
   J << 2, 0.1, 0, 0.1, 3, 0, 0, 0, 4;
   CHECK(s.inertia == J);
-  REQUIRE(s.drive);
-  CHECK(s.drive->torque_amplitude == Vec3(0, 0, 1.5));
-  CHECK(s.drive->angular_frequency == 3.0);
-  CHECK(s.drive->phase == 0.0);
-  REQUIRE(s.spring);
-  CHECK(near(s.spring->rest, lgi::lie::rot_z(std::numbers::pi / 2), 1e-15));
+  REQUIRE(s.declared<lgi::system::HarmonicDriveTerm>());
+  CHECK(s.declared<lgi::system::HarmonicDriveTerm>()->torque_amplitude == Vec3(0, 0, 1.5));
+  CHECK(s.declared<lgi::system::HarmonicDriveTerm>()->angular_frequency == 3.0);
+  CHECK(s.declared<lgi::system::HarmonicDriveTerm>()->phase == 0.0);
+  REQUIRE(s.declared<lgi::system::SpringTerm>());
+  CHECK(near(s.declared<lgi::system::SpringTerm>()->rest, lgi::lie::rot_z(std::numbers::pi / 2), 1e-15));
   // The quaternion within 1e-12 of unit norm is normalised: R is orthogonal.
   CHECK(lgi::lie::orthogonality_error(s.initial.R) < 1e-15);
   Mat3 cyclic;  // (0.5, 0.5, 0.5, 0.5): rotation by 2π/3 about (1,1,1), e1 → e2 → e3
@@ -243,7 +243,7 @@ tol = 1e-6
   CHECK(s.t_end == 0.0);
   CHECK(!s.dt);
   CHECK(*s.tol == 1e-6);
-  CHECK(!s.gravity);
+  CHECK(!s.declared<lgi::system::GravityTerm>());
 
 }
 

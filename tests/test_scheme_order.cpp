@@ -10,7 +10,7 @@
 #include <iostream>
 #include <string>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/rkmk_adaptive.hpp"
 #include "integrators/system/free_body_exact.hpp"
@@ -28,7 +28,7 @@ const std::string scenes = LGI_SCENES_DIR;
 system::Scene driven_general_top() {
   system::Scene scene = experiments::read_scene(scenes + "/general_top_richter.toml");
   // A time-dependent torque, so the stage times c_i matter too.
-  scene.drive = system::DriveSpec{lie::Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
+  scene.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{lie::Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
   return scene;
 }
 
@@ -74,10 +74,10 @@ TEST_CASE("every explicit scheme converges at its nominal order on the asymmetri
 TEST_CASE("every explicit scheme converges at its nominal order on a driven general heavy top", "[order]") {
   const system::Scene scene = driven_general_top();
   const system::AnyModel model = system::make_model(scene);
-  REQUIRE(std::holds_alternative<system::DrivenHeavyTop>(model));
+  REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 5.0;
   const system::State ref =
-      testing::reference_solution(std::get<system::DrivenHeavyTop>(model), scene.initial, 0.0, T, 1e-14);
+      testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T, 1e-14);
   for (const auto& scheme : integrators::scheme_registry()) {
     // Orders above 5 reach round-off within this step range; test_variational.cpp
     // checks them (dmv-pre6/8/10) with steps chosen for them.
@@ -126,7 +126,7 @@ TEST_CASE("the Dormand-Prince pair behind rkmk-dp54 has order 5 at fixed steps",
   }
   {
     const system::Scene scene = driven_general_top();
-    const auto model = std::get<system::DrivenHeavyTop>(system::make_model(scene));
+    const auto model = std::get<system::SceneModel>(system::make_model(scene));
     check(model, scene.initial, 5.0, testing::reference_solution(model, scene.initial, 0.0, 5.0), "driven general top",
           0.1, 1e-11);
   }

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/rkmk.hpp"
 #include "integrators/splitting.hpp"
@@ -174,17 +174,17 @@ TEST_CASE("split-exact converges at order 2", "[split-exact][order]") {
   SECTION("Kovalevskaya top") {
     const system::Scene scene = testing::shipped_scene("kovalevskaya");
     const system::AnyModel any = system::make_model(scene);
-    check(std::get<system::HeavyTop>(any), any, scene.initial, 5.0, 0.1, "kovalevskaya");
+    check(std::get<system::SceneModel>(any), any, scene.initial, 5.0, 0.1, "kovalevskaya");
   }
   SECTION("general heavy top (asymmetric free part)") {
     const system::Scene scene = testing::shipped_scene("general_top_richter");
     const system::AnyModel any = system::make_model(scene);
-    check(std::get<system::HeavyTop>(any), any, scene.initial, 5.0, 0.1, "general_top_richter");
+    check(std::get<system::SceneModel>(any), any, scene.initial, 5.0, 0.1, "general_top_richter");
   }
   SECTION("damped spring with a drive (exact linear kick, frozen-time drive)") {
     const system::Scene scene = experiments::parse_scene(damped_driven_toml, "damped_driven.toml");
     const system::AnyModel any = system::make_model(scene);
-    check(std::get<system::DrivenSpringBody>(any), any, scene.initial, 2.0, 0.05, "damped driven spring");
+    check(std::get<system::SceneModel>(any), any, scene.initial, 2.0, 0.05, "damped driven spring");
   }
 }
 
@@ -230,7 +230,7 @@ TEST_CASE("split-exact is symmetric and its half kicks merge", "[split-exact][sy
 TEST_CASE("split-exact conserves Pi.Gamma of a heavy top exactly", "[split-exact][conservation]") {
   for (const char* name : {"general_top_richter", "heavy_top_trindade_1"}) {
     const system::Scene scene = testing::shipped_scene(name);
-    const auto model = std::get<system::HeavyTop>(system::make_model(scene));
+    const auto model = std::get<system::SceneModel>(system::make_model(scene));
     integrators::SplitExact scheme;
     scheme.start(model, scene.initial, 0.0);
     integrators::WorkCounters work;
@@ -278,7 +278,7 @@ struct EnergyRecord {
 };
 
 template <class Scheme>
-EnergyRecord energy_record(Scheme& scheme, const system::HeavyTop& model, const system::State& x0, double h,
+EnergyRecord energy_record(Scheme& scheme, const system::SceneModel& model, const system::State& x0, double h,
                            std::int64_t n) {
   system::State x = x0;
   if constexpr (requires { scheme.start(model, x0, 0.0); }) scheme.start(model, x0, 0.0);
@@ -313,7 +313,7 @@ EnergyRecord energy_record(Scheme& scheme, const system::HeavyTop& model, const 
 
 void check_no_drift(std::int64_t n) {
   const system::Scene scene = testing::shipped_scene("heavy_top_trindade_1");
-  const auto model = std::get<system::HeavyTop>(system::make_model(scene));
+  const auto model = std::get<system::SceneModel>(system::make_model(scene));
   const double h = 1e-3;
   integrators::SplitExact split;
   const EnergyRecord s = energy_record(split, model, scene.initial, h, n);
@@ -348,7 +348,7 @@ TEST_CASE("split-exact's energy error on the heavy top is bounded, with no drift
 TEST_CASE("split-exact keeps the Kovalevskaya integral bounded", "[split-exact][kovalevskaya]") {
   const system::Scene scene = testing::shipped_scene("kovalevskaya");
   const system::AnyModel any = system::make_model(scene);
-  const auto& model = std::get<system::HeavyTop>(any);
+  const auto& model = std::get<system::SceneModel>(any);
   const system::SceneInvariants inv(scene, any);
   REQUIRE(inv.kovalevskaya_top());
   const auto& names = inv.scalar_names();

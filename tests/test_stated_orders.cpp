@@ -69,8 +69,14 @@ std::vector<Problem> problems() {
   out.push_back(free_body());
   out.push_back(torque_problem("kovalevskaya", testing::shipped_scene("kovalevskaya"), 5.0));
   system::Scene driven = testing::shipped_scene("general_top_richter");
-  driven.drive = system::DriveSpec{lie::Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
+  driven.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{lie::Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
   out.push_back(torque_problem("driven general top", driven, 5.0));
+  // The magnet of magnetic_top, 50 times slower (Π/50, B/2500: the same motion
+  // on a time scale where the step range above resolves it).
+  system::Scene magnet = testing::shipped_scene("magnetic_top");
+  magnet.initial.Pi /= 50.0;
+  magnet.declared<system::MagneticDipoleTerm>()->field /= 2500.0;
+  out.push_back(torque_problem("magnetic top", magnet, 5.0));
   return out;
 }
 

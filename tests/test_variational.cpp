@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/moser_veselov.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
@@ -135,8 +135,8 @@ std::vector<double> halving(double h0, int n) {
 
 system::Scene undamped_spring() {
   system::Scene scene = experiments::read_scene(scenes + "/stiff_damped_spring.toml");
-  REQUIRE(scene.spring);
-  scene.spring->damping = 0.0;  // a conservative spring: V = ½ k |log(R_restᵀ R)|²
+  REQUIRE(scene.declared<system::SpringTerm>());
+  scene.declared<system::SpringTerm>()->damping = 0.0;  // a conservative spring: V = ½ k |log(R_restᵀ R)|²
   return scene;
 }
 
@@ -202,9 +202,9 @@ TEST_CASE("dmv, lgvi and dmv-pre* converge at their nominal orders on the asymme
 TEST_CASE("lgvi and the split dmv-pre* have order 2 on the Kovalevskaya top", "[variational][order]") {
   const system::Scene scene = experiments::read_scene(scenes + "/kovalevskaya.toml");
   const system::AnyModel model = system::make_model(scene);
-  REQUIRE(std::holds_alternative<system::HeavyTop>(model));
+  REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 10.0;
-  const system::State ref = testing::reference_solution(std::get<system::HeavyTop>(model), scene.initial, 0.0, T);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T);
   for (const char* name : {"lgvi", "dmv-pre4", "dmv-pre6", "dmv-pre8", "dmv-pre10"}) {
     std::vector<ConvergencePoint> pts;
     for (double h : halving(0.1, 6))
@@ -220,9 +220,9 @@ TEST_CASE("lgvi and the split dmv-pre* have order 2 on the Kovalevskaya top", "[
 TEST_CASE("lgvi has order 2 on an undamped spring", "[variational][order]") {
   const system::Scene scene = undamped_spring();
   const system::AnyModel model = system::make_model(scene);
-  REQUIRE(std::holds_alternative<system::SpringBody>(model));
+  REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 2.0;
-  const system::State ref = testing::reference_solution(std::get<system::SpringBody>(model), scene.initial, 0.0, T);
+  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T);
   std::vector<ConvergencePoint> pts;
   for (double h : halving(0.01, 6))
     pts.push_back({h, testing::global_error(run_ok("lgvi", model, scene.initial, T, h), ref)});
@@ -274,11 +274,11 @@ TEST_CASE("dmv, lgvi and dmv-pre* conserve their invariants to round-off over 1e
 TEST_CASE("lgvi keeps the energy of a heavy top bounded, without drift, over 1e6 steps", "[variational][conservation]") {
   const system::Scene scene = experiments::read_scene(scenes + "/kovalevskaya.toml");
   const system::AnyModel model = system::make_model(scene);
-  const auto& top = std::get<system::HeavyTop>(model);
+  const auto& top = std::get<system::SceneModel>(model);
   // Maximum relative energy error over the first tenth and over the whole run.
   class EnergyObserver final : public integrators::Observer {
    public:
-    EnergyObserver(const system::HeavyTop& m, std::int64_t tenth) : m_(m), tenth_(tenth) {}
+    EnergyObserver(const system::SceneModel& m, std::int64_t tenth) : m_(m), tenth_(tenth) {}
     void observe(std::int64_t step, double, const system::State& s) override {
       const double e = m_.energy(s);
       if (step == 0) e0_ = e;
@@ -289,7 +289,7 @@ TEST_CASE("lgvi keeps the energy of a heavy top bounded, without drift, over 1e6
     double first_ = 0.0, all_ = 0.0;
 
    private:
-    const system::HeavyTop& m_;
+    const system::SceneModel& m_;
     std::int64_t tenth_;
     double e0_ = 0.0;
   };
@@ -316,7 +316,7 @@ TEST_CASE("dmv, lgvi and dmv-pre6 are symmetric to round-off", "[variational]") 
   const system::Scene free_scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
   const auto free_body = std::get<system::FreeBody>(system::make_model(free_scene));
   const system::Scene top = experiments::read_scene(scenes + "/general_top_richter.toml");
-  const auto heavy = std::get<system::HeavyTop>(system::make_model(top));
+  const auto heavy = std::get<system::SceneModel>(system::make_model(top));
   check_symmetric(integrators::Dmv{}, free_body, free_scene.initial, 0.3, "dmv, free body");
   check_symmetric(integrators::Lgvi{}, heavy, top.initial, 0.3, "lgvi, general heavy top");
   check_symmetric(integrators::DmvPre6{}, free_body, free_scene.initial, 0.3, "dmv-pre6, free body");

@@ -35,8 +35,9 @@ Vec3 omega_rate(const Model& model, const Mat3& R, const Vec3& Omega, double t) 
   return model.inertia.J_inv * model.momentum_rate(R, Pi, Omega, t);
 }
 
-/// ∂τ/∂t summed over the terms: 0 for terms that do not depend on time,
-/// A ω cos(ω t + φ) for the harmonic drive, a central difference otherwise.
+/// ∂τ/∂t summed over the terms: 0 for terms that do not depend on time, the
+/// term's closed form where it has one (TimeDerivativeTerm), a central
+/// difference otherwise.
 template <class Model>
 Vec3 torque_time_derivative(const Model& model, const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) {
   if constexpr (!Model::time_dependent) {
@@ -44,10 +45,10 @@ Vec3 torque_time_derivative(const Model& model, const Mat3& R, const Vec3& Pi, c
   } else {
     auto one = [&](const auto& term) -> Vec3 {
       using T = std::decay_t<decltype(term)>;
-      if constexpr (!T::time_dependent) {
+      if constexpr (!T::traits.time_dependent) {
         return Vec3::Zero();
-      } else if constexpr (std::is_same_v<T, system::HarmonicDriveTerm>) {
-        return term.amplitude * (term.angular_frequency * std::cos(term.angular_frequency * t + term.phase));
+      } else if constexpr (system::TimeDerivativeTerm<T>) {
+        return term.torque_time_derivative(R, Pi, Omega, t);
       } else {
         const double d = std::cbrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, std::abs(t));
         return (term.torque(R, Pi, Omega, t + d) - term.torque(R, Pi, Omega, t - d)) / (2.0 * d);
@@ -75,9 +76,10 @@ OmegaRateJacobian omega_rate_jacobian(const Model& model, const Mat3& R, const V
 }
 
 /// dτ for an arbitrary change dR of a matrix R that need not be orthogonal
-/// (the matrix chart carries R in ℝ⁹). Gravity's torque Γ × m g χ with
-/// Γ = Rᵀe3 is linear in R's entries, so its differential is the same torque
-/// evaluated at dR: exact. For the other terms the differential is taken on
+/// (the matrix chart carries R in ℝ⁹). A torque linear in the attitude
+/// (TermTraits::linear_in_attitude: gravity's Γ × m g χ with Γ = Rᵀe3, a
+/// dipole's μ × RᵀB) is linear in R's entries, so its differential is the same
+/// torque evaluated at dR: exact. For the other terms the differential is taken on
 /// the rotation part, η = vee(Rᵀ dR): exact where R is orthogonal and dR is
 /// tangent (dR = R η̂), and off by O(|RᵀR − I|) otherwise.
 template <class Model>
@@ -88,7 +90,7 @@ Vec3 matrix_torque_differential(const Model& model, const Mat3& R, const Vec3& O
     const Vec3 Pi = model.inertia.J * Omega;
     auto one = [&](const auto& term) -> Vec3 {
       using T = std::decay_t<decltype(term)>;
-      if constexpr (std::is_same_v<T, system::GravityTerm>) {
+      if constexpr (T::traits.linear_in_attitude) {
         return term.torque(dR, Pi, Omega, t);  // linear in R
       } else {
         return term.torque_jacobian_attitude(R, Pi, Omega, t) * lie::vee(R.transpose() * dR);

@@ -7,23 +7,28 @@ namespace lgi::system {
 namespace {
 bool nearly(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); }
 bool is_diagonal(const Mat3& J) { return J(0, 1) == 0.0 && J(0, 2) == 0.0 && J(1, 2) == 0.0; }
+/// Whether T is the only term the scene declares.
+template <class T>
+bool only_declared_term(const Scene& scene) {
+  Scene others = scene;
+  others.declared<T>().reset();
+  return others.is_free_body();
+}
 }  // namespace
 
 SceneInvariants::SceneInvariants(const Scene& scene, const AnyModel& model) : model_(&model) {
   free_body_ = std::holds_alternative<FreeBody>(model);
-  heavy_top_ = std::holds_alternative<HeavyTop>(model);
+  // The Casimir Π·Γ and the top's integrals need gravity and no other torque.
+  heavy_top_ = scene.declared<GravityTerm>().has_value() && only_declared_term<GravityTerm>(scene);
   const Mat3& J = scene.inertia;
   if (heavy_top_ && is_diagonal(J) && scene.center_of_mass) {
     const Vec3 chi = *scene.center_of_mass;
     lagrange_ = nearly(J(0, 0), J(1, 1)) && chi.x() == 0.0 && chi.y() == 0.0;
     kovalevskaya_ = nearly(J(0, 0), J(1, 1)) && nearly(J(0, 0), 2.0 * J(2, 2)) && chi.y() == 0.0 && chi.z() == 0.0 &&
                     chi.x() != 0.0;
-    if (kovalevskaya_) kovalevskaya_c_ = *scene.mass * scene.gravity->g * chi.x() / J(2, 2);
+    if (kovalevskaya_) kovalevskaya_c_ = *scene.mass * scene.declared<GravityTerm>()->g * chi.x() / J(2, 2);
   }
-  const bool undamped_spring =
-      std::holds_alternative<SpringBody>(model) && scene.spring && scene.spring->damping == 0.0;
-  energy_conserved_ = free_body_ || heavy_top_ || undamped_spring ||
-                      (std::holds_alternative<HeavyTopSpring>(model) && scene.spring->damping == 0.0);
+  energy_conserved_ = std::visit([](const auto& m) { return m.is_conservative(); }, model);
   if (free_body_) names_.push_back("angular_momentum_norm");
   if (heavy_top_) names_.push_back("casimir_vertical_momentum");
   if (lagrange_) names_.push_back("lagrange_spin_momentum");

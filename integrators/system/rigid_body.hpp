@@ -2,26 +2,46 @@
 // The rigid body with a fixed point (or free), in body form on SO(3) × ℝ³:
 //   Ṙ = R Ω̂,  Π̇ = Π × Ω + τ(R, Π, t),  Ω = J⁻¹ Π        (Euler–Poisson)
 // (docs/conventions.md §4; Holm, Geometric Mechanics I, §6; seed 003 of docs/sources.md).
-// The model is a variadic template over the torque terms the scene declares,
-// so the torque is a fold over exactly those terms, resolved at compile time.
+// The model is a variadic template over its torque terms (any types satisfying
+// the TorqueTerm concept, terms/torque_term.hpp): the torque, the potential and
+// the Jacobians are folds over the terms, resolved at compile time. Schemes ask
+// the model, never a term by name, whether every term has a capability.
 #include <tuple>
 #include <type_traits>
 
 #include "integrators/system/inertia.hpp"
-#include "integrators/system/torque_terms.hpp"
+#include "integrators/system/terms/discrete_gradient_term.hpp"
+#include "integrators/system/terms/frozen_kick_term.hpp"
+#include "integrators/system/terms/time_derivative_term.hpp"
+#include "integrators/system/terms/torque_term.hpp"
 #include "lie/product_state.hpp"
 
 namespace lgi::system {
 
 using State = lie::SO3xR3;  // (R, Π): attitude and body angular momentum
 
-template <class... Terms>
+template <TorqueTerm... Terms>
 struct RigidBody {
   Inertia inertia;
   std::tuple<Terms...> terms;
 
   static constexpr bool has_torque = sizeof...(Terms) > 0;
-  static constexpr bool time_dependent = (Terms::time_dependent || ... || false);
+  static constexpr bool time_dependent = (Terms::traits.time_dependent || ... || false);
+  /// Every term has an exact kick at frozen attitude (split-exact).
+  static constexpr bool frozen_kick = (FrozenKickTerm<Terms> && ... && true);
+  /// Every term has a discrete torque for the Cayley midpoint step (simo-wong).
+  static constexpr bool discrete_gradient = (DiscreteGradientTerm<Terms> && ... && true);
+
+  /// Whether the torque derives from a potential for the parameters at hand.
+  bool is_conservative() const {
+    return std::apply([](const auto&... term) { return (term.is_conservative() && ... && true); }, terms);
+  }
+
+  /// Calls f(term) for each term, in order.
+  template <class F>
+  void for_each_term(F&& f) const {
+    std::apply([&](const auto&... term) { (f(term), ...); }, terms);
+  }
 
   Vec3 omega(const Vec3& Pi) const { return inertia.J_inv * Pi; }
 
@@ -102,10 +122,16 @@ struct RigidBody {
   /// H = ½ Π·J⁻¹Π + V(R).
   double energy(const State& s) const { return kinetic_energy(s.Pi) + potential_energy(s.R); }
 
-  template <class T>
-  static constexpr bool has_term = (std::is_same_v<T, Terms> || ... || false);
-  template <class T>
-  const T& term() const { return std::get<T>(terms); }
+  /// M(R): the part of the torque that derives from the potential.
+  Vec3 potential_torque(const Mat3& R) const {
+    if constexpr (!has_torque) {
+      return Vec3::Zero();
+    } else {
+      Vec3 M = Vec3::Zero();
+      for_each_term([&](const auto& term) { M += term.potential_torque(R); });
+      return M;
+    }
+  }
 };
 
 using FreeBody = RigidBody<>;

@@ -1,28 +1,16 @@
 #pragma once
-// A scene as read from its TOML file (experiments/scene_reader.hpp): the
-// body, the torque terms it declares, the initial state and the run
-// defaults. Plain data; the model is assembled from it by make_model().
+// A scene as read from its TOML file (experiments/io/scene_reader.hpp): the
+// body, the parameters of the torque terms it declares (one slot per term of
+// SceneTerms, terms/scene_terms.hpp), the initial state and the run defaults.
+// Plain data; the model is assembled from it by make_model().
 #include <optional>
 #include <string>
 
 #include "integrators/system/inertia.hpp"
+#include "integrators/system/terms/scene_terms.hpp"
 #include "lie/product_state.hpp"
 
 namespace lgi::system {
-
-struct GravitySpec {
-  double g = 9.81;
-};
-struct SpringSpec {
-  double stiffness = 0.0;
-  double damping = 0.0;
-  Mat3 rest = Mat3::Identity();
-};
-struct DriveSpec {
-  Vec3 torque_amplitude = Vec3::Zero();
-  double angular_frequency = 0.0;
-  double phase = 0.0;
-};
 
 struct Scene {
   std::string name;
@@ -35,9 +23,7 @@ struct Scene {
   std::optional<Vec3> center_of_mass;  // χ, body coordinates from the fixed point
   bool allow_unphysical = false;
 
-  std::optional<GravitySpec> gravity;
-  std::optional<SpringSpec> spring;
-  std::optional<DriveSpec> drive;
+  SceneTerms::Parameters terms;  // std::optional<T::Parameters> per scene term
 
   lie::SO3xR3 initial;  // (R0, Π0)
 
@@ -46,7 +32,19 @@ struct Scene {
   std::optional<double> dt;
   std::optional<double> tol;
 
-  bool is_free_body() const { return !gravity && !spring && !drive; }
+  /// The parameters of term T, empty where the scene does not declare it.
+  template <class T>
+  std::optional<typename T::Parameters>& declared() {
+    return std::get<std::optional<typename T::Parameters>>(terms);
+  }
+  template <class T>
+  const std::optional<typename T::Parameters>& declared() const {
+    return std::get<std::optional<typename T::Parameters>>(terms);
+  }
+  bool is_free_body() const {
+    return std::apply([](const auto&... p) { return (!p.has_value() && ... && true); }, terms);
+  }
+  BodyProperties body() const { return {inertia, mass.value_or(0.0), center_of_mass.value_or(Vec3::Zero())}; }
 };
 
 }  // namespace lgi::system

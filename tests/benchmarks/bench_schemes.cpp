@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 
 using namespace lgi;

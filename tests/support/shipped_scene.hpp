@@ -3,7 +3,7 @@
 // the same reader as `lgi simulate`.
 #include <string>
 
-#include "experiments/scene_reader.hpp"
+#include "experiments/io/scene_reader.hpp"
 
 namespace lgi::testing {
 

@@ -1,0 +1,31 @@
+#pragma once
+// The subcommands of `lgi`. Each lives in its own commands/<name>_command.cpp and
+// registers itself on the CLI11 app with add_<name>_subcommand(), which
+// declares its options and returns the action to run when it is selected.
+// Actions return an exit status (exit_status.hpp) and throw InputError /
+// UsageError / OutputFileError for bad input (status 2) or RunError (1).
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace lgi::experiments {
+
+struct Subcommand {
+  CLI::App* app = nullptr;
+  std::function<int()> action;
+};
+
+/// The whole command line, for provenance in output files.
+struct CommandContext {
+  std::string command_line;
+};
+
+Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_schemes_subcommand(CLI::App& app);
+Subcommand add_scenes_subcommand(CLI::App& app);
+Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& context);  // commands/singularity_command.cpp
+Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context);  // commands/stress_command.cpp
+
+}  // namespace lgi::experiments

@@ -1,0 +1,23 @@
+#pragma once
+// Ctrl-C (SIGINT) and SIGTERM during a run: while an InterruptGuard lives,
+// both signals set interrupt_requested (io/trajectory_observer.hpp), which
+// the run's observers check and answer by throwing Interrupted.
+// Construction clears the flag and installs the handler; destruction puts
+// back the handlers that were there before, also when the run leaves by an
+// exception.
+namespace lgi::experiments {
+
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  using Handler = void (*)(int);
+  Handler previous_int_;
+  Handler previous_term_;
+};
+
+}  // namespace lgi::experiments

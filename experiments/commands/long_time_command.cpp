@@ -1,0 +1,333 @@
+// lgi long-time: invariant errors over very long runs (10⁶–10⁸ steps).
+//
+// The observer is called at every step (save_every = 1). It evaluates the
+// scene's invariants, keeps the running maximum of every error since the last
+// sample (so spikes between samples are not lost), and emits one row at the
+// sample steps only: step 0, then about N steps per decade, log-spaced
+// (round(10^(j/N)), j = 0, 1, ...), and the last step. Rows go to the
+// results file (RESULTS.md, /series), which writes them in blocks and
+// flushes at least every 2 s: a killed run leaves a readable .partial.
+//
+// Ctrl-C (SIGINT, also SIGTERM) stops the run at the next step boundary: a
+// row for that step is written, /diagnostics status "interrupted by signal",
+// the files are kept as <out>.partial (said on stderr), exit status 1.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/run_parameters.hpp"
+#include "experiments/cli/scheme_lookup.hpp"
+#include "experiments/cli/step_settings.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/output_timing.hpp"
+#include "experiments/io/results_file.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested, Interrupted
+#include "integrators/registry.hpp"
+#include "integrators/system/invariants.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+struct LongTimeOptions {
+  std::string scene;
+  std::string scheme;
+  std::optional<double> dt;
+  std::optional<double> tol;
+  std::optional<double> t_end;
+  int samples = 20;
+  std::string out;
+  bool force = false;
+  bool quiet = false;
+  std::string command_line;
+};
+
+/// The sample steps: 0, round(10^(j/N)) for j = 0, 1, ... (each taken once),
+/// and the last step (known for fixed-step runs; adaptive runs add it after
+/// the run).
+class SampleSchedule {
+ public:
+  SampleSchedule(int per_decade, std::int64_t last) : per_decade_(per_decade), last_(last) {}
+  std::int64_t first() const { return 0; }
+  /// The next sample step after `step`.
+  std::int64_t next(std::int64_t step) {
+    for (;;) {
+      const double x = std::round(std::pow(10.0, static_cast<double>(j_) / per_decade_));
+      if (x > 9.0e18) return std::numeric_limits<std::int64_t>::max();
+      const auto k = static_cast<std::int64_t>(x);
+      if (k > step) return last_ > 0 ? std::min(k, last_) : k;
+      ++j_;
+    }
+  }
+
+ private:
+  int per_decade_;
+  std::int64_t last_;  // <= 0: unknown
+  long j_ = 0;
+};
+
+/// A progress bar on stderr with the time left, shown once the run is
+/// expected to take more than about a second.
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  /// fraction in [0, 1].
+  void update(double fraction, std::int64_t step) {
+    if (!enabled_ || !(fraction > 0.0)) return;
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (!shown_) {
+      if (elapsed < 0.25 || elapsed / fraction < 1.0) return;
+      shown_ = true;
+    } else if (std::chrono::duration<double>(now - last_draw_).count() < 0.2) {
+      return;
+    }
+    last_draw_ = now;
+    const double left = elapsed / fraction - elapsed;
+    constexpr int width = 30;
+    const int filled = std::clamp(static_cast<int>(fraction * width), 0, width);
+    std::string bar(static_cast<std::size_t>(filled), '=');
+    bar.resize(width, ' ');
+    std::fprintf(stderr, "\r\033[K[%s] %5.1f%%  step %lld  %s left", bar.c_str(), 100.0 * fraction,
+                 static_cast<long long>(step), duration(left).c_str());
+    std::fflush(stderr);
+  }
+  void done() {
+    if (shown_) {
+      std::fprintf(stderr, "\r\033[K");
+      std::fflush(stderr);
+    }
+  }
+
+ private:
+  static std::string duration(double s) {
+    char buf[32];
+    if (s < 10) std::snprintf(buf, sizeof buf, "%.1f s", s);
+    else if (s < 60) std::snprintf(buf, sizeof buf, "%.0f s", s);
+    else if (s < 3600) std::snprintf(buf, sizeof buf, "%d min %02d s", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+    else std::snprintf(buf, sizeof buf, "%d h %02d min", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
+    return buf;
+  }
+  bool enabled_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point start_, last_draw_;
+};
+
+class LongTimeObserver final : public integrators::Observer {
+ public:
+  LongTimeObserver(const system::SceneInvariants& invariants, ResultsFile& file, std::vector<std::string> names,
+                   SampleSchedule schedule, std::int64_t last_step, double t0, double t_end, Progress& progress)
+      : invariants_(invariants),
+        file_(file),
+        names_(std::move(names)),
+        schedule_(schedule),
+        last_step_(last_step),
+        t0_(t0),
+        t_end_(t_end),
+        progress_(progress),
+        current_(names_.size(), 0.0),
+        window_max_(names_.size(), 0.0),
+        run_max_(names_.size(), 0.0) {
+    next_sample_ = schedule_.first();
+  }
+
+  void observe(std::int64_t step, double t, const system::State& s) override {
+    const system::InvariantValues v = invariants_.evaluate(s);
+    if (!have_initial_) {
+      initial_ = v;
+      have_initial_ = true;
+    }
+    invariants_.errors(initial_, v, current_);
+    for (std::size_t i = 0; i < current_.size(); ++i)
+      if (!(window_max_[i] >= current_[i])) window_max_[i] = current_[i];
+    step_ = step;
+    time_ = t;
+    emitted_ = false;
+    if (step >= next_sample_) {
+      emit();
+      next_sample_ = schedule_.next(step);
+    }
+    if ((step & 4095) == 0) [[unlikely]]
+      housekeeping();
+    if (interrupt_requested.load(std::memory_order_relaxed)) [[unlikely]] {
+      if (!emitted_) emit();
+      throw Interrupted("interrupted by signal");
+    }
+  }
+
+  /// Emits a row for the last observed step unless it is already a sample.
+  void finish() {
+    if (step_ >= 0 && !emitted_) emit();
+  }
+  std::int64_t last_observed_step() const { return step_; }
+  double last_observed_time() const { return time_; }
+  const std::vector<double>& current() const { return current_; }
+  const std::vector<double>& run_max() const { return run_max_; }
+
+ private:
+  void emit() {
+    ResultRow row = file_.row();
+    row.set("step", step_);
+    row.set("time", time_);
+    for (std::size_t i = 0; i < names_.size(); ++i) {
+      row.set(names_[i], current_[i]);
+      row.set(names_[i] + "_window_max", window_max_[i]);
+      run_max_[i] = std::max(run_max_[i], window_max_[i]);
+      window_max_[i] = 0.0;
+    }
+    file_.append(row);
+    emitted_ = true;
+  }
+  void housekeeping() {
+    file_.flush_if_due();
+    const double fraction = last_step_ > 0 ? static_cast<double>(step_) / static_cast<double>(last_step_)
+                                           : (time_ - t0_) / (t_end_ - t0_);
+    progress_.update(fraction, step_);
+  }
+
+  const system::SceneInvariants& invariants_;
+  ResultsFile& file_;
+  std::vector<std::string> names_;  // the error columns, e.g. "energy_error"
+  SampleSchedule schedule_;
+  std::int64_t last_step_;
+  double t0_, t_end_;
+  Progress& progress_;
+  bool have_initial_ = false;
+  system::InvariantValues initial_{};
+  std::vector<double> current_, window_max_, run_max_;
+  std::int64_t next_sample_ = 0;
+  std::int64_t step_ = -1;
+  double time_ = 0.0;
+  bool emitted_ = false;
+};
+
+/// The one parseable line (and the files written) of a finished run.
+void print_summary(const std::string& scheme, const Diagnostics& diag, double t_final,
+                   const std::vector<std::string>& names, const LongTimeObserver& observer, const ResultsFile& file) {
+  std::ostringstream line;
+  line << "scheme=" << scheme << " steps=" << diag.steps << " samples=" << file.rows()
+       << " cpu_seconds=" << format_sci(diag.cpu_seconds) << " output_seconds=" << format_sci(diag.output_seconds)
+       << " t_end=" << format_general(t_final, 10);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    line << ' ' << names[i] << "_end=" << format_sci(observer.current()[i]) << ' ' << names[i]
+         << "_max=" << format_sci(observer.run_max()[i]);
+  std::cout << line.str() << '\n';
+  std::cout << "wrote " << file.path() << " and " << file.csv_path() << '\n';
+}
+
+int long_time(const LongTimeOptions& o) {
+  const system::Scene scene = read_scene(o.scene);
+  const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
+  if (o.samples < 1) throw UsageError("--samples: must be >= 1 (samples per decade of steps)");
+  // The command line, then the scene's [run] (step_settings.hpp).
+  integrators::RunConfig cfg = resolve_run_config({o.dt, o.tol, o.t_end}, scene, *scheme, /*allow_zero_t_end=*/false);
+  cfg.save_every = 1;
+  const std::int64_t last_step =
+      scheme->properties.adaptive ? 0 : integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt);
+  const system::AnyModel model = system::make_model(scene);
+  if (const std::string why = integrators::unsupported_reason(*scheme, model); !why.empty())
+    throw RunError(why + "; scene " + scene.file + " is not one");
+  const system::SceneInvariants invariants(scene, model);
+
+  std::vector<std::string> names;  // the error columns, e.g. "energy_error"
+  for (const auto& n : invariants.error_names()) names.push_back(n + "_error");
+  std::vector<Column> columns = {{"step", ColumnType::integer, ""}, {"time", ColumnType::real, "s"}};
+  for (const auto& n : names) columns.push_back({n, ColumnType::real, ""});
+  for (const auto& n : names) columns.push_back({n + "_window_max", ColumnType::real, ""});
+
+  ResultsFileOptions file_options;
+  file_options.table = "series";
+  ResultsFile file(o.out, o.force, columns, file_options);
+  ResultAttributes params = run_parameters(scene, *scheme, cfg, o.command_line);
+  params.text["subcommand"] = "long-time";
+  params.integer["samples_per_decade"] = o.samples;
+  file.write_parameters(params);
+
+  Progress progress(!o.quiet && ::isatty(STDERR_FILENO) == 1);
+  LongTimeObserver observer(invariants, file, names, SampleSchedule(o.samples, last_step), last_step, cfg.t0,
+                            cfg.t_end, progress);
+  OutputTimingObserver timed(observer);
+
+  system::State state = scene.initial;
+  integrators::RunStats stats;
+  bool interrupted = false;
+  {
+    const InterruptGuard interrupt_guard;
+    const double cpu0 = integrators::detail::cpu_now();
+    try {
+      stats = scheme->run(model, state, cfg, timed);
+    } catch (const Interrupted& e) {
+      interrupted = true;
+      stats.ok = false;
+      stats.status = e.what();
+      stats.steps = observer.last_observed_step();
+      stats.work.rhs_evaluations = stats.work.rejected_steps = -1;
+      stats.work.newton_iterations_max = stats.work.newton_failures = -1;
+      stats.cpu_seconds = integrators::detail::cpu_now() - cpu0;
+      stats.t_final = observer.last_observed_time();
+    }
+  }
+  progress.done();
+  observer.finish();
+
+  Diagnostics diag;
+  diag.steps = stats.steps;
+  diag.rejected_steps = stats.work.rejected_steps;
+  diag.rhs_evaluations = stats.work.rhs_evaluations;
+  diag.newton_iterations_max = stats.work.newton_iterations_max;
+  diag.newton_failures = stats.work.newton_failures;
+  diag.output_seconds = timed.output_seconds();
+  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
+  diag.status = stats.status;
+  ResultAttributes diag_attributes = diagnostics_attributes(diag);
+  diag_attributes.integer["samples"] = file.rows();
+  diag_attributes.number["t_final"] = stats.t_final;
+  if (!stats.ok) {
+    file.abandon(diag_attributes);
+    std::cerr << "lgi: " << scheme->name << " on " << scene.file << ": " << stats.status
+              << (interrupted ? " at step " + std::to_string(stats.steps) : std::string())
+              << "; results so far kept in " << file.partial_path() << " and " << file.csv_partial_path() << '\n';
+    return exit_run_failed;
+  }
+  file.finish(diag_attributes);
+  if (!o.quiet) print_summary(scheme->name, diag, stats.t_final, names, observer, file);
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<LongTimeOptions>();
+  auto* sub = app.add_subcommand(
+      "long-time",
+      "Invariant errors over very long runs: log-spaced samples in the step number and, for each window between "
+      "samples, the largest error");
+  sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
+  sub->add_option("--scheme", o->scheme, "Scheme name (see `lgi schemes`)")->required();
+  sub->add_option("--dt", o->dt,
+                  "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
+  sub->add_option("--tol", o->tol, "Tolerance (adaptive schemes). Default: the scene's [run] tol");
+  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
+  sub->add_option("--samples", o->samples, "Samples per decade of steps (plus the first and the last step)")
+      ->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
+  sub->add_flag("--force", o->force, "Overwrite existing output files");
+  sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  return {sub, [o, context] {
+            o->command_line = context.command_line;
+            return long_time(*o);
+          }};
+}
+
+}  // namespace lgi::experiments

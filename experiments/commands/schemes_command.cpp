@@ -1,0 +1,200 @@
+// lgi schemes: the registry as a compact table (--long adds references and
+// notes), filtered by family or by the scenes a scheme applies to, or as JSON.
+#include <algorithm>
+#include <cctype>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "experiments/cli/commands.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "integrators/registry.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+using integrators::SchemeInfo;
+
+struct SchemesOptions {
+  bool json = false;
+  bool long_view = false;
+  std::string family;
+  std::string scene;
+};
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// The properties a scheme claims; the compact view abbreviates them (its legend says how).
+std::string property_list(const integrators::SchemeProperties& p, bool long_names) {
+  std::string s;
+  auto add = [&](bool on, const char* full, const char* brief) {
+    if (!on) return;
+    if (!s.empty()) s += ',';
+    s += long_names ? full : brief;
+  };
+  add(p.symplectic, "symplectic", "sympl");
+  add(p.symmetric, "symmetric", "sym");
+  add(p.conserves_energy, "energy", "H");
+  add(p.conserves_momentum_norm, "|Pi|", "|Pi|");
+  add(p.conserves_spatial_momentum, "spatial-momentum", "m");
+  add(p.conserves_vertical_momentum, "Pi.Gamma", "Pi.G");
+  add(p.implicit, "implicit", "impl");
+  add(p.adaptive, "adaptive", "adapt");
+  return s.empty() ? "-" : s;
+}
+
+const char* support_text(integrators::SceneSupport s) {
+  switch (s) {
+    case integrators::SceneSupport::free_body_only: return "free bodies";
+    case integrators::SceneSupport::conservative_only: return "conservative";
+    case integrators::SceneSupport::any: break;
+  }
+  return "all scenes";
+}
+
+/// What a scheme is, from the registry's fields (never from its name).
+const char* kind_of(const SchemeInfo& s) {
+  if (s.properties.baseline) return "baseline";
+  if (!s.base_scheme.empty()) return "composition";
+  if (s.order == 0) return "exact";
+  return "lie-group";
+}
+
+/// The scene a listing is restricted to: the schemes that apply, and their order there.
+struct SceneFilter {
+  system::AnyModel model;
+  bool has_torque = false;
+  std::string file;
+};
+
+std::optional<SceneFilter> scene_filter(const std::string& path) {
+  if (path.empty()) return std::nullopt;
+  const system::Scene scene = read_scene(path);
+  SceneFilter f{system::make_model(scene), false, scene.file};
+  f.has_torque = std::visit([](const auto& m) { return std::decay_t<decltype(m)>::has_torque; }, f.model);
+  return f;
+}
+
+int order_on(const SchemeInfo& s, bool has_torque) {
+  return has_torque && s.order_with_torque ? s.order_with_torque : s.order;
+}
+
+std::vector<const SchemeInfo*> selected(const SchemesOptions& o, const std::optional<SceneFilter>& scene) {
+  std::vector<const SchemeInfo*> out;
+  const std::string family = lower(o.family);
+  for (const auto& s : integrators::scheme_registry()) {
+    if (!family.empty() && lower(s.family).find(family) == std::string::npos && lower(kind_of(s)) != family) continue;
+    if (scene && !integrators::unsupported_reason(s, scene->model).empty()) continue;
+    out.push_back(&s);
+  }
+  return out;
+}
+
+void print_json(const std::vector<const SchemeInfo*>& schemes, const std::optional<SceneFilter>& scene) {
+  std::cout << "[\n";
+  for (std::size_t i = 0; i < schemes.size(); ++i) {
+    const SchemeInfo& s = *schemes[i];
+    const auto& p = s.properties;
+    std::cout << "  {\"name\": \"" << s.name << "\", \"order\": " << s.order << ", \"family\": \"" << s.family
+              << "\", \"kind\": \"" << kind_of(s) << "\", \"base\": "
+              << (s.base_scheme.empty() ? "null" : "\"" + s.base_scheme + "\"") << ", \"symplectic\": "
+              << std::boolalpha << p.symplectic << ", \"symmetric\": " << p.symmetric
+              << ", \"conserves_energy\": " << p.conserves_energy
+              << ", \"conserves_momentum_norm\": " << p.conserves_momentum_norm
+              << ", \"conserves_spatial_momentum\": " << p.conserves_spatial_momentum
+              << ", \"conserves_vertical_momentum\": " << p.conserves_vertical_momentum
+              << ", \"baseline\": " << p.baseline << ", \"order_with_torque\": " << order_on(s, true);
+    if (scene) std::cout << ", \"order_on_scene\": " << order_on(s, scene->has_torque);
+    std::cout << ", \"implicit\": " << p.implicit << ", \"adaptive\": " << p.adaptive << ", \"scenes\": \""
+              << support_text(s.support) << "\", \"reference\": \"" << json_escape(s.reference) << "\", \"notes\": \""
+              << json_escape(s.notes) << "\"}" << (i + 1 < schemes.size() ? "," : "") << '\n';
+  }
+  std::cout << "]\n";
+}
+
+std::string order_text(const SchemeInfo& s, const std::optional<SceneFilter>& scene) {
+  if (s.order == 0) return "-";
+  if (scene) return std::to_string(order_on(s, scene->has_torque));
+  std::string order = std::to_string(s.order);
+  if (s.order_with_torque) order += "/" + std::to_string(s.order_with_torque);
+  return order;
+}
+
+void print_table(const std::vector<const SchemeInfo*>& schemes, const std::optional<SceneFilter>& scene,
+                 bool long_view) {
+  // Column widths follow the longest entry, so the table stays aligned as schemes are added.
+  std::size_t w_name = 4, w_family = 6, w_props = 10;
+  bool any_split_order = false;
+  for (const SchemeInfo* s : schemes) {
+    w_name = std::max(w_name, s->name.size());
+    w_family = std::max(w_family, s->family.size());
+    w_props = std::max(w_props, property_list(s->properties, long_view).size());
+    any_split_order = any_split_order || s->order_with_torque != 0;
+  }
+  const auto col = [](std::size_t w) { return static_cast<int>(w + 2); };
+  std::cout << std::left << std::setw(col(w_name)) << "name" << std::setw(7) << "order" << std::setw(col(w_family))
+            << "family" << std::setw(col(w_props)) << "properties" << "scenes\n";
+  for (const SchemeInfo* s : schemes) {
+    std::cout << std::left << std::setw(col(w_name)) << s->name << std::setw(7) << order_text(*s, scene)
+              << std::setw(col(w_family)) << s->family << std::setw(col(w_props))
+              << property_list(s->properties, long_view)
+              << support_text(s->support) << '\n';
+    if (long_view) {
+      std::cout << "    reference: " << s->reference << '\n';
+      if (!s->notes.empty()) std::cout << "    notes: " << s->notes << '\n';
+    }
+  }
+  if (scene)
+    std::cout << schemes.size() << " schemes apply to " << scene->file << "; order: on this scene ("
+              << (scene->has_torque ? "with torque" : "free body") << ")\n";
+  else if (any_split_order)
+    std::cout << "order a/b: a on free bodies, b on scenes with torques\n";
+  if (long_view)
+    std::cout << "properties: exactly conserved where the quantity is an invariant of the scene "
+                 "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top)\n";
+  else
+    std::cout << "properties: sympl(ectic), sym(metric), impl(icit), adapt(ive); conserved exactly where an invariant:\n"
+                 "  H energy, |Pi|, m spatial momentum (free body), Pi.G = Pi.Gamma (heavy top)\n"
+                 "--long: full names, references and notes\n";
+}
+
+int list_schemes(const SchemesOptions& o) {
+  const std::optional<SceneFilter> scene = scene_filter(o.scene);
+  const std::vector<const SchemeInfo*> schemes = selected(o, scene);
+  if (schemes.empty() && !o.family.empty())
+    throw UsageError("--family: no scheme's family or kind matches '" + o.family + "' (lgi schemes lists them)");
+  if (o.json) print_json(schemes, scene);
+  else print_table(schemes, scene, o.long_view);
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_schemes_subcommand(CLI::App& app) {
+  auto o = std::make_shared<SchemesOptions>();
+  auto* sub = app.add_subcommand("schemes", "List the registered schemes with their order, family and properties");
+  sub->add_flag("--json", o->json, "Machine-readable JSON (every field, with \"kind\" and \"base\")");
+  sub->add_flag("--long", o->long_view, "Add each scheme's reference and notes");
+  sub->add_option("--family", o->family,
+                  "Only schemes whose family contains TEXT (case-insensitive), or of this kind: lie-group, "
+                  "composition, baseline, exact");
+  sub->add_option("--scene", o->scene, "Only the schemes that apply to this scene file, with their order on it");
+  return {sub, [o] { return list_schemes(*o); }};
+}
+
+}  // namespace lgi::experiments

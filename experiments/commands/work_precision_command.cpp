@@ -1,0 +1,379 @@
+// lgi work-precision: global error at t_end against a reference, and CPU
+// time (min and median over N timed runs that write nothing), for each scheme
+// and each step (fixed-step schemes: --dt) or tolerance (adaptive: --tol).
+// Layout of the result file: experiments/RESULTS.md.
+//
+// The reference (/reference in the file) and the error measure:
+// reference_solution.hpp.
+// A row whose error is below its floor (the reference's estimated error, or
+// for an exact reference the round-off its steps accumulate through the
+// problem's amplification, row_floor) is not a measurement: its error columns
+// hold NaN, below_reference_floor = 1, and error_floor says where the floor is.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "experiments/analysis/reference_solution.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/run_parameters.hpp"
+#include "experiments/cli/scheme_lookup.hpp"
+#include "experiments/cli/step_settings.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/results_file.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "integrators/registry.hpp"
+#include "integrators/system/free_body_exact.hpp"
+#include "integrators/system/invariants.hpp"
+#include "lie/quaternion.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+struct WorkPrecisionOptions {
+  std::string scene;
+  std::vector<std::string> schemes;
+  std::vector<double> dt;
+  std::vector<double> tol;
+  std::optional<double> t_end;
+  int repeat = 5;
+  std::string out;
+  bool force = false;
+  bool quiet = false;
+  std::string command_line;
+};
+
+std::string join(const std::vector<std::string>& v, const char* sep) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
+  return s;
+}
+
+/// One row to run: a scheme with a step or a tolerance.
+struct Job {
+  const integrators::SchemeInfo* scheme = nullptr;
+  std::optional<double> dt, tol;
+};
+
+std::vector<Job> plan(const WorkPrecisionOptions& o) {
+  if (o.schemes.empty()) throw UsageError("--schemes: empty list (give A,B,...; lgi schemes lists them)");
+  std::vector<const integrators::SchemeInfo*> schemes;
+  std::set<std::string> seen;
+  for (const auto& name : o.schemes) {
+    if (name.empty()) throw UsageError("--schemes: empty scheme name in the list");
+    const integrators::SchemeInfo* s = &scheme_by_name(name, "--schemes");
+    if (!seen.insert(name).second) throw UsageError("--schemes: scheme '" + name + "' given twice");
+    schemes.push_back(s);
+  }
+  for (double h : o.dt)
+    if (!(h > 0.0 && std::isfinite(h))) throw UsageError("--dt: every step must be a finite number > 0, got " + format_general(h, 6));
+  for (double t : o.tol)
+    if (!(t > 0.0 && std::isfinite(t)))
+      throw UsageError("--tol: every tolerance must be a finite number > 0, got " + format_general(t, 6));
+  if (o.repeat < 1) throw UsageError("--repeat: must be >= 1");
+
+  std::vector<Job> jobs;
+  for (const auto* s : schemes) {
+    if (s->properties.adaptive) {
+      if (o.tol.empty())
+        throw UsageError("--tol: scheme '" + s->name +
+                         "' is adaptive and needs a list of tolerances: give --tol A,B,... or [run] tol in the scene");
+      for (double t : o.tol) jobs.push_back({s, std::nullopt, t});
+    } else {
+      if (o.dt.empty())
+        throw UsageError("--dt: scheme '" + s->name +
+                         "' is fixed-step and needs a list of steps: give --dt A,B,... or [run] dt in the scene");
+      for (double h : o.dt) jobs.push_back({s, h, std::nullopt});
+    }
+  }
+  return jobs;
+}
+
+/// The /results columns (RESULTS.md); `invariant_columns` gets the invariant error columns' names.
+std::vector<Column> result_columns(const system::SceneInvariants& invariants,
+                                   std::vector<std::string>& invariant_columns) {
+  std::vector<Column> columns = {
+      {"scheme", ColumnType::text, ""},
+      {"dt", ColumnType::real, "s"},
+      {"tol", ColumnType::real, ""},
+      {"steps", ColumnType::integer, ""},
+      {"rejected_steps", ColumnType::integer, ""},
+      {"rhs_evaluations", ColumnType::integer, ""},
+      {"error_attitude", ColumnType::real, "rad"},
+      {"error_momentum", ColumnType::real, ""},
+      {"error", ColumnType::real, ""},
+  };
+  invariant_columns.clear();
+  for (const auto& n : invariants.error_names()) invariant_columns.push_back("error_" + n);
+  for (const auto& c : invariant_columns) columns.push_back({c, ColumnType::real, ""});
+  for (const char* c : {"cpu_seconds_min", "cpu_seconds_median"}) columns.push_back({c, ColumnType::real, "s"});
+  columns.push_back({"repeats", ColumnType::integer, ""});
+  columns.push_back({"status", ColumnType::text, ""});
+  columns.push_back({"below_reference_floor", ColumnType::integer, ""});
+  columns.push_back({"error_floor", ColumnType::real, ""});
+  return columns;
+}
+
+void write_reference_group(ResultsFile& file, const Reference& ref, double t_end) {
+  ResultAttributes a;
+  a.text["kind"] = ref.kind;
+  a.text["scheme"] = ref.scheme;
+  a.number["estimated_error"] = ref.estimated_error;
+  if (ref.kind == "exact") a.number["amplification"] = ref.amplification;
+  a.number["t_end"] = t_end;
+  if (ref.kind == "converged") {
+    a.number["tol"] = ref.tol;
+    a.number["comparison_tol"] = ref.comparison_tol;
+    a.integer["steps"] = ref.steps;
+    a.number["cpu_seconds"] = ref.cpu_seconds;
+  }
+  const Eigen::Quaterniond q = lie::quat_from_matrix(ref.state.R);
+  a.number_array["orientation"] = {q.w(), q.x(), q.y(), q.z()};
+  a.number_array["angular_momentum_body"] = {ref.state.Pi.x(), ref.state.Pi.y(), ref.state.Pi.z()};
+  file.write_group("reference", a);
+}
+
+/// A row as printed on stdout.
+struct Printed {
+  std::string scheme, step, steps, rhs, error, cpu_min, cpu_median, status;
+};
+
+/// What every row of one work-precision run shares.
+struct Study {
+  const system::Scene& scene;
+  const system::AnyModel& model;
+  const system::SceneInvariants& invariants;
+  std::vector<std::string> invariant_columns;
+  system::InvariantValues initial;
+  Reference reference;
+  double t_end;
+  int repeat;
+};
+
+/// The error against the reference (or the floor it is under) and the invariant errors of a run's final state.
+void set_errors(const Study& st, const RunResult& run, ResultRow& row, Printed& p) {
+  const GlobalError err = global_error(run.final, st.reference.state);
+  const double floor = row_floor(st.reference.estimated_error, st.reference.amplification, run.stats.steps);
+  row.set("error_floor", floor);
+  if (err.max < floor) {
+    row.set("below_reference_floor", 1);
+    p.error = "<" + format_sci(floor);
+  } else {
+    row.set("error_attitude", err.attitude);
+    row.set("error_momentum", err.momentum);
+    row.set("error", err.max);
+    p.error = format_sci(err.max);
+  }
+  std::vector<double> errors;
+  st.invariants.errors(st.initial, st.invariants.evaluate(run.final), errors);
+  for (std::size_t c = 0; c < errors.size(); ++c) row.set(st.invariant_columns[c], errors[c]);
+}
+
+/// Timed runs: the same run again `repeat` times, nothing observed but the final state.
+void set_timing(const Study& st, const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
+                ResultRow& row, Printed& p) {
+  std::vector<double> times;
+  for (int r = 0; r < st.repeat; ++r) {
+    const RunResult again = run_once(scheme, st.model, st.scene.initial, cfg);
+    if (!again.stats.ok) {
+      row.set("status", "failed in a timed repeat: " + again.stats.status);
+      p.status = "failed in a timed repeat";
+      return;
+    }
+    times.push_back(again.stats.cpu_seconds);
+  }
+  std::sort(times.begin(), times.end());
+  const std::size_t n = times.size();
+  const double median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  row.set("cpu_seconds_min", times.front());
+  row.set("cpu_seconds_median", median);
+  row.set("repeats", static_cast<std::int64_t>(n));
+  row.set("status", "ok");
+  p.cpu_min = format_sci(times.front());
+  p.cpu_median = format_sci(median);
+  p.status = "ok";
+}
+
+/// One row: refused, failed, or measured (errors, then timing).
+Printed measure(const Study& st, const Job& job, const std::string& step_text, ResultsFile& file) {
+  const integrators::SchemeInfo& scheme = *job.scheme;
+  ResultRow row = file.row();
+  row.set("scheme", scheme.name);
+  if (job.dt) row.set("dt", *job.dt);
+  if (job.tol) row.set("tol", *job.tol);
+  row.set("repeats", 0);
+  row.set("below_reference_floor", 0);
+  Printed p{scheme.name, step_text, "-", "-", "-", "-", "-", ""};
+  const integrators::RunConfig cfg = make_config(st.t_end, job.dt, job.tol);
+  if (const std::string why = integrators::unsupported_reason(scheme, st.model); !why.empty()) {
+    row.set("status", "refused: " + why);
+    p.status = "refused: " + why;
+  } else if (const RunResult first = run_once(scheme, st.model, st.scene.initial, cfg); !first.stats.ok) {
+    if (!first.threw) {
+      row.set("steps", first.stats.steps);
+      row.set("rejected_steps", first.stats.work.rejected_steps);
+      row.set("rhs_evaluations", first.stats.work.rhs_evaluations);
+      p.steps = std::to_string(first.stats.steps);
+      p.rhs = std::to_string(first.stats.work.rhs_evaluations);
+    }
+    row.set("status", "failed: " + first.stats.status);
+    p.status = "failed: " + first.stats.status;
+  } else {
+    row.set("steps", first.stats.steps);
+    row.set("rejected_steps", first.stats.work.rejected_steps);
+    row.set("rhs_evaluations", first.stats.work.rhs_evaluations);
+    p.steps = std::to_string(first.stats.steps);
+    p.rhs = std::to_string(first.stats.work.rhs_evaluations);
+    set_errors(st, first, row, p);
+    set_timing(st, scheme, cfg, row, p);
+  }
+  file.append(row);
+  return p;
+}
+
+void print_table(const Reference& ref, double t_end, const std::vector<Printed>& printed) {
+  std::cout << "reference: kind=" << ref.kind << " scheme=" << ref.scheme;
+  if (ref.kind == "converged") std::cout << " tol=" << format_general(ref.tol, 3);
+  std::cout << " estimated_error=" << format_sci(ref.estimated_error) << " t_end=" << format_general(t_end, 17) << '\n';
+  std::size_t w_scheme = 6, w_step = 7;
+  for (const auto& p : printed) {
+    w_scheme = std::max(w_scheme, p.scheme.size());
+    w_step = std::max(w_step, p.step.size());
+  }
+  char line[512];
+  std::snprintf(line, sizeof line, "%-*s  %-*s  %10s  %12s  %10s  %10s  %10s  %s\n", static_cast<int>(w_scheme),
+                "scheme", static_cast<int>(w_step), "dt/tol", "steps", "rhs_evals", "error", "cpu_min_s", "cpu_med_s",
+                "status");
+  std::cout << line;
+  for (const auto& p : printed) {
+    std::snprintf(line, sizeof line, "%-*s  %-*s  %10s  %12s  %10s  %10s  %10s  ", static_cast<int>(w_scheme),
+                  p.scheme.c_str(), static_cast<int>(w_step), p.step.c_str(), p.steps.c_str(), p.rhs.c_str(),
+                  p.error.c_str(), p.cpu_min.c_str(), p.cpu_median.c_str());
+    std::cout << line << p.status << '\n';
+  }
+}
+
+/// The jobs with the command line's lists, else the scene's defaults (step_settings.hpp); warns about
+/// a list given on the command line that no scheme uses.
+std::vector<Job> resolved_jobs(const WorkPrecisionOptions& o, const system::Scene& scene,
+                               WorkPrecisionOptions& resolved) {
+  resolved = o;
+  resolved.dt = default_step_list(o.dt, scene.dt);
+  resolved.tol = default_tolerance_list(o.tol, scene.tol);
+  std::vector<Job> jobs = plan(resolved);
+  if (!o.quiet) {
+    const bool any_fixed = std::any_of(jobs.begin(), jobs.end(), [](const Job& j) { return j.dt.has_value(); });
+    const bool any_adaptive = std::any_of(jobs.begin(), jobs.end(), [](const Job& j) { return j.tol.has_value(); });
+    if (!o.dt.empty() && !any_fixed) std::cerr << "lgi: warning: --dt ignored: no fixed-step scheme in --schemes\n";
+    if (!o.tol.empty() && !any_adaptive) std::cerr << "lgi: warning: --tol ignored: no adaptive scheme in --schemes\n";
+  }
+  return jobs;
+}
+
+int work_precision(const WorkPrecisionOptions& o) {
+  const system::Scene scene = read_scene(o.scene);
+  WorkPrecisionOptions resolved;
+  const std::vector<Job> jobs = resolved_jobs(o, scene, resolved);
+  const double t_end = resolve_t_end(o.t_end, scene, /*allow_zero=*/false);
+  const system::AnyModel model = system::make_model(scene);
+  const system::SceneInvariants invariants(scene, model);
+  const bool progress = !o.quiet && ::isatty(STDERR_FILENO) == 1;
+
+  Study st{scene, model, invariants, {}, invariants.evaluate(scene.initial), {}, t_end, o.repeat};
+  ResultsFile file(o.out, o.force, result_columns(invariants, st.invariant_columns));
+  ResultAttributes params = scene_parameters(scene);
+  params.text["subcommand"] = "work-precision";
+  params.text["schemes"] = join(o.schemes, ",");
+  params.text["command_line"] = o.command_line;
+  params.number["t_end"] = t_end;
+  params.integer["repeat"] = o.repeat;
+  if (!resolved.dt.empty()) params.number_array["dt"] = resolved.dt;
+  if (!resolved.tol.empty()) params.number_array["tol"] = resolved.tol;
+  file.write_parameters(params);
+
+  const double cpu0 = integrators::detail::cpu_now();
+  if (progress) std::cerr << "\rwork-precision: reference..." << std::flush;
+  try {
+    st.reference = compute_reference(scene, model, t_end);
+  } catch (const RunError& e) {
+    ResultAttributes diag;
+    diag.text["status"] = e.what();
+    file.abandon(diag);
+    if (progress) std::cerr << '\n';
+    std::cerr << "lgi: " << e.what() << "; partial results kept in " << file.partial_path() << '\n';
+    return exit_run_failed;
+  }
+  write_reference_group(file, st.reference, t_end);
+
+  std::vector<Printed> printed;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const Job& job = jobs[j];
+    const std::string step_text = job.dt ? "dt=" + format_general(*job.dt, 3) : "tol=" + format_general(*job.tol, 3);
+    if (progress)
+      std::cerr << "\r\033[Kwork-precision: " << j + 1 << '/' << jobs.size() << ' ' << job.scheme->name << ' '
+                << step_text << std::flush;
+    printed.push_back(measure(st, job, step_text, file));
+  }
+  if (progress) std::cerr << "\r\033[K" << std::flush;
+
+  ResultAttributes diag;
+  diag.text["status"] = "ok";
+  diag.integer["rows"] = static_cast<std::int64_t>(jobs.size());
+  diag.number["cpu_seconds"] = integrators::detail::cpu_now() - cpu0;
+  file.finish(diag);
+  if (!o.quiet) {
+    print_table(st.reference, t_end, printed);
+    std::cout << "wrote " << file.path() << " and " << file.csv_path() << '\n';
+  }
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<WorkPrecisionOptions>();
+  auto* sub = app.add_subcommand(
+      "work-precision",
+      "Error at t_end against a reference (exact flow for free bodies, else rkmk-dp54 at tol 1e-14 with its error "
+      "estimated against tol 1e-13) and CPU time "
+      "(min and median of N runs) for each scheme and step or tolerance");
+  sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
+  sub->add_option("--schemes", o->schemes, "Comma-separated scheme names, no spaces (see `lgi schemes`)")
+      ->required()
+      ->allow_extra_args(false)
+      ->delimiter(',')
+      ->type_name("A,B,...");
+  sub->add_option("--dt", o->dt,
+                  "Comma-separated steps for the fixed-step schemes. Default: the scene's [run] dt times 1, 1/2, 1/4, "
+                  "1/8")
+      ->allow_extra_args(false)
+      ->delimiter(',')
+      ->type_name("H1,H2,...");
+  sub->add_option("--tol", o->tol,
+                  "Comma-separated tolerances for the adaptive schemes. Default: the scene's [run] tol times 1, 1e-1, "
+                  "1e-2, 1e-3")
+      ->allow_extra_args(false)
+      ->delimiter(',')
+      ->type_name("T1,T2,...");
+  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
+  sub->add_option("--repeat", o->repeat, "Timed runs per row (CPU time: min and median)")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
+  sub->add_flag("--force", o->force, "Overwrite existing output files");
+  sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  return {sub, [o, context] {
+            o->command_line = context.command_line;
+            return work_precision(*o);
+          }};
+}
+
+}  // namespace lgi::experiments

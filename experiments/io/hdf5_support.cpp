@@ -1,0 +1,232 @@
+#include "experiments/io/hdf5_support.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError, hdf5_library_version
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments::hdf5 {
+
+QuietHdf5Errors::QuietHdf5Errors() {
+  H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+QuietHdf5Errors::~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+std::string hdf5_error_detail() {
+  std::string out;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+        if (n == 0 && e != nullptr && e->desc != nullptr) *static_cast<std::string*>(data) = e->desc;
+        return 0;
+      },
+      &out);
+  for (char& c : out)
+    if (c == '\n' || c == '\r') c = ' ';
+  return out;
+}
+
+std::string errno_text(int err) { return std::strerror(err); }
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string author_name() {
+  for (const char* var : {"USER", "LOGNAME"}) {
+    const char* v = std::getenv(var);
+    if (v != nullptr && *v != '\0') return v;
+  }
+  return "unknown";
+}
+
+std::string parent_directory(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+// ---- attributes -------------------------------------------------------------------
+
+Handle scalar_space(const Fail& fail) {
+  Handle s(H5Screate(H5S_SCALAR), H5Sclose);
+  if (!s.valid()) fail("cannot create a dataspace");
+  return s;
+}
+
+Handle vlen_string_type(bool ascii, const Fail& fail) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), H5T_VARIABLE) < 0 ||
+      H5Tset_cset(type.get(), ascii ? H5T_CSET_ASCII : H5T_CSET_UTF8) < 0)
+    fail("cannot make a string type");
+  return type;
+}
+
+void write_attribute(hid_t obj, const char* name, hid_t file_type, hid_t memory_type, hid_t space, const void* data,
+                     const Fail& fail) {
+  const htri_t exists = H5Aexists(obj, name);
+  if (exists < 0) fail(std::string("cannot query attribute ") + name);
+  if (exists > 0 && H5Adelete(obj, name) < 0) fail(std::string("cannot replace attribute ") + name);
+  Handle a(H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!a.valid() || H5Awrite(a.get(), memory_type, data) < 0) fail(std::string("cannot write attribute ") + name);
+}
+
+void write_vlen_string(hid_t obj, const char* name, const std::string& value, bool ascii, const Fail& fail) {
+  Handle type = vlen_string_type(ascii, fail);
+  Handle space = scalar_space(fail);
+  const char* p = value.c_str();
+  write_attribute(obj, name, type.get(), type.get(), space.get(), &p, fail);
+}
+
+void write_fixed_strings(hid_t obj, const char* name, const std::vector<std::string>& values, bool scalar,
+                         const Fail& fail) {
+  std::size_t width = 1;
+  for (const auto& v : values) width = std::max(width, v.size() + 1);
+  std::vector<char> buf(width * values.size(), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) std::memcpy(&buf[i * width], values[i].data(), values[i].size());
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), width) < 0 || H5Tset_strpad(type.get(), H5T_STR_NULLTERM) < 0 ||
+      H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0)
+    fail("cannot make a string type");
+  const hsize_t n = values.size();
+  Handle space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
+  if (!space.valid()) fail("cannot create a dataspace");
+  write_attribute(obj, name, type.get(), type.get(), space.get(), buf.data(), fail);
+}
+
+void write_int_attribute(hid_t obj, const char* name, hid_t file_type, std::int64_t value, const Fail& fail) {
+  Handle space = scalar_space(fail);
+  write_attribute(obj, name, file_type, H5T_NATIVE_INT64, space.get(), &value, fail);
+}
+
+void write_double_attribute(hid_t obj, const char* name, double value, const Fail& fail) {
+  Handle space = scalar_space(fail);
+  write_attribute(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), &value, fail);
+}
+
+void write_double_array(hid_t obj, const char* name, const std::vector<double>& values, const Fail& fail) {
+  const hsize_t n = values.size();
+  Handle space(n ? H5Screate_simple(1, &n, nullptr) : H5Screate(H5S_NULL), H5Sclose);
+  if (!space.valid()) fail("cannot create a dataspace");
+  write_attribute(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), values.data(), fail);
+}
+
+namespace {
+
+/// 1-D H5T_STD_I32LE attribute (the H5MD version pairs).
+void write_int32_array(hid_t obj, const char* name, const std::vector<std::int32_t>& values, const Fail& fail) {
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  if (!space.valid()) fail("cannot create a dataspace");
+  write_attribute(obj, name, H5T_STD_I32LE, H5T_NATIVE_INT32, space.get(), values.data(), fail);
+}
+
+}  // namespace
+
+// ---- groups and files ------------------------------------------------------------------
+
+Handle create_group(hid_t loc, const std::string& path, const Fail& fail) {
+  Handle g(H5Gcreate2(loc, path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) fail("cannot create group " + path);
+  return g;
+}
+
+Handle open_or_create_group(hid_t parent, const std::string& name, const Fail& fail) {
+  const htri_t exists = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
+  if (exists < 0) fail("cannot query group /" + name);
+  Handle g(exists > 0 ? H5Gopen2(parent, name.c_str(), H5P_DEFAULT)
+                      : H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+           H5Gclose);
+  if (!g.valid()) fail("cannot create group " + name);
+  return g;
+}
+
+Handle create_file(const std::string& path, const Fail& fail) {
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  // STRONG: H5Fclose closes every object, so the file is complete when it returns.
+  if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot set up file access");
+  // Default library-version bounds (earliest format): no superblock status
+  // flags, so a file left by a killed run opens without h5clear.
+  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
+  if (!file.valid()) fail("cannot create the HDF5 file");
+  return file;
+}
+
+void write_h5md_metadata(hid_t file, bool units_module, const Fail& fail) {
+  Handle h5md = create_group(file, "/h5md", fail);
+  write_int32_array(h5md.get(), "version", {1, 1}, fail);
+  Handle author = create_group(file, "/h5md/author", fail);
+  write_fixed_strings(author.get(), "name", {author_name()}, true, fail);
+  Handle creator = create_group(file, "/h5md/creator", fail);
+  write_fixed_strings(creator.get(), "name", {"lgi"}, true, fail);
+  write_fixed_strings(creator.get(), "version", {lgi::build_info::version}, true, fail);
+  if (!units_module) return;
+  // The H5MD units module (modules/units.mdwn) governs the `unit` attributes.
+  Handle modules = create_group(file, "/h5md/modules", fail);
+  Handle units = create_group(file, "/h5md/modules/units", fail);
+  write_int32_array(units.get(), "version", {1, 0}, fail);
+  write_vlen_string(units.get(), "system", "SI", /*ascii=*/true, fail);
+}
+
+std::vector<std::pair<std::string, std::string>> default_provenance(const std::string& utc_start) {
+  return {{"compiler", lgi::build_info::compiler},
+          {"cxx_flags", lgi::build_info::cxx_flags},
+          {"build_type", lgi::build_info::build_type},
+          {"hdf5_version", hdf5_library_version()},
+          {"utc_start", utc_start}};
+}
+
+// ---- CSV and publishing ---------------------------------------------------------------
+
+std::string csv_number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);  // shortest round-trip form
+  return std::string(buf, r.ptr);
+}
+
+std::string csv_text(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + '"';
+}
+
+void publish(const std::string& from, const std::string& to, bool force, const std::string& contents) {
+  const std::string appeared = "output file '" + to + "' appeared during the run; " + contents + " in '" + from + "'";
+  if (!force) {
+    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return;
+    const int err = errno;
+    if (err == EEXIST) throw OutputFileError(appeared);
+    if (err != EINVAL && err != ENOSYS && err != ENOTSUP)
+      throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + errno_text(err));
+    struct stat st {};  // file system without RENAME_NOREPLACE
+    if (::lstat(to.c_str(), &st) == 0) throw OutputFileError(appeared);
+  }
+  if (std::rename(from.c_str(), to.c_str()) != 0)
+    throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + errno_text(errno));
+}
+
+}  // namespace lgi::experiments::hdf5

@@ -1,0 +1,152 @@
+#pragma once
+// Result files of the experiment subcommands (work-precision, long-time,
+// stress; layout: experiments/RESULTS.md). One HDF5 file (C API) with
+//   /h5md         version, author, creator, modules/units (as trajectory files)
+//   /parameters   attributes: the subcommand's settings plus compiler,
+//                 cxx_flags, build_type, hdf5_version, utc_start
+//   /<table>      ("results" or "series") one 1-D dataset per column, one
+//                 element per row: float64, int64 or variable-length UTF-8
+//   /diagnostics  attributes; status "running" until finish/abandon
+// and, beside it, a CSV file with the same table (header row, one row per
+// table row): <out>.csv, where <out> is the HDF5 name without its ".h5" /
+// ".hdf5" suffix (results_csv_path()).
+//
+// Life of a file (the rules of trajectory files, OUTPUT.md):
+//   ResultsFile f(path, force, columns, options);   // refuses an existing path or CSV unless force;
+//                                                    // creates <path>.partial and <csv>.partial
+//   f.write_parameters(attrs); f.write_group("reference", attrs);
+//   f.append(row); ...           // buffered; written in blocks (one H5Dwrite per column) + H5Fflush
+//   f.finish(diagnostics);       // writes what is buffered, closes, renames both .partial files
+// or f.abandon(diagnostics with status = the reason): both files stay as
+// .partial, readable, with every row appended. A ResultsFile destroyed
+// without either abandons with status "interrupted". A process killed
+// outright leaves readable .partial files up to the last flush, status
+// "running".
+//
+// Every failure to create, write or publish throws OutputFileError (declared
+// in h5md_writer.hpp) with one line naming the file.
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError, Diagnostics, hdf5_library_version
+
+namespace lgi::experiments {
+
+enum class ColumnType { real, integer, text };
+
+struct Column {
+  std::string name;
+  ColumnType type = ColumnType::real;
+  std::string unit;  // H5MD units spelling; empty: no unit attribute
+};
+
+/// Attributes of a group. Text: scalar variable-length UTF-8 strings;
+/// numbers float64; integers int64; arrays 1-D float64.
+struct ResultAttributes {
+  std::map<std::string, std::string> text;
+  std::map<std::string, double> number;
+  std::map<std::string, std::int64_t> integer;
+  std::map<std::string, std::vector<double>> number_array;
+};
+
+/// /diagnostics attributes of a Diagnostics record (OUTPUT.md).
+ResultAttributes diagnostics_attributes(const Diagnostics& d);
+
+/// "<out>.csv" beside "<out>.h5" (or "<out>.hdf5"); "<path>.csv" otherwise.
+std::string results_csv_path(const std::string& h5_path);
+
+struct ResultsFileOptions {
+  std::string table = "results";       // the table's group: "results" or "series"
+  std::size_t block_rows = 256;         // rows buffered between writes (>= 1)
+  std::size_t chunk_rows = 256;         // HDF5 chunk length (>= 1)
+  double flush_interval_seconds = 2.0;  // append() and flush_if_due() flush at least this often
+};
+
+/// One row, by column name. Cells not set hold NaN, -1 or "" (RESULTS.md).
+class ResultRow {
+ public:
+  using Cell = std::variant<double, std::int64_t, std::string>;
+  void set(const std::string& column, double value);
+  void set(const std::string& column, std::int64_t value);
+  void set(const std::string& column, int value) { set(column, static_cast<std::int64_t>(value)); }
+  void set(const std::string& column, const std::string& value);
+  void set(const std::string& column, const char* value) { set(column, std::string(value)); }
+  const std::vector<Cell>& cells() const { return cells_; }
+
+ private:
+  friend class ResultsFile;
+  std::size_t index(const std::string& column, ColumnType type) const;
+  const std::vector<Column>* columns_ = nullptr;
+  const std::map<std::string, std::size_t>* index_ = nullptr;
+  std::vector<Cell> cells_;
+};
+
+class ResultsFile {
+ public:
+  /// Refuses (OutputFileError, nothing created) if `path` or its CSV exists
+  /// and !force, or if the directory is missing or not writable. Throws
+  /// std::invalid_argument for empty, duplicate or malformed column names.
+  ResultsFile(const std::string& path, bool force, std::vector<Column> columns, ResultsFileOptions options = {});
+  ResultsFile(const ResultsFile&) = delete;
+  ResultsFile& operator=(const ResultsFile&) = delete;
+  ~ResultsFile();
+
+  /// Attributes of /parameters; compiler, cxx_flags, build_type,
+  /// hdf5_version and utc_start are added unless given. Call once.
+  void write_parameters(const ResultAttributes& attributes);
+  /// Creates (or adds attributes to) the group /<name> with these attributes.
+  void write_group(const std::string& name, const ResultAttributes& attributes);
+
+  /// An empty row for this table (every cell missing).
+  ResultRow row() const;
+  /// Buffers a row; writes the block when it is full or when the flush
+  /// interval has passed.
+  void append(const ResultRow& row);
+  /// Writes the buffered rows (HDF5 and CSV) and flushes both files.
+  void flush();
+  /// flush() if rows are buffered and the flush interval has passed since the
+  /// last flush (reads the clock: call it every few thousand steps, not every step).
+  void flush_if_due();
+
+  /// Writes the buffered rows and /diagnostics, closes, renames the .partial
+  /// files to their names (without force: refuses if one appeared meanwhile).
+  void finish(const ResultAttributes& diagnostics);
+  /// Writes the buffered rows and /diagnostics, closes, leaves the .partial
+  /// files. A no-op once closed.
+  void abandon(const ResultAttributes& diagnostics);
+
+  const std::string& path() const { return path_; }
+  const std::string& partial_path() const { return partial_path_; }
+  const std::string& csv_path() const { return csv_path_; }
+  std::string csv_partial_path() const { return csv_path_ + ".partial"; }
+  std::int64_t rows() const { return written_ + static_cast<std::int64_t>(buffer_.size()); }
+
+ private:
+  struct Impl;
+  void write_block();
+  void write_attributes(std::int64_t group, const ResultAttributes& a);
+  void close_files();
+  /// Closes what is still open after a failure, keeping quiet about further
+  /// errors (the caller rethrows the first one).
+  void close_after_failure() noexcept;
+  [[noreturn]] void fail(const std::string& what) const;
+
+  std::string path_, partial_path_, csv_path_;
+  bool force_ = false;
+  std::vector<Column> columns_;
+  std::map<std::string, std::size_t> index_;
+  ResultsFileOptions options_;
+  std::unique_ptr<Impl> impl_;
+  bool open_ = false;
+  bool write_failed_ = false;
+  std::vector<ResultRow> buffer_;
+  std::int64_t written_ = 0;
+  std::chrono::steady_clock::time_point last_flush_{};
+};
+
+}  // namespace lgi::experiments
