@@ -3,11 +3,36 @@
 // an observer. It owns the step count, the time grid, the checks that stop
 // a run (non-finite state, an implicit solve that did not converge, a
 // collapsing adaptive step) and the CPU clock. It knows no file format.
+//
+// Output times (RunConfig::output_times): observe exactly at these times and
+// nowhere else, with the rule of the baselines (baselines/runner.hpp,
+// BaselineOptions::output_times). Fixed-step runs keep their grid t0 + k dt
+// (no step is shortened) and observe the output times that coincide with a
+// grid time to 1e-12 max(1, |t|, |t_end - t0|); the others are skipped.
+// Adaptive runs shorten the step that would pass the next output time so as
+// to land on it exactly; the controller's proposal for the following step is
+// not shortened (the larger of the proposal and the step that was tried).
+// Several samples may share a step number; the sample's time is the output
+// time itself.
+//
+// Stop flag (RunConfig::stop): read once per accepted step. When it is set,
+// the run ends after that step (unless the step reached t_end: then the run
+// is complete) with ok = false, interrupted = true and status
+// "interrupted by signal at step K, t = T"; the state after the step is the
+// final state and is observed once (Observer::on_stop() first, then
+// observe(), unless that step was observed anyway), so the last sample is kept.
+// steps, work, cpu_seconds and t_final are filled as for any other run.
+//
+// With both null, the loop is the one it always was: the same steps, the same
+// arithmetic and the same observe() calls.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "integrators/scheme_interface.hpp"
 #include "lie/charts.hpp"
@@ -21,6 +46,12 @@ struct RunConfig {
   double tol = 0.0;           // adaptive schemes only
   std::int64_t save_every = 1;  // observe every N steps; the initial and final states always
   int retry_halving = 0;      // fixed-step: retry a step whose implicit solve failed as 2, 4, ... substeps, at most N halvings
+  /// If set (sorted ascending, within [t0, t_end]): observe exactly at these
+  /// times and nowhere else; save_every is ignored (see the top of this file).
+  const std::vector<double>* output_times = nullptr;
+  /// If set: read once per accepted step; true ends the run after that step
+  /// with status "interrupted by signal at step K, t = T" (top of this file).
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// Receives the samples of a run. Called once per saved step (never inside
@@ -32,6 +63,11 @@ class Observer {
   /// Schemes that integrate Euler angles call this right before observe()
   /// with the raw integrated angles (unwrapped), for /particles/body/euler_zxz.
   virtual void observe_euler_zxz(const lie::EulerZXZ& /*angles*/) {}
+  /// Called once when the run ends on RunConfig::stop, right before the last
+  /// observe() (the state the run ends with). An observer that also watches
+  /// the flag itself (to stop loops that do not read RunConfig::stop) knows
+  /// from this that the run is ending anyway.
+  virtual void on_stop() {}
 };
 
 /// An observer that keeps nothing.
@@ -47,7 +83,11 @@ struct RunStats {
   double t_final = 0.0;
   bool ok = true;
   std::string status = "ok";  // or the reason the run stopped
+  bool interrupted = false;   // the run ended on RunConfig::stop (then ok is false)
 };
+
+/// The status of a run ended by RunConfig::stop starts with this.
+inline constexpr const char* interrupted_status = "interrupted by signal";
 
 namespace detail {
 inline double cpu_now() {
@@ -66,6 +106,29 @@ inline std::string failure_message(const char* what, std::int64_t step, double t
   m << what << " at step " << step << ", t = " << t;
   if (st) m << " (" << st->iterations << " iterations, residual " << st->residual << ")";
   return m.str();
+}
+/// Two times closer than this are the same output time (as the baselines' land_tolerance).
+inline double land_tolerance(double t, double span) { return 1e-12 * std::max({1.0, std::abs(t), std::abs(span)}); }
+inline bool stop_requested(const RunConfig& cfg) { return cfg.stop && cfg.stop->load(std::memory_order_relaxed); }
+inline void mark_interrupted(RunStats& stats, std::int64_t step, double t) {
+  stats.ok = false;
+  stats.interrupted = true;
+  stats.status = failure_message(interrupted_status, step, t, nullptr);
+}
+/// The output times of cfg.output_times that fall on t (to land_tolerance),
+/// observed with state s at the output time itself; passed ones are skipped.
+/// `next` is the first output time not yet observed or skipped. Returns
+/// whether anything was observed.
+inline bool observe_output_times(const std::vector<double>& times, std::size_t& next, double direction, double span,
+                                 std::int64_t step, double t, const State& s, Observer& observer) {
+  const double tol = land_tolerance(t, span);
+  while (next < times.size() && direction * (times[next] - t) < -tol) ++next;
+  bool observed = false;
+  while (next < times.size() && std::abs(times[next] - t) <= tol) {
+    observer.observe(step, times[next++], s);
+    observed = true;
+  }
+  return observed;
 }
 template <class Scheme, class Model>
 concept has_start = requires(Scheme& s, const Model& m, const State& x) { s.start(m, x, 0.0); };
@@ -111,7 +174,11 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   if constexpr (detail::has_start<Scheme, Model>) scheme.start(model, s, cfg.t0);
   const double direction = cfg.t_end < cfg.t0 ? -1.0 : 1.0;
   const std::int64_t n = fixed_step_count(direction * (cfg.t_end - cfg.t0), cfg.dt);
-  observer.observe(0, cfg.t0, s);
+  const std::vector<double>* times = cfg.output_times;
+  const double span = cfg.t_end - cfg.t0;
+  std::size_t next = 0;
+  if (times) detail::observe_output_times(*times, next, direction, span, 0, cfg.t0, s, observer);
+  else observer.observe(0, cfg.t0, s);
   double t = cfg.t0;
   for (std::int64_t k = 0; k < n; ++k) {
     const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + direction * static_cast<double>(k + 1) * cfg.dt;
@@ -136,7 +203,20 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
       break;
     }
     t = t_next;
-    if ((k + 1) % cfg.save_every == 0 || k + 1 == n) observer.observe(k + 1, t, s);
+    const bool stopping = k + 1 < n && detail::stop_requested(cfg);
+    if (stopping) observer.on_stop();
+    bool observed = false;
+    if (times) {
+      observed = detail::observe_output_times(*times, next, direction, span, k + 1, t, s, observer);
+    } else if ((k + 1) % cfg.save_every == 0 || k + 1 == n) {
+      observer.observe(k + 1, t, s);
+      observed = true;
+    }
+    if (stopping) {
+      if (!observed) observer.observe(k + 1, t, s);
+      detail::mark_interrupted(stats, k + 1, t);
+      break;
+    }
   }
   stats.t_final = t;
   stats.cpu_seconds = detail::cpu_now() - cpu0;
@@ -151,14 +231,24 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
   RunStats stats;
   const double cpu0 = detail::cpu_now();
   if constexpr (detail::has_start<Scheme, Model>) scheme.start(model, s, cfg.t0);
-  observer.observe(0, cfg.t0, s);
-  double t = cfg.t0;
+  const std::vector<double>* times = cfg.output_times;
   const double span = cfg.t_end - cfg.t0;
+  std::size_t next = 0;
+  if (times) detail::observe_output_times(*times, next, 1.0, span, 0, cfg.t0, s, observer);
+  else observer.observe(0, cfg.t0, s);
+  double t = cfg.t0;
   double h = cfg.dt > 0.0 ? std::min(cfg.dt, span) : scheme.initial_step(model, s, t, span);
   std::int64_t k = 0;
   while (span > 0.0 && t < cfg.t_end) {
-    const bool last = t + h >= cfg.t_end || (cfg.t_end - (t + h)) < 1e-12 * std::abs(cfg.t_end);
-    const double h_try = last ? cfg.t_end - t : h;
+    // The time this step may not pass: t_end, or the next output time before it.
+    double target = cfg.t_end;
+    double land = 1e-12 * std::abs(cfg.t_end);
+    if (times && next < times->size() && (*times)[next] < cfg.t_end) {
+      target = (*times)[next];
+      land = detail::land_tolerance(target, span);
+    }
+    const bool last = t + h >= target || (target - (t + h)) < land;
+    const double h_try = last ? target - t : h;
     const State before = s;
     const AdaptiveStatus a = scheme.attempt(model, s, t, h_try, stats.work);
     detail::record_solve(a.solve, stats.work);
@@ -173,15 +263,30 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
       continue;
     }
     ++k;
-    t = last ? cfg.t_end : t + h_try;
+    t = last ? target : t + h_try;
     stats.steps = k;
     if (!detail::finite_state(s)) {
       stats.ok = false;
       stats.status = detail::failure_message("state became non-finite (blow-up)", k, t, nullptr);
       break;
     }
-    if (k % cfg.save_every == 0 || t >= cfg.t_end) observer.observe(k, t, s);
-    h = a.h_next;
+    const bool stopping = t < cfg.t_end && detail::stop_requested(cfg);
+    if (stopping) observer.on_stop();
+    bool observed = false;
+    if (times) {
+      observed = detail::observe_output_times(*times, next, 1.0, span, k, t, s, observer);
+    } else if (k % cfg.save_every == 0 || t >= cfg.t_end) {
+      observer.observe(k, t, s);
+      observed = true;
+    }
+    if (stopping) {
+      if (!observed) observer.observe(k, t, s);
+      detail::mark_interrupted(stats, k, t);
+      break;
+    }
+    // A step shortened to land on an output time (or t_end, which ends the
+    // run) does not shrink the next proposal (as the baselines).
+    h = last ? std::max(a.h_next, h) : a.h_next;
   }
   stats.t_final = t;
   stats.cpu_seconds = detail::cpu_now() - cpu0;

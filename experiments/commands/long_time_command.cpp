@@ -162,9 +162,12 @@ class LongTimeObserver final : public integrators::Observer {
       housekeeping();
     if (interrupt_requested.load(std::memory_order_relaxed)) [[unlikely]] {
       if (!emitted_) emit();
-      throw Interrupted("interrupted by signal");
+      // The Lie-group loop ends on RunConfig::stop after this sample; a loop
+      // that does not read it (the baselines) is stopped here.
+      if (!stopping_) throw Interrupted("interrupted by signal");
     }
   }
+  void on_stop() override { stopping_ = true; }
 
   /// Emits a row for the last observed step unless it is already a sample.
   void finish() {
@@ -210,6 +213,7 @@ class LongTimeObserver final : public integrators::Observer {
   std::int64_t step_ = -1;
   double time_ = 0.0;
   bool emitted_ = false;
+  bool stopping_ = false;
 };
 
 /// The one parseable line (and the files written) of a finished run.
@@ -265,8 +269,14 @@ int long_time(const LongTimeOptions& o) {
   {
     const InterruptGuard interrupt_guard;
     const double cpu0 = integrators::detail::cpu_now();
+    integrators::RunConfig c = cfg;
+    c.stop = &interrupt_requested;
     try {
-      stats = scheme->run(model, state, cfg, timed);
+      stats = scheme->run(model, state, c, timed);
+      if (stats.interrupted) {  // reported as before, with the loop's own statistics
+        interrupted = true;
+        stats.status = integrators::interrupted_status;
+      }
     } catch (const Interrupted& e) {
       interrupted = true;
       stats.ok = false;

@@ -86,13 +86,17 @@ int simulate(const SimulateOptions& o) {
   integrators::RunStats stats;
   {
     const InterruptGuard interrupt_guard;
+    integrators::RunConfig c = cfg;
+    c.stop = &interrupt_requested;  // the Lie-group loop ends cleanly; the baselines' observer throws
     try {
-      stats = scheme->run(model, state, cfg, timed);
+      stats = scheme->run(model, state, c, timed);
     } catch (const Interrupted& e) {
       stats.ok = false;
       stats.status = e.what();
     }
   }
+  // Reported as it always was; the statistics are the loop's own.
+  if (stats.interrupted) stats.status = integrators::interrupted_status;
 
   Diagnostics diag;
   diag.steps = stats.steps;

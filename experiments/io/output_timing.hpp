@@ -26,6 +26,7 @@ class OutputTimingObserver final : public integrators::Observer {
     const Clock clock(seconds_);
     inner_.observe_euler_zxz(angles);
   }
+  void on_stop() override { inner_.on_stop(); }
   double output_seconds() const { return seconds_; }
 
  private:

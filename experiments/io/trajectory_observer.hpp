@@ -12,8 +12,12 @@
 
 namespace lgi::experiments {
 
-/// Set by the SIGINT/SIGTERM handler (InterruptGuard, cli/interrupt_guard.hpp);
-/// the observer stops the run at the next sample.
+/// Set by the SIGINT/SIGTERM handler (InterruptGuard, cli/interrupt_guard.hpp).
+/// Commands pass it as RunConfig::stop: the Lie-group loop (stepper_loop.hpp)
+/// then ends the run after the current step and observes its final state
+/// (Observer::on_stop() first). Loops that do not read RunConfig::stop (the
+/// baselines) are stopped by the observer instead, which throws Interrupted
+/// at the next sample when it sees the flag without on_stop() having been called.
 extern std::atomic<bool> interrupt_requested;
 
 struct Interrupted : std::runtime_error {
@@ -30,6 +34,7 @@ class TrajectoryObserver final : public integrators::Observer {
 
   void observe(std::int64_t step, double t, const system::State& s) override;
   void observe_euler_zxz(const lie::EulerZXZ& angles) override { euler_zxz_ = {angles.psi, angles.theta, angles.phi}; }
+  void on_stop() override { stopping_ = true; }
 
   bool has_samples() const { return have_initial_; }
   const system::InvariantValues& initial() const { return initial_; }
@@ -45,6 +50,7 @@ class TrajectoryObserver final : public integrators::Observer {
   const system::SceneInvariants& invariants_;
   TrajectoryWriter* writer_;  // may be null (no file)
   bool have_initial_ = false;
+  bool stopping_ = false;  // the loop ends on RunConfig::stop after this sample
   system::InvariantValues initial_{}, latest_{};
   system::State latest_state_{};
   double latest_time_ = 0.0;

@@ -47,7 +47,8 @@ class HistoryObserver final : public Observer {
   std::vector<double> times_;
 };
 
-/// Centre of mass R χ at the grid times (the baselines observe exactly there).
+/// Centre of mass R χ at the grid times (every method observes exactly there:
+/// RunConfig::output_times, BaselineOptions::output_times).
 class GridObserver final : public Observer {
  public:
   GridObserver(const std::vector<double>& grid, const Vec3& chi, std::vector<double>& com)
@@ -78,26 +79,9 @@ RunStats run_method(const Method& m, const system::AnyModel& model, State& s, co
     o.output_times = grid;
     return bl::run_baseline(m.id.coordinates, m.id.stepper, model, s, cfg, obs, o);
   }
-  return m.scheme->run(model, s, cfg, obs);
-}
-
-/// R χ on the grid for a registry scheme: one run per grid interval, state carried over.
-void grid_run_segmented(const Method& m, const system::AnyModel& model, const State& initial, RunConfig cfg,
-                        const std::vector<double>& grid, const Vec3& chi, std::vector<double>& com) {
-  State s = initial;
-  auto put = [&](std::size_t i) {
-    const Vec3 p = s.R * chi;
-    for (int k = 0; k < 3; ++k) com[3 * i + static_cast<std::size_t>(k)] = p[k];
-  };
-  put(0);
-  integrators::NullObserver none;
-  cfg.save_every = std::int64_t{1} << 62;
-  for (std::size_t i = 1; i < grid.size(); ++i) {
-    cfg.t0 = grid[i - 1];
-    cfg.t_end = grid[i];
-    if (!m.scheme->run(model, s, cfg, none).ok) return;
-    put(i);
-  }
+  RunConfig c = cfg;
+  c.output_times = grid;  // stepper_loop.hpp: the same rule as the baselines'
+  return m.scheme->run(model, s, c, obs);
 }
 
 void step_statistics(RunRecord& r, const std::vector<double>& times) {
@@ -192,7 +176,9 @@ std::vector<double> reference_center_of_mass(const StudyScene& sc) {
   RunConfig cfg;
   cfg.t_end = sc.t_end;
   cfg.tol = reference_tol;
-  grid_run_segmented(m, sc.model, sc.scene->initial, cfg, sc.grid, sc.chi, ref);
+  State s = sc.scene->initial;
+  GridObserver g(sc.grid, sc.chi, ref);
+  run_method(m, sc.model, s, cfg, g, &sc.grid);
   return ref;
 }
 
@@ -228,12 +214,10 @@ RunRecord run_study_method(const Method& m, const StudyScene& sc, const std::vec
   }
   // Centre of mass on the grid.
   r.com.assign(3 * sc.grid.size(), nan);
-  if (m.baseline) {
+  {
     State s = initial;
     GridObserver g(sc.grid, sc.chi, r.com);
     run_method(m, sc.model, s, cfg, g, &sc.grid);
-  } else {
-    grid_run_segmented(m, sc.model, initial, cfg, sc.grid, sc.chi, r.com);
   }
   compare_with_reference(r, reference, sc.grid.size());
   return r;
