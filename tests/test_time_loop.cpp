@@ -224,3 +224,37 @@ TEST_CASE("time loop: null output_times and stop reproduce the samples bit for b
     }
   }
 }
+
+TEST_CASE("time loop: the baselines honour the same output times and stop flag", "[time-loop][baselines]") {
+  const system::Scene scene = testing::shipped_scene("heavy_top_trindade_1");
+  const system::AnyModel model = system::make_model(scene);
+  const std::vector<double> times = {0.0, 0.01, 0.025, 0.1};
+  for (const char* name : {"quat/rk4", "quat/dopri5", "matrix/rkf78"}) {
+    INFO(name);
+    const auto& s = scheme(name);
+    {
+      Recorder rec;
+      integrators::RunConfig cfg = config(s, 0.1);
+      cfg.output_times = &times;
+      system::State x = scene.initial;
+      REQUIRE(s.run(model, x, cfg, rec).ok);
+      REQUIRE(rec.samples.size() == times.size());
+      for (std::size_t i = 0; i < times.size(); ++i) CHECK(rec.samples[i].t == times[i]);
+    }
+    {
+      const std::atomic<bool> stop{true};
+      Recorder rec;
+      integrators::RunConfig cfg = config(s, 0.1);
+      cfg.stop = &stop;
+      system::State x = scene.initial;
+      const integrators::RunStats stats = s.run(model, x, cfg, rec);
+      CHECK_FALSE(stats.ok);
+      CHECK(stats.interrupted);
+      CHECK(stats.status.rfind("interrupted by signal at step 1", 0) == 0);
+      CHECK(stats.steps == 1);
+      CHECK(rec.stops == 1);
+      REQUIRE(rec.samples.size() == 2);  // the initial state and the state the run ends with
+      CHECK(same(rec.samples.back().s, x));
+    }
+  }
+}

@@ -7,6 +7,7 @@
 // angles through Observer::observe_euler_zxz); RunStats carries the accepted
 // steps, rejected steps, right-hand-side evaluations, CPU seconds and the
 // status; a run that cannot go on stops with ok = false and says why.
+// RunConfig::output_times and RunConfig::stop are honoured as there.
 //
 // Time grid: fixed steps on t0 + k dt, the last clipped to t_end (as
 // integrate_fixed); controlled steppers start from --dt if given, else from
@@ -140,16 +141,29 @@ RunStats run_baseline(const Model& model, State& s, const RunConfig& cfg, Observ
   const double span = cfg.t_end - cfg.t0;
   const double s_min = opt.euler_singular_threshold;
 
-  const std::vector<double>* grid = opt.output_times;
+  // Output times from the run configuration (every scheme's contract,
+  // integrators/stepper_loop.hpp) or, for the singularity study, the options.
+  const std::vector<double>* grid = opt.output_times ? opt.output_times : cfg.output_times;
+  std::int64_t emitted_at = -1;  // the step of the last sample
   std::size_t next = 0;  // next output time
   auto emit = [&](std::int64_t k, double tt, const Vector& xx) {
     if constexpr (Coords::euler_angle_chart) observer.observe_euler_zxz(Coords::angles(xx));
     observer.observe(k, tt, Coords::to_state(model, xx));
+    emitted_at = k;
   };
   auto land_tolerance = [&](double tt) { return 1e-12 * std::max({1.0, std::abs(tt), std::abs(span)}); };
   auto fail = [&](std::string why) {
     stats.ok = false;
     stats.status = std::move(why);
+  };
+  // RunConfig::stop, read once per accepted step before t_end: the run ends
+  // there, its last state observed once (stepper_loop.hpp's rule).
+  auto stopped = [&](std::int64_t k, double tt) {
+    if (!(tt < cfg.t_end) || !detail::stop_requested(cfg)) return false;
+    observer.on_stop();
+    if (emitted_at != k) emit(k, tt, x);
+    detail::mark_interrupted(stats, k, tt);
+    return true;
   };
 
   // The initial sample.
@@ -225,6 +239,7 @@ RunStats run_baseline(const Model& model, State& s, const RunConfig& cfg, Observ
       } else if ((k + 1) % cfg.save_every == 0 || k + 1 == n) {
         emit(k + 1, t, x);
       }
+      if (stopped(k + 1, t)) break;
     }
   } else {
     Stepper stepper(cfg.tol);
@@ -292,6 +307,7 @@ RunStats run_baseline(const Model& model, State& s, const RunConfig& cfg, Observ
       } else if (k % cfg.save_every == 0 || t >= cfg.t_end) {
         emit(k, t, x);
       }
+      if (stopped(k, t)) break;
       // A step shortened to land on t_end or an output time does not shrink the next proposal.
       h = last ? std::max(h_next, h) : h_next;
     }
