@@ -25,6 +25,7 @@
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/run_options.hpp"
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/step_settings.hpp"
@@ -323,17 +324,11 @@ Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context
       "long-time",
       "Invariant errors over very long runs: log-spaced samples in the step number and, for each window between "
       "samples, the largest error");
-  sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
-  sub->add_option("--scheme", o->scheme, "Scheme name (see `lgi schemes`)")->required();
-  sub->add_option("--dt", o->dt,
-                  "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
-  sub->add_option("--tol", o->tol, "Tolerance (adaptive schemes). Default: the scene's [run] tol");
-  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
+  add_scene_scheme_options(*sub, *o);
   sub->add_option("--samples", o->samples, "Samples per decade of steps (plus the first and the last step)")
       ->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
-  sub->add_flag("--force", o->force, "Overwrite existing output files");
-  sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
   return {sub, [o, context] {
             o->command_line = context.command_line;
             return long_time(*o);

@@ -7,6 +7,7 @@
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/run_options.hpp"
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/step_settings.hpp"
@@ -128,12 +129,7 @@ int simulate(const SimulateOptions& o) {
 Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context) {
   auto o = std::make_shared<SimulateOptions>();
   auto* sub = app.add_subcommand("simulate", "Integrate one scene with one scheme and write an H5MD trajectory");
-  sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
-  sub->add_option("--scheme", o->scheme, "Scheme name (see `lgi schemes`)")->required();
-  sub->add_option("--dt", o->dt,
-                  "Step size (fixed-step schemes; first trial step of adaptive ones). Default: the scene's [run] dt");
-  sub->add_option("--tol", o->tol, "Tolerance of adaptive schemes. Default: the scene's [run] tol");
-  sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
+  add_scene_scheme_options(*sub, *o);
   sub->add_option("--save-every", o->save_every,
                   "Save every N steps; the initial and final states are always saved (a warning when the file would "
                   "exceed 100 MB)")
@@ -143,8 +139,7 @@ Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context)
                   "N halvings deep; each redone step counts in /diagnostics rejected_steps (and newton_failures)")
       ->capture_default_str();
   sub->add_option("--out", o->out, "Output trajectory file (HDF5, H5MD layout)")->required();
-  sub->add_flag("--force", o->force, "Overwrite an existing output file");
-  sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  add_force_quiet_flags(*sub, *o, "Overwrite an existing output file");
   return {sub, [o, context] {
             o->command_line = context.command_line;
             return simulate(*o);

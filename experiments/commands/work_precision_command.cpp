@@ -23,6 +23,7 @@
 
 #include "experiments/analysis/reference_solution.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/run_options.hpp"
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/step_settings.hpp"
@@ -368,8 +369,7 @@ Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& co
   sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
   sub->add_option("--repeat", o->repeat, "Timed runs per row (CPU time: min and median)")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
-  sub->add_flag("--force", o->force, "Overwrite existing output files");
-  sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
   return {sub, [o, context] {
             o->command_line = context.command_line;
             return work_precision(*o);
