@@ -13,7 +13,7 @@ std::atomic<bool> interrupt_requested{false};
 TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants, bool euler_zxz) {
   TrajectoryLayout layout;
   for (const auto& name : invariants.scalar_names()) {
-    const std::string unit = name == "kovalevskaya_k" ? "s-4" : "kg m+2 s-1";
+    const std::string unit = name == "kovalevskaya_k" ? "s-4" : name == "casimir_field_momentum" ? "kg m+2 s-1 T" : "kg m+2 s-1";
     layout.scalar_invariants.push_back({name, unit});
   }
   layout.space_momentum = invariants.free_body();

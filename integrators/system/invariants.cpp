@@ -20,6 +20,10 @@ SceneInvariants::SceneInvariants(const Scene& scene, const AnyModel& model) : mo
   free_body_ = std::holds_alternative<FreeBody>(model);
   // The Casimir Π·Γ and the top's integrals need gravity and no other torque.
   heavy_top_ = scene.declared<GravityTerm>().has_value() && only_declared_term<GravityTerm>(scene);
+  // The field's Casimir Π·RᵀB, as Π·Γ for gravity (docs/conventions.md §6).
+  magnetic_only_ =
+      scene.declared<MagneticDipoleTerm>().has_value() && only_declared_term<MagneticDipoleTerm>(scene);
+  if (magnetic_only_) field_ = scene.declared<MagneticDipoleTerm>()->field;
   const Mat3& J = scene.inertia;
   if (heavy_top_ && is_diagonal(J) && scene.center_of_mass) {
     const Vec3 chi = *scene.center_of_mass;
@@ -33,6 +37,7 @@ SceneInvariants::SceneInvariants(const Scene& scene, const AnyModel& model) : mo
   if (heavy_top_) names_.push_back("casimir_vertical_momentum");
   if (lagrange_) names_.push_back("lagrange_spin_momentum");
   if (kovalevskaya_) names_.push_back("kovalevskaya_k");
+  if (magnetic_only_) names_.push_back("casimir_field_momentum");
 }
 
 std::vector<std::string> SceneInvariants::all_names() const {
@@ -72,6 +77,7 @@ InvariantValues SceneInvariants::evaluate(const State& s) const {
       v.scalars[k++] = a * a + b * b;
     }
   }
+  if (magnetic_only_) v.scalars[k++] = s.Pi.dot(s.R.transpose() * field_);
   return v;
 }
 

@@ -57,6 +57,8 @@ class SceneInvariants {
  private:
   const AnyModel* model_;
   bool free_body_ = false, heavy_top_ = false, lagrange_ = false, kovalevskaya_ = false;
+  bool magnetic_only_ = false;  // a dipole in a uniform field and no other torque: Π·RᵀB is a Casimir
+  Vec3 field_ = Vec3::Zero();
   bool energy_conserved_ = false;
   double kovalevskaya_c_ = 0.0;
   std::vector<std::string> names_;

@@ -17,7 +17,8 @@ import lgi_plot_common as c
 
 NAMES = {"energy": "energy $H$", "angular_momentum_body": "$|\\Pi|$", "angular_momentum_space": "spatial momentum $R\\Pi$",
          "casimir_vertical_momentum": "$\\Pi\\cdot\\Gamma$", "lagrange_spin_momentum": "$\\Pi_3$",
-         "orthogonality": "orthogonality", "kovalevskaya_k": "Kovalevskaya $K$"}
+         "orthogonality": "orthogonality", "kovalevskaya_k": "Kovalevskaya $K$",
+         "casimir_field_momentum": "$\\Pi\\cdot R^T B$"}
 
 
 def quantities(tab):
