@@ -135,17 +135,34 @@ void validate_layout(const TrajectoryLayout& layout, const WriterOptions& option
     throw std::invalid_argument("trajectory writer: flush_interval_seconds must be >= 0");
 }
 
-}  // namespace
+/// A series whose group sits at `full` and shares the orientation's step and time.
+template <class Fail>
+Series linked_series(hid_t f, const std::string& full, std::initializer_list<hsize_t> item, hsize_t rows,
+                     const char* unit, Fail&& fail) {
+  Handle grp = create_group(f, full, fail);
+  hard_link(f, "/particles/body/orientation/step", grp.get(), "step", fail);
+  hard_link(f, "/particles/body/orientation/time", grp.get(), "time", fail);
+  return make_series(grp.get(), "value", full + "/value", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, item, rows, unit, fail);
+}
 
-// ---- construction --------------------------------------------------------------
+/// /parameters: the caller's attributes plus the default provenance.
+template <class Fail>
+void write_parameters_group(hid_t f, const Provenance& provenance, Fail&& fail) {
+  Handle params = create_group(f, "/parameters", fail);
+  std::map<std::string, std::string> text = provenance.text_attributes;
+  auto add_default = [&](const std::string& key, const std::string& value) {
+    if (!text.count(key) && !provenance.number_attributes.count(key) && !provenance.integer_attributes.count(key))
+      text[key] = value;
+  };
+  for (const auto& [k, v] : hdf5::default_provenance(hdf5::utc_now_iso8601())) add_default(k, v);
+  for (const auto& [k, v] : text) write_vlen_string(params.get(), k.c_str(), v, false, fail);
+  for (const auto& [k, v] : provenance.number_attributes) write_double_attribute(params.get(), k.c_str(), v, fail);
+  for (const auto& [k, v] : provenance.integer_attributes)
+    write_int_attribute(params.get(), k.c_str(), H5T_STD_I64LE, v, fail);
+}
 
-TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const TrajectoryLayout& layout,
-                                   const Provenance& provenance, const WriterOptions& options)
-    : path_(path), partial_path_(path + ".partial"), force_(force), layout_(layout), impl_(std::make_unique<Impl>()) {
-  validate_layout(layout, options);
-  if (path.empty()) throw OutputFileError("cannot write trajectory: empty output file name");
-
-  // Refuse before touching anything.
+/// Refuses before touching anything; creates `partial` with plain POSIX (clearest errno).
+void create_partial_file(const std::string& path, const std::string& partial, bool force) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0) {
     if (!force) throw OutputFileError("output file '" + path + "' exists (use --force to replace it)");
@@ -156,15 +173,47 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
     throw OutputFileError("cannot write trajectory '" + path + "': directory '" + dir + "': " + errno_text(errno));
   if (!S_ISDIR(st.st_mode))
     throw OutputFileError("cannot write trajectory '" + path + "': '" + dir + "' is not a directory");
-  // Create the .partial with plain POSIX first: its errno makes the clearest message.
-  const int fd = ::open(partial_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
     const int err = errno;
-    throw OutputFileError("cannot write trajectory '" + path + "': cannot create '" + partial_path_ +
+    throw OutputFileError("cannot write trajectory '" + path + "': cannot create '" + partial +
                           "' in directory '" + dir + "': " + errno_text(err));
   }
   ::close(fd);
+}
 
+}  // namespace
+
+// ---- construction --------------------------------------------------------------
+
+TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const TrajectoryLayout& layout,
+                                   const Provenance& provenance, const WriterOptions& options)
+    : path_(path), partial_path_(path + ".partial"), force_(force), layout_(layout), impl_(std::make_unique<Impl>()) {
+  validate_layout(layout, options);
+  if (path.empty()) throw OutputFileError("cannot write trajectory: empty output file name");
+  create_partial_file(path, partial_path_, force);
+  size_buffers(options);
+  QuietHdf5Errors quiet;
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  try {
+    impl_->file = hdf5::create_file(partial_path_, fail_fn);
+    const hid_t f = impl_->file.get();
+    hdf5::write_h5md_metadata(f, /*units_module=*/true, fail_fn);
+    create_body(options.chunk_rows);
+    create_observables(options.chunk_rows);
+    write_parameters_group(f, provenance, fail_fn);
+    write_running_diagnostics();
+    if (H5Fflush(f, H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+  } catch (...) {
+    impl_.reset();  // closes datasets and groups, then the file
+    ::unlink(partial_path_.c_str());
+    throw;
+  }
+  open_ = true;
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+void TrajectoryWriter::size_buffers(const WriterOptions& options) {
   block_size_ = options.block_size;
   flush_interval_ = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(options.flush_interval_seconds));
@@ -179,96 +228,53 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
   if (layout_.space_momentum) m_space_.resize(3 * b);
   if (layout_.euler_zxz) euler_.resize(3 * b);
   invariants_.resize(layout_.scalar_invariants.size() * b);
+}
 
-  QuietHdf5Errors quiet;
+// /particles/body. Groups are made by their full path, so parents need not stay open.
+void TrajectoryWriter::create_body(std::size_t chunk_rows) {
   auto fail_fn = [this](const std::string& what) { fail(what); };
-  try {
-    impl_->file = hdf5::create_file(partial_path_, fail_fn);
-    const hid_t f = impl_->file.get();
+  const hid_t f = impl_->file.get();
+  const auto rows = static_cast<hsize_t>(chunk_rows);
+  create_group(f, "/particles", fail_fn);
+  create_group(f, "/particles/body", fail_fn);
+  Handle box = create_group(f, "/particles/body/box", fail_fn);
+  write_int_attribute(box.get(), "dimension", H5T_STD_I32LE, 3, fail_fn);
+  write_fixed_strings(box.get(), "boundary", {"none", "none", "none"}, false, fail_fn);
+  Handle g = create_group(f, "/particles/body/orientation", fail_fn);
+  impl_->step = make_series(g.get(), "step", "/particles/body/orientation/step", H5T_STD_I64LE, H5T_NATIVE_INT64,
+                            {}, rows, nullptr, fail_fn);
+  impl_->time = make_series(g.get(), "time", "/particles/body/orientation/time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                            {}, rows, "s", fail_fn);
+  impl_->orientation = make_series(g.get(), "value", "/particles/body/orientation/value", H5T_IEEE_F64LE,
+                                   H5T_NATIVE_DOUBLE, {1, 4}, rows, nullptr, fail_fn);
+  impl_->momentum = linked_series(f, "/particles/body/angular_momentum_body", {1, 3}, rows, "kg m+2 s-1", fail_fn);
+  impl_->velocity = linked_series(f, "/particles/body/angular_velocity_body", {1, 3}, rows, "s-1", fail_fn);
+  if (layout_.euler_zxz) impl_->euler = linked_series(f, "/particles/body/euler_zxz", {1, 3}, rows, "rad", fail_fn);
+}
 
-    hdf5::write_h5md_metadata(f, /*units_module=*/true, fail_fn);
+void TrajectoryWriter::create_observables(std::size_t chunk_rows) {
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  const hid_t f = impl_->file.get();
+  const auto rows = static_cast<hsize_t>(chunk_rows);
+  create_group(f, "/observables", fail_fn);
+  auto observable = [&](const std::string& name, std::initializer_list<hsize_t> item, const char* unit) {
+    return linked_series(f, "/observables/" + name, item, rows, unit, fail_fn);
+  };
+  impl_->energy = observable("energy", {}, "kg m+2 s-2");
+  if (layout_.space_momentum) impl_->momentum_space = observable("angular_momentum_space", {3}, "kg m+2 s-1");
+  for (const auto& s : layout_.scalar_invariants) impl_->invariants.push_back(observable(s.name, {}, s.unit.c_str()));
+  impl_->orthogonality = observable("orthogonality_error", {}, nullptr);
+}
 
-    // /particles/body
-    const auto rows = static_cast<hsize_t>(options.chunk_rows);
-    {
-      // Groups are made by their full path from the file, so parents need not stay open.
-      create_group(f, "/particles", fail_fn);
-      create_group(f, "/particles/body", fail_fn);
-      Handle box = create_group(f, "/particles/body/box", fail_fn);
-      write_int_attribute(box.get(), "dimension", H5T_STD_I32LE, 3, fail_fn);
-      write_fixed_strings(box.get(), "boundary", {"none", "none", "none"}, false, fail_fn);
-
-      Handle g = create_group(f, "/particles/body/orientation", fail_fn);
-      impl_->step = make_series(g.get(), "step", "/particles/body/orientation/step", H5T_STD_I64LE,
-                                H5T_NATIVE_INT64, {}, rows, nullptr, fail_fn);
-      impl_->time = make_series(g.get(), "time", "/particles/body/orientation/time", H5T_IEEE_F64LE,
-                                H5T_NATIVE_DOUBLE, {}, rows, "s", fail_fn);
-      impl_->orientation = make_series(g.get(), "value", "/particles/body/orientation/value", H5T_IEEE_F64LE,
-                                       H5T_NATIVE_DOUBLE, {1, 4}, rows, nullptr, fail_fn);
-
-      auto body_vector = [&](const char* name, const char* unit) {
-        const std::string full = std::string("/particles/body/") + name;
-        Handle grp = create_group(f, full, fail_fn);
-        hard_link(f, "/particles/body/orientation/step", grp.get(), "step", fail_fn);
-        hard_link(f, "/particles/body/orientation/time", grp.get(), "time", fail_fn);
-        return make_series(grp.get(), "value", full + "/value", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {1, 3}, rows,
-                           unit, fail_fn);
-      };
-      impl_->momentum = body_vector("angular_momentum_body", "kg m+2 s-1");
-      impl_->velocity = body_vector("angular_velocity_body", "s-1");
-      if (layout_.euler_zxz) impl_->euler = body_vector("euler_zxz", "rad");
-    }
-
-    // /observables
-    {
-      create_group(f, "/observables", fail_fn);
-      auto observable = [&](const std::string& name, std::initializer_list<hsize_t> item, const char* unit) {
-        const std::string full = "/observables/" + name;
-        Handle grp = create_group(f, full, fail_fn);
-        hard_link(f, "/particles/body/orientation/step", grp.get(), "step", fail_fn);
-        hard_link(f, "/particles/body/orientation/time", grp.get(), "time", fail_fn);
-        return make_series(grp.get(), "value", full + "/value", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, item, rows, unit,
-                           fail_fn);
-      };
-      impl_->energy = observable("energy", {}, "kg m+2 s-2");
-      if (layout_.space_momentum) impl_->momentum_space = observable("angular_momentum_space", {3}, "kg m+2 s-1");
-      for (const auto& inv : layout_.scalar_invariants)
-        impl_->invariants.push_back(observable(inv.name, {}, inv.unit.c_str()));
-      impl_->orthogonality = observable("orthogonality_error", {}, nullptr);
-    }
-
-    // /parameters
-    {
-      Handle params = create_group(f, "/parameters", fail_fn);
-      std::map<std::string, std::string> text = provenance.text_attributes;
-      auto add_default = [&](const std::string& key, const std::string& value) {
-        if (!text.count(key) && !provenance.number_attributes.count(key) && !provenance.integer_attributes.count(key))
-          text[key] = value;
-      };
-      for (const auto& [k, v] : hdf5::default_provenance(hdf5::utc_now_iso8601())) add_default(k, v);
-      for (const auto& [k, v] : text) write_vlen_string(params.get(), k.c_str(), v, false, fail_fn);
-      for (const auto& [k, v] : provenance.number_attributes) write_double_attribute(params.get(), k.c_str(), v, fail_fn);
-      for (const auto& [k, v] : provenance.integer_attributes)
-        write_int_attribute(params.get(), k.c_str(), H5T_STD_I64LE, v, fail_fn);
-    }
-
-    // /diagnostics: placeholders until finish/abandon (what a killed run leaves).
-    impl_->diagnostics = create_group(f, "/diagnostics", fail_fn);
-    Diagnostics running;
-    running.steps = running.rejected_steps = running.rhs_evaluations = -1;
-    running.newton_iterations_max = running.newton_failures = -1;
-    running.cpu_seconds = running.output_seconds = std::numeric_limits<double>::quiet_NaN();
-    running.status = "running";
-    write_diagnostics(running);
-
-    if (H5Fflush(f, H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
-  } catch (...) {
-    impl_.reset();  // closes datasets and groups, then the file
-    ::unlink(partial_path_.c_str());
-    throw;
-  }
-  open_ = true;
-  last_flush_ = std::chrono::steady_clock::now();
+// /diagnostics: placeholders until finish/abandon (what a killed run leaves).
+void TrajectoryWriter::write_running_diagnostics() {
+  impl_->diagnostics = create_group(impl_->file.get(), "/diagnostics", [this](const std::string& w) { fail(w); });
+  Diagnostics running;
+  running.steps = running.rejected_steps = running.rhs_evaluations = -1;
+  running.newton_iterations_max = running.newton_failures = -1;
+  running.cpu_seconds = running.output_seconds = std::numeric_limits<double>::quiet_NaN();
+  running.status = "running";
+  write_diagnostics(running);
 }
 
 TrajectoryWriter::~TrajectoryWriter() {

@@ -147,6 +147,11 @@ class TrajectoryWriter {
   struct Impl;  // HDF5 handles; keeps hdf5.h out of this header
 
   void append_slow_path();  // full block, or every 256 appends: clock check
+  // Construction steps: block buffer, /particles/body, /observables, /diagnostics.
+  void size_buffers(const WriterOptions& options);
+  void create_body(std::size_t chunk_rows);
+  void create_observables(std::size_t chunk_rows);
+  void write_running_diagnostics();
   void write_block();
   void write_diagnostics(const Diagnostics& d);
   void write_status(const std::string& status);

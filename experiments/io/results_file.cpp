@@ -40,6 +40,50 @@ bool valid_name(const std::string& n) {
   return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos;
 }
 
+/// Checks the column and table names and the options; fills `index` (name -> column).
+void index_columns(const std::vector<Column>& columns, const ResultsFileOptions& options,
+                   std::map<std::string, std::size_t>& index) {
+  if (columns.empty()) throw std::invalid_argument("results table: no columns");
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (!valid_name(columns[i].name))
+      throw std::invalid_argument("results table: bad column name '" + columns[i].name + "'");
+    if (!index.emplace(columns[i].name, i).second)
+      throw std::invalid_argument("results table: column '" + columns[i].name + "' given twice");
+  }
+  if (!valid_name(options.table) || options.table == "h5md" || options.table == "parameters" ||
+      options.table == "diagnostics")
+    throw std::invalid_argument("results table: bad table name '" + options.table + "'");
+  if (options.block_rows == 0 || options.chunk_rows == 0)
+    throw std::invalid_argument("results file: block_rows and chunk_rows must be positive");
+}
+
+/// Refuses before touching anything, then creates both .partial files empty.
+void create_partial_files(const std::string& path, const std::string& csv_path, const std::string& partial,
+                          const std::string& csv_partial, bool force) {
+  for (const std::string& p : {path, csv_path}) {
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) == 0) {
+      if (!force) throw OutputFileError("output file '" + p + "' exists (use --force to replace it)");
+      if (S_ISDIR(st.st_mode)) throw OutputFileError("cannot write results '" + p + "': it is a directory");
+    }
+  }
+  const std::string dir = hdf5::parent_directory(path);
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) != 0)
+    throw OutputFileError("cannot write results '" + path + "': directory '" + dir + "': " + std::strerror(errno));
+  if (!S_ISDIR(st.st_mode))
+    throw OutputFileError("cannot write results '" + path + "': '" + dir + "' is not a directory");
+  for (const std::string& p : {partial, csv_partial}) {
+    const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) {
+      const int err = errno;
+      ::unlink(partial.c_str());
+      throw OutputFileError("cannot write results '" + path + "': cannot create '" + p + "': " + std::strerror(err));
+    }
+    ::close(fd);
+  }
+}
+
 }  // namespace
 
 // ---- free functions ---------------------------------------------------------------
@@ -117,78 +161,19 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
       columns_(std::move(columns)),
       options_(std::move(options)),
       impl_(std::make_unique<Impl>()) {
-  if (columns_.empty()) throw std::invalid_argument("results table: no columns");
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (!valid_name(columns_[i].name))
-      throw std::invalid_argument("results table: bad column name '" + columns_[i].name + "'");
-    if (!index_.emplace(columns_[i].name, i).second)
-      throw std::invalid_argument("results table: column '" + columns_[i].name + "' given twice");
-  }
-  if (!valid_name(options_.table) || options_.table == "h5md" || options_.table == "parameters" ||
-      options_.table == "diagnostics")
-    throw std::invalid_argument("results table: bad table name '" + options_.table + "'");
-  if (options_.block_rows == 0 || options_.chunk_rows == 0)
-    throw std::invalid_argument("results file: block_rows and chunk_rows must be positive");
+  index_columns(columns_, options_, index_);
   if (path.empty()) throw OutputFileError("cannot write results: empty output file name");
-
-  // Refuse before touching anything.
-  for (const std::string& p : {path_, csv_path_}) {
-    struct stat st {};
-    if (::lstat(p.c_str(), &st) == 0) {
-      if (!force) throw OutputFileError("output file '" + p + "' exists (use --force to replace it)");
-      if (S_ISDIR(st.st_mode)) throw OutputFileError("cannot write results '" + p + "': it is a directory");
-    }
-  }
-  const std::string dir = hdf5::parent_directory(path);
-  struct stat st {};
-  if (::stat(dir.c_str(), &st) != 0)
-    throw OutputFileError("cannot write results '" + path + "': directory '" + dir + "': " + std::strerror(errno));
-  if (!S_ISDIR(st.st_mode))
-    throw OutputFileError("cannot write results '" + path + "': '" + dir + "' is not a directory");
   const std::string csv_partial = csv_partial_path();
-  for (const std::string& p : {partial_path_, csv_partial}) {
-    const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) {
-      const int err = errno;
-      ::unlink(partial_path_.c_str());
-      throw OutputFileError("cannot write results '" + path + "': cannot create '" + p + "': " + std::strerror(err));
-    }
-    ::close(fd);
-  }
+  create_partial_files(path_, csv_path_, partial_path_, csv_partial, force);
 
   QuietHdf5Errors quiet;
   auto fail_fn = [this](const std::string& what) { fail(what); };
   try {
-    impl_->csv = std::fopen(csv_partial.c_str(), "w");
-    if (!impl_->csv) throw OutputFileError("cannot write results '" + csv_partial + "': " + std::strerror(errno));
-    std::string header;
-    for (std::size_t i = 0; i < columns_.size(); ++i) header += (i ? "," : "") + csv_text(columns_[i].name);
-    header += '\n';
-    if (std::fputs(header.c_str(), impl_->csv) < 0 || std::fflush(impl_->csv) != 0)
-      throw OutputFileError("cannot write results '" + csv_partial + "': " + std::strerror(errno));
-
+    create_csv(csv_partial);
     impl_->file = hdf5::create_file(partial_path_, fail_fn);
     const hid_t f = impl_->file.get();
     hdf5::write_h5md_metadata(f, /*units_module=*/true, fail_fn);  // as in trajectory files
-
-    impl_->string_type = hdf5::vlen_string_type(/*ascii=*/false, fail_fn);
-    impl_->table = open_or_create_group(f, options_.table, fail_fn);
-    for (const Column& c : columns_) {
-      const hsize_t dims = 0, maxdims = H5S_UNLIMITED, chunk = options_.chunk_rows;
-      Handle space(H5Screate_simple(1, &dims, &maxdims), H5Sclose);
-      Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
-      if (!space.valid() || !dcpl.valid() || H5Pset_chunk(dcpl.get(), 1, &chunk) < 0)
-        fail("cannot set up dataset /" + options_.table + "/" + c.name);
-      const hid_t type = c.type == ColumnType::real      ? H5T_IEEE_F64LE
-                         : c.type == ColumnType::integer ? H5T_STD_I64LE
-                                                         : impl_->string_type.get();
-      Handle d(H5Dcreate2(impl_->table.get(), c.name.c_str(), type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-               H5Dclose);
-      if (!d.valid()) fail("cannot create dataset /" + options_.table + "/" + c.name);
-      if (!c.unit.empty()) write_vlen_string(d.get(), "unit", c.unit, /*ascii=*/true, fail_fn);
-      impl_->columns.push_back(std::move(d));
-    }
-
+    create_table();
     impl_->diagnostics = open_or_create_group(f, "diagnostics", fail_fn);
     write_vlen_string(impl_->diagnostics.get(), "status", "running", false, fail_fn);
     if (H5Fflush(f, H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
@@ -201,6 +186,42 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
   open_ = true;
   buffer_.reserve(options_.block_rows);
   last_flush_ = std::chrono::steady_clock::now();
+}
+
+// The CSV twin with its header row.
+void ResultsFile::create_csv(const std::string& csv_partial) {
+  impl_->csv = std::fopen(csv_partial.c_str(), "w");
+  if (!impl_->csv) throw OutputFileError("cannot write results '" + csv_partial + "': " + std::strerror(errno));
+  std::string header;
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (i) header += ',';
+    header += csv_text(columns_[i].name);
+  }
+  header += '\n';
+  if (std::fputs(header.c_str(), impl_->csv) < 0 || std::fflush(impl_->csv) != 0)
+    throw OutputFileError("cannot write results '" + csv_partial + "': " + std::strerror(errno));
+}
+
+// /<table>: one empty, extendible dataset per column.
+void ResultsFile::create_table() {
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  impl_->string_type = hdf5::vlen_string_type(/*ascii=*/false, fail_fn);
+  impl_->table = open_or_create_group(impl_->file.get(), options_.table, fail_fn);
+  for (const Column& c : columns_) {
+    const hsize_t dims = 0, maxdims = H5S_UNLIMITED, chunk = options_.chunk_rows;
+    Handle space(H5Screate_simple(1, &dims, &maxdims), H5Sclose);
+    Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    if (!space.valid() || !dcpl.valid() || H5Pset_chunk(dcpl.get(), 1, &chunk) < 0)
+      fail("cannot set up dataset /" + options_.table + "/" + c.name);
+    const hid_t type = c.type == ColumnType::real      ? H5T_IEEE_F64LE
+                       : c.type == ColumnType::integer ? H5T_STD_I64LE
+                                                       : impl_->string_type.get();
+    Handle d(H5Dcreate2(impl_->table.get(), c.name.c_str(), type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+             H5Dclose);
+    if (!d.valid()) fail("cannot create dataset /" + options_.table + "/" + c.name);
+    if (!c.unit.empty()) write_vlen_string(d.get(), "unit", c.unit, /*ascii=*/true, fail_fn);
+    impl_->columns.push_back(std::move(d));
+  }
 }
 
 ResultsFile::~ResultsFile() {

@@ -128,6 +128,8 @@ class ResultsFile {
 
  private:
   struct Impl;
+  void create_csv(const std::string& csv_partial);  // construction: CSV header
+  void create_table();                              // construction: one dataset per column
   void write_block();
   void write_attributes(std::int64_t group, const ResultAttributes& a);
   void close_files();

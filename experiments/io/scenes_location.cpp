@@ -22,7 +22,7 @@ std::string shipped_scenes_dir(const std::string& flag) {
   }
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    for (const fs::path candidate : {exe.parent_path() / ".." / "share" / "lgi" / "scenes",
+    for (const fs::path& candidate : {exe.parent_path() / ".." / "share" / "lgi" / "scenes",
                                      exe.parent_path() / ".." / ".." / "experiments" / "scenes"}) {
       if (fs::is_directory(candidate, ec)) return fs::weakly_canonical(candidate, ec).string();
     }
