@@ -90,6 +90,19 @@ struct Measured {
   bool exact = false;  // every error at round-off: no slope to fit
 };
 
+/// The slope through the finest `fitted_points` points between the floor and the ceiling.
+Measured fit_finest(std::vector<ConvergencePoint> all) {
+  Measured m;
+  m.points = std::move(all);
+  std::vector<ConvergencePoint> usable;
+  for (const auto& pt : m.points)
+    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
+  if (usable.size() > static_cast<std::size_t>(fitted_points))
+    usable.erase(usable.begin(), usable.end() - fitted_points);
+  m.fit = testing::fitted_slope(usable, floor_error, ceiling_error);
+  return m;
+}
+
 Measured measure(const integrators::SchemeInfo& s, const Problem& p, int order) {
   const double ratio = std::max(std::pow(10.0, -1.0 / (2.0 * order)), 0.5);
   const double h0 = order >= 4 ? 1.0 : 0.2;
@@ -102,15 +115,8 @@ Measured measure(const integrators::SchemeInfo& s, const Problem& p, int order) 
     all.push_back({h, e});
     if (e < floor_error) break;
   }
-  Measured m;
-  m.points = all;
-  std::vector<ConvergencePoint> usable;
-  for (const auto& pt : all)
-    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
-  if (usable.size() > static_cast<std::size_t>(fitted_points))
-    usable.erase(usable.begin(), usable.end() - fitted_points);
-  m.fit = testing::fitted_slope(usable, floor_error, ceiling_error);
-  m.exact = !all.empty() && usable.empty() &&
+  Measured m = fit_finest(all);
+  m.exact = !all.empty() && m.fit.points == 0 &&
             std::all_of(all.begin(), all.end(), [](const auto& pt) { return pt.error < floor_error; });
   return m;
 }
@@ -185,15 +191,7 @@ Measured measure_adaptive(const integrators::SchemeInfo& s, const Problem& p) {
     if (!stats.ok || stats.steps == 0) continue;
     all.push_back({p.t_end / static_cast<double>(stats.steps), testing::global_error(x, p.reference)});
   }
-  Measured m;
-  m.points = all;
-  std::vector<ConvergencePoint> usable;
-  for (const auto& pt : all)
-    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
-  if (usable.size() > static_cast<std::size_t>(fitted_points))
-    usable.erase(usable.begin(), usable.end() - fitted_points);
-  m.fit = testing::fitted_slope(usable, floor_error, ceiling_error);
-  return m;
+  return fit_finest(std::move(all));
 }
 
 }  // namespace

@@ -151,7 +151,7 @@ RunStats run_baseline(const Model& model, State& s, const RunConfig& cfg, Observ
     observer.observe(k, tt, Coords::to_state(model, xx));
     emitted_at = k;
   };
-  auto land_tolerance = [&](double tt) { return 1e-12 * std::max({1.0, std::abs(tt), std::abs(span)}); };
+  auto land_tolerance = [&](double tt) { return detail::land_tolerance(tt, span); };
   auto fail = [&](std::string why) {
     stats.ok = false;
     stats.status = std::move(why);

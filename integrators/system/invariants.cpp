@@ -7,22 +7,14 @@ namespace lgi::system {
 namespace {
 bool nearly(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); }
 bool is_diagonal(const Mat3& J) { return J(0, 1) == 0.0 && J(0, 2) == 0.0 && J(1, 2) == 0.0; }
-/// Whether T is the only term the scene declares.
-template <class T>
-bool only_declared_term(const Scene& scene) {
-  Scene others = scene;
-  others.declared<T>().reset();
-  return others.is_free_body();
-}
 }  // namespace
 
 SceneInvariants::SceneInvariants(const Scene& scene, const AnyModel& model) : model_(&model) {
   free_body_ = std::holds_alternative<FreeBody>(model);
   // The Casimir Π·Γ and the top's integrals need gravity and no other torque.
-  heavy_top_ = scene.declared<GravityTerm>().has_value() && only_declared_term<GravityTerm>(scene);
+  heavy_top_ = scene.declares_only<GravityTerm>();
   // The field's Casimir Π·RᵀB, as Π·Γ for gravity (docs/conventions.md §6).
-  magnetic_only_ =
-      scene.declared<MagneticDipoleTerm>().has_value() && only_declared_term<MagneticDipoleTerm>(scene);
+  magnetic_only_ = scene.declares_only<MagneticDipoleTerm>();
   if (magnetic_only_) field_ = scene.declared<MagneticDipoleTerm>()->field;
   const Mat3& J = scene.inertia;
   if (heavy_top_ && is_diagonal(J) && scene.center_of_mass) {

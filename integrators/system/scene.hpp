@@ -41,8 +41,15 @@ struct Scene {
   const std::optional<typename T::Parameters>& declared() const {
     return std::get<std::optional<typename T::Parameters>>(terms);
   }
-  bool is_free_body() const {
-    return std::apply([](const auto&... p) { return (!p.has_value() && ... && true); }, terms);
+  /// How many torque terms the scene declares.
+  int declared_terms() const {
+    return std::apply([](const auto&... p) { return (int{p.has_value()} + ... + 0); }, terms);
+  }
+  bool is_free_body() const { return declared_terms() == 0; }
+  /// Whether T is the one torque term the scene declares.
+  template <class T>
+  bool declares_only() const {
+    return declared<T>().has_value() && declared_terms() == 1;
   }
   BodyProperties body() const { return {inertia, mass.value_or(0.0), center_of_mass.value_or(Vec3::Zero())}; }
 };
