@@ -29,6 +29,7 @@ struct SchemeInfo {
   RunFunction run = nullptr;
   int order_with_torque = 0;  // order on scenes with torques where it differs (Strang splitting); 0: the same
   std::string base_scheme{};  // a composition's base scheme (`lgi schemes --json` "base"); empty otherwise
+  bool locates_events = true;  // driven by the stepper loop, which honours RunConfig::events (not the baselines)
 };
 
 const std::vector<SchemeInfo>& scheme_registry();

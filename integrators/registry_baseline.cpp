@@ -100,7 +100,8 @@ void add_baseline_schemes(std::vector<SchemeInfo>& r) {
                    .support = SceneSupport::any,
                    .reference = coordinates_reference(c) + "; " + stepper_reference(s),
                    .notes = notes(c, s),
-                   .run = run_function(c, s)});
+                   .run = run_function(c, s),
+                   .locates_events = false});
     }
   }
 }

@@ -23,17 +23,28 @@
 // observe(), unless that step was observed anyway), so the last sample is kept.
 // steps, work, cpu_seconds and t_final are filled as for any other run.
 //
-// With both null, the loop is the one it always was: the same steps, the same
-// arithmetic and the same observe() calls.
+// Events (RunConfig::events): after every accepted step the loop evaluates
+// the event functions and locates each crossing on the scheme's own step map
+// (events.hpp), then hands it to Observer::on_event() before the step's
+// observe(). Crossings in one step are reported in the order of the event
+// functions. The run's steps and states are the same with or without events;
+// the location steps add to WorkCounters::rhs_evaluations only. A location
+// step whose implicit solve fails ends the run (not ok, status "event
+// location failed ...").
+//
+// With all three null, the loop is the one it always was: the same steps,
+// the same arithmetic and the same observe() calls.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "integrators/events.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "lie/charts.hpp"
 
@@ -52,6 +63,9 @@ struct RunConfig {
   /// If set: read once per accepted step; true ends the run after that step
   /// with status "interrupted by signal at step K, t = T" (top of this file).
   const std::atomic<bool>* stop = nullptr;
+  /// If set: crossings of these surfaces are located and passed to
+  /// Observer::on_event() (top of this file).
+  const EventFunctions* events = nullptr;
 };
 
 /// Receives the samples of a run. Called once per saved step (never inside
@@ -68,6 +82,8 @@ class Observer {
   /// the flag itself (to stop loops that do not read RunConfig::stop) knows
   /// from this that the run is ending anyway.
   virtual void on_stop() {}
+  /// A located crossing of RunConfig::events, before the observe() of its step.
+  virtual void on_event(const EventHit& /*hit*/) {}
 };
 
 /// An observer that keeps nothing.
@@ -130,6 +146,38 @@ inline bool observe_output_times(const std::vector<double>& times, std::size_t& 
   }
   return observed;
 }
+/// The values of every event function at (t, x), into g (sized here, before the loop).
+inline void event_values(const EventFunctions& events, double t, const State& x, std::vector<double>& g) {
+  g.resize(static_cast<std::size_t>(events.count()));
+  for (int i = 0; i < events.count(); ++i) g[static_cast<std::size_t>(i)] = events.value(i, t, x);
+}
+/// After an accepted step (t0, x0) → (t0 + h, x1): locates and reports the
+/// crossings in it (events.hpp) and updates g to the values at x1. Returns
+/// an empty string, or why a location step failed.
+template <class Advance>
+std::string report_crossings(const EventFunctions& events, std::vector<double>& g, double t0, double h,
+                             const State& x0, const State& x1, std::int64_t step, Advance&& advance,
+                             Observer& observer) {
+  std::string failure;
+  for (int i = 0; i < events.count(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double g1 = events.value(i, t0 + h, x1);
+    const int d = crossing_direction(g[k], g1, events.direction(i));
+    if (d != 0 && failure.empty()) {
+      EventHit hit;
+      hit.event = i;
+      hit.direction = d;
+      hit.step = step;
+      if (!locate_crossing(events, i, t0, h, x0, x1, g[k], g1, advance, hit))
+        failure = failure_message("event location failed: a step of the root search did not succeed", step, t0 + h, nullptr);
+      observer.on_event(hit);
+    }
+    g[k] = g1;
+  }
+  return failure;
+}
+template <class Scheme, class Model>
+concept has_fixed_step = requires(Scheme& s, const Model& m, State& x, WorkCounters& w) { s.step(m, x, 0.0, 0.0, w); };
 template <class Scheme, class Model>
 concept has_start = requires(Scheme& s, const Model& m, const State& x) { s.start(m, x, 0.0); };
 /// One step of size h; while its implicit solve does not converge, it is
@@ -180,8 +228,17 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   if (times) detail::observe_output_times(*times, next, direction, span, 0, cfg.t0, s, observer);
   else observer.observe(0, cfg.t0, s);
   double t = cfg.t0;
+  const EventFunctions* events = cfg.events;
+  std::vector<double> g;
+  std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the step
+  State x_before;
+  if (events) detail::event_values(*events, cfg.t0, s, g);
   for (std::int64_t k = 0; k < n; ++k) {
     const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + direction * static_cast<double>(k + 1) * cfg.dt;
+    if (events) {
+      scheme_before.emplace(scheme);
+      x_before = s;
+    }
     StepStatus st;
     if (cfg.retry_halving > 0) {
       st = detail::step_with_halving(scheme, model, s, t, t_next - t, cfg.retry_halving, stats.work);
@@ -201,6 +258,21 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
       stats.ok = false;
       stats.status = detail::failure_message("state became non-finite (blow-up)", k + 1, t_next, nullptr);
       break;
+    }
+    if (events) {
+      const double t_start = t;
+      auto advance = [&](double theta, State& x) {
+        Scheme copy = *scheme_before;
+        x = x_before;
+        return copy.step(model, x, t_start, theta, stats.work).converged;
+      };
+      std::string why = detail::report_crossings(*events, g, t, t_next - t, x_before, s, k + 1, advance, observer);
+      if (!why.empty()) {
+        stats.ok = false;
+        stats.status = std::move(why);
+        t = t_next;
+        break;
+      }
     }
     t = t_next;
     const bool stopping = k + 1 < n && detail::stop_requested(cfg);
@@ -239,6 +311,10 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
   double t = cfg.t0;
   double h = cfg.dt > 0.0 ? std::min(cfg.dt, span) : scheme.initial_step(model, s, t, span);
   std::int64_t k = 0;
+  const EventFunctions* events = cfg.events;
+  std::vector<double> g;
+  std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the attempt
+  if (events) detail::event_values(*events, cfg.t0, s, g);
   while (span > 0.0 && t < cfg.t_end) {
     // The time this step may not pass: t_end, or the next output time before it.
     double target = cfg.t_end;
@@ -250,6 +326,7 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
     const bool last = t + h >= target || (target - (t + h)) < land;
     const double h_try = last ? target - t : h;
     const State before = s;
+    if (events) scheme_before.emplace(scheme);
     const AdaptiveStatus a = scheme.attempt(model, s, t, h_try, stats.work);
     detail::record_solve(a.solve, stats.work);
     if (!a.accepted) {
@@ -263,12 +340,33 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
       continue;
     }
     ++k;
+    const double t_start = t;
     t = last ? target : t + h_try;
     stats.steps = k;
     if (!detail::finite_state(s)) {
       stats.ok = false;
       stats.status = detail::failure_message("state became non-finite (blow-up)", k, t, nullptr);
       break;
+    }
+    if (events) {
+      // The search takes steps of the accepted pair's solution whatever its
+      // error estimate says (a step no longer than an accepted one).
+      auto advance = [&](double theta, State& x) {
+        Scheme copy = *scheme_before;
+        x = before;
+        if constexpr (detail::has_fixed_step<Scheme, Model>) {
+          return copy.step(model, x, t_start, theta, stats.work).converged;
+        } else {
+          const AdaptiveStatus tried = copy.attempt(model, x, t_start, theta, stats.work);
+          return tried.accepted && tried.solve.converged;
+        }
+      };
+      std::string why = detail::report_crossings(*events, g, t_start, t - t_start, before, s, k, advance, observer);
+      if (!why.empty()) {
+        stats.ok = false;
+        stats.status = std::move(why);
+        break;
+      }
     }
     const bool stopping = t < cfg.t_end && detail::stop_requested(cfg);
     if (stopping) observer.on_stop();

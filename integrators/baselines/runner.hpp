@@ -132,6 +132,11 @@ RunStats run_baseline(const Model& model, State& s, const RunConfig& cfg, Observ
   using Stepper = StepperT<Coords>;
   using detail_baseline::euler_singularity_message;
   RunStats stats;
+  if (cfg.events) {  // SchemeInfo::locates_events is false for the baselines
+    stats.ok = false;
+    stats.status = "the baselines do not locate events (RunConfig::events); use a Lie-group scheme";
+    return stats;
+  }
   const double cpu0 = detail::cpu_now();
   ChartWatch watch;
   const CountingSystem<Coords, Model> sys{&model, &stats.work.rhs_evaluations, &watch};
