@@ -108,7 +108,7 @@ inline constexpr const char* interrupted_status = "interrupted by signal";
 namespace detail {
 inline double cpu_now() {
   timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);  // this thread: sweeps run trajectories on several
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 inline bool finite_state(const State& s) { return s.R.allFinite() && s.Pi.allFinite(); }

@@ -47,6 +47,7 @@ int run_cli(int argc, char** argv) {
       add_long_time_subcommand(app, context),
       add_singularity_subcommand(app, context),
       add_stress_subcommand(app, context),
+      add_sweep_subcommand(app, context),
   };
 
   try {

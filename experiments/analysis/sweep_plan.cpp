@@ -1,0 +1,286 @@
+#include "experiments/analysis/sweep_plan.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/scene_toml.hpp"
+#include "lie/charts.hpp"
+#include "lie/quaternion.hpp"
+#include "lie/so3.hpp"
+
+namespace lgi::experiments {
+
+namespace {
+
+using lie::Mat3;
+using lie::Vec3;
+
+/// SplitMix64's output function (Steele, Lea & Flood 2014).
+std::uint64_t mix(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+/// The draws of trajectory `index` for one entry (`stream`): a SplitMix64
+/// sequence started from a hash of (seed, index, stream).
+class CounterRng {
+ public:
+  CounterRng(std::uint64_t seed, std::int64_t index, std::uint64_t stream)
+      : state_(mix(seed ^ mix(static_cast<std::uint64_t>(index) ^ mix(stream + 0x632be59bd9b4e019ULL)))) {}
+  /// Uniform in [0, 1), 53 random bits.
+  double uniform() {
+    state_ += 0x9e3779b97f4a7c15ULL;
+    return static_cast<double>(mix(state_) >> 11) * 0x1.0p-53;
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+constexpr std::uint64_t level_set_stream = 1u << 20;
+
+/// R with Γ = Rᵀe3 = γ and ψ = 0: R = Rx(θ) Rz(φ), γ = (sinθ sinφ, sinθ cosφ, cosθ).
+Mat3 attitude_from_gamma(const Vec3& gamma) {
+  const double theta = std::acos(std::clamp(gamma.z(), -1.0, 1.0));
+  const double phi = std::atan2(gamma.x(), gamma.y());
+  return lie::matrix_from_euler_zxz({0.0, theta, phi});
+}
+
+/// The energy of a top (gravity alone, or no torque) on {Π·Γ = l}:
+/// H ≥ V(γ) + l²/(2 γᵀJγ), with equality at Π = l Jγ/(γᵀJγ) (a Lagrange
+/// multiplier: ∇(½ΠᵀJ⁻¹Π) = λγ).
+struct LevelSetBody {
+  Mat3 J, J_inv;
+  Vec3 weight = Vec3::Zero();  // m g χ: V(γ) = m g χ·γ
+  double lowest_energy(const Vec3& gamma, double l) const {
+    return weight.dot(gamma) + l * l / (2.0 * gamma.dot(J * gamma));
+  }
+};
+
+LevelSetBody level_set_body(const system::Scene& scene) {
+  LevelSetBody b{scene.inertia, scene.inertia.inverse()};
+  if (const auto& g = scene.declared<system::GravityTerm>())
+    b.weight = scene.mass.value_or(0.0) * g->g * scene.center_of_mass.value_or(Vec3::Zero());
+  return b;
+}
+
+/// The least of V(γ) + l²/(2γᵀJγ) over 20000 directions of a Fibonacci
+/// lattice on the sphere (an upper bound of the minimum, within ~1e-3 relative).
+double sampled_minimum(const LevelSetBody& b, double l) {
+  constexpr int n = 20000;
+  double lowest = INFINITY;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < n; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / n, r = std::sqrt(1.0 - z * z);
+    const Vec3 gamma(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    lowest = std::min(lowest, b.lowest_energy(gamma, l));
+  }
+  return lowest;
+}
+
+/// A point of {H = h, Π·Γ = l}: γ uniform on the sphere among the directions
+/// where the level is reached (rejection), then Π = l Jγ/(γᵀJγ) + u with u ⊥ γ
+/// on the ellipse ½uᵀJ⁻¹u = h − V(γ) − l²/(2γᵀJγ), at a uniform angle of its
+/// parametrisation u = √(2r) [e_a e_b] L⁻ᵀ(cos α, sin α), A = LLᵀ.
+bool draw_level_point(const LevelSetBody& b, double h, double l, CounterRng& rng, Vec3& gamma, Vec3& Pi) {
+  for (int attempt = 0; attempt < 1000000; ++attempt) {
+    const double z = 2.0 * rng.uniform() - 1.0, angle = 2.0 * std::numbers::pi * rng.uniform();
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const Vec3 g(r * std::cos(angle), r * std::sin(angle), z);
+    const double gJg = g.dot(b.J * g);
+    const double excess = h - b.weight.dot(g) - l * l / (2.0 * gJg);
+    if (!(excess >= 0.0)) continue;
+    const Vec3 ea = g.unitOrthogonal(), eb = g.cross(ea);
+    Eigen::Matrix2d A;
+    A << ea.dot(b.J_inv * ea), ea.dot(b.J_inv * eb), eb.dot(b.J_inv * ea), eb.dot(b.J_inv * eb);
+    const Eigen::Matrix2d L = A.llt().matrixL();
+    const double alpha = 2.0 * std::numbers::pi * rng.uniform();
+    const Eigen::Vector2d y =
+        std::sqrt(2.0 * excess) * L.transpose().triangularView<Eigen::Upper>().solve(
+                                      Eigen::Vector2d(std::cos(alpha), std::sin(alpha)));
+    gamma = g;
+    Pi = (l / gJg) * (b.J * g) + y.x() * ea + y.y() * eb;
+    return true;
+  }
+  return false;
+}
+
+/// Sets key `name` of table `table` (creating the table) to the numbers.
+void set_toml_value(toml::table& doc, const std::string& table, const std::string& name, const double* v, int width) {
+  if (!doc.contains(table)) doc.insert(table, toml::table{});
+  toml::table& t = *doc[table].as_table();
+  if (table == "body" && (name == "inertia" || name == "inertia_cm")) {
+    t.erase("inertia"), t.erase("inertia_cm"), t.erase("inertia_tensor");
+  }
+  if (width == 1) {
+    t.insert_or_assign(name, v[0]);
+  } else {
+    toml::array a;
+    for (int k = 0; k < width; ++k) a.push_back(v[k]);
+    t.insert_or_assign(name, std::move(a));
+  }
+}
+
+}  // namespace
+
+SweepPlan::SweepPlan(const SweepSpec& spec, const system::Scene& base) : spec_(spec), base_(base) {
+  count_ = spec.count();
+  for (const auto& v : spec.vary) {
+    offsets_.push_back(width_);
+    columns_.push_back({v.column, v.width});
+    width_ += v.width;
+    if (!v.initial_state()) scene_varies_ = true;
+  }
+  if (spec.level_set) {
+    level_offset_ = width_;
+    columns_.push_back({"initial.gamma", 3});
+    columns_.push_back({"initial.angular_momentum", 3});
+    width_ += 6;
+  }
+  const scene_toml::Reader rd(spec.file);
+  // Every grid value once, on the base scene (a combination that is invalid
+  // only jointly fails its trajectories with the reason).
+  std::vector<double> flat;
+  inputs(0, flat);
+  for (std::size_t e = 0; e < spec.vary.size(); ++e) {
+    const auto& v = spec.vary[e];
+    for (const auto& value : v.values) {
+      std::vector<double> probe = flat;
+      std::copy(value.begin(), value.end(), probe.begin() + offsets_[e]);
+      try {
+        system::Scene s = scene(probe);
+        if (v.initial_state()) (void)initial_state(0, s, probe);
+      } catch (const std::exception& err) {
+        rd.fail(v.line, "vary", "key", "\"" + v.key + "\" = " + scene_toml::fmt(value[0]) +
+                                           (value.size() > 1 ? ", ..." : "") + ": " + err.what());
+      }
+    }
+  }
+  if (spec.level_set) {
+    if (base.declared_terms() > (base.declared<system::GravityTerm>() ? 1 : 0))
+      rd.fail(spec.level_set->line, "level_set", "",
+              "the scene " + base.file + " has torques other than gravity; a level set needs an energy of Pi and Gamma alone");
+    if (!scene_varies_) {
+      const double lowest = sampled_minimum(level_set_body(base), spec.level_set->l);
+      if (spec.level_set->h < lowest - 1e-9 * std::max(1.0, std::abs(lowest))) {
+        std::vector<double> probe = flat;
+        try {
+          (void)initial_state(0, base, probe);
+        } catch (const TrajectorySetupError&) {
+          rd.fail(spec.level_set->line, "level_set", "h",
+                  "the level set is empty for this body: at l = " + scene_toml::fmt(spec.level_set->l) + ", H >= " +
+                      scene_toml::fmt(lowest) + " in every direction of Gamma sampled, above h = " +
+                      scene_toml::fmt(spec.level_set->h));
+        }
+      }
+    }
+  }
+}
+
+void SweepPlan::inputs(std::int64_t i, std::vector<double>& flat) const {
+  flat.assign(static_cast<std::size_t>(width_), 0.0);
+  std::int64_t grid = i / spec_.samples;
+  // Mixed radix, the last grid axis fastest.
+  for (std::size_t e = spec_.vary.size(); e-- > 0;) {
+    const auto& v = spec_.vary[e];
+    double* out = flat.data() + offsets_[e];
+    if (v.random) {
+      CounterRng rng(spec_.seed, i, e + 1);
+      for (int k = 0; k < v.width; ++k)
+        out[k] = v.low[static_cast<std::size_t>(k)] +
+                 rng.uniform() * (v.high[static_cast<std::size_t>(k)] - v.low[static_cast<std::size_t>(k)]);
+      continue;
+    }
+    const auto n = static_cast<std::int64_t>(v.values.size());
+    const auto& value = v.values[static_cast<std::size_t>(grid % n)];
+    grid /= n;
+    std::copy(value.begin(), value.end(), out);
+  }
+}
+
+bool SweepPlan::same_scene(const std::vector<double>& a, const std::vector<double>& b) const {
+  for (std::size_t e = 0; e < spec_.vary.size(); ++e) {
+    if (spec_.vary[e].initial_state()) continue;
+    for (int k = 0; k < spec_.vary[e].width; ++k)
+      if (a[static_cast<std::size_t>(offsets_[e] + k)] != b[static_cast<std::size_t>(offsets_[e] + k)]) return false;
+  }
+  return true;
+}
+
+system::Scene SweepPlan::scene(const std::vector<double>& flat) const {
+  if (!scene_varies_) return base_;
+  toml::table doc = toml::parse(base_.toml_text, base_.file);
+  for (std::size_t e = 0; e < spec_.vary.size(); ++e) {
+    const auto& v = spec_.vary[e];
+    if (v.initial_state()) continue;
+    const double* value = flat.data() + offsets_[e];
+    if (v.component == 0) {
+      set_toml_value(doc, v.table, v.name, value, v.width);
+      continue;
+    }
+    const toml::array* base = doc[v.table][v.name].as_array();
+    if (!base || base->size() != 3)
+      throw InputError("the scene " + base_.file + " has no [" + v.table + "] " + v.name + " to take the other components from");
+    double full[3];
+    for (std::size_t k = 0; k < 3; ++k) full[k] = (*base)[k].value<double>().value_or(0.0);
+    full[v.component - 1] = value[0];
+    set_toml_value(doc, v.table, v.name, full, 3);
+  }
+  std::ostringstream text;
+  text << doc;
+  system::Scene s = parse_scene(text.str(), base_.file + " (with " + spec_.file + "'s varied keys)");
+  return s;
+}
+
+system::State SweepPlan::initial_state(std::int64_t i, const system::Scene& scene, std::vector<double>& flat) const {
+  system::State x = scene.initial;
+  if (spec_.level_set) {
+    CounterRng rng(spec_.seed, i, level_set_stream);
+    Vec3 gamma, Pi;
+    if (!draw_level_point(level_set_body(scene), spec_.level_set->h, spec_.level_set->l, rng, gamma, Pi))
+      throw TrajectorySetupError("the level set (l, h) was not reached in 1e6 random directions of Gamma");
+    x.R = attitude_from_gamma(gamma);
+    x.Pi = Pi;
+    std::copy(gamma.data(), gamma.data() + 3, flat.begin() + level_offset_);
+    std::copy(Pi.data(), Pi.data() + 3, flat.begin() + level_offset_ + 3);
+    return x;
+  }
+  for (std::size_t e = 0; e < spec_.vary.size(); ++e) {
+    const auto& v = spec_.vary[e];
+    if (!v.initial_state()) continue;
+    const double* value = flat.data() + offsets_[e];
+    auto replaced = [&](Vec3 base) {
+      if (v.component == 0) return Vec3(value[0], value[1], value[2]);
+      base[v.component - 1] = value[0];
+      return base;
+    };
+    if (v.name == "angular_momentum") {
+      x.Pi = replaced(x.Pi);
+    } else if (v.name == "angular_velocity") {
+      x.Pi = scene.inertia * replaced(scene.inertia.inverse() * scene.initial.Pi);
+    } else if (v.name == "rotation_vector") {
+      x.R = lie::exp_so3(replaced(lie::log_so3(scene.initial.R)));
+    } else if (v.name == "euler_zxz") {
+      const auto e0 = lie::euler_zxz_from_matrix(scene.initial.R).angles;
+      const Vec3 a = replaced(Vec3(e0.psi, e0.theta, e0.phi));
+      x.R = lie::matrix_from_euler_zxz({a.x(), a.y(), a.z()});
+    } else if (v.name == "gamma") {
+      const Vec3 g = replaced(scene.initial.R.transpose() * Vec3::UnitZ());
+      if (!(g.norm() > 0.0)) throw InputError("initial.gamma is the zero vector (it gives a direction)");
+      x.R = attitude_from_gamma(g / g.norm());
+    } else if (v.name == "quaternion") {
+      const double norm = std::sqrt(value[0] * value[0] + value[1] * value[1] + value[2] * value[2] + value[3] * value[3]);
+      if (!(std::abs(norm - 1.0) < scene_toml::unit_norm_tolerance))
+        throw InputError("not a unit quaternion: norm " + scene_toml::fmt(norm) + " (tolerance 1e-12)");
+      x.R = lie::matrix_from_quat(Eigen::Quaterniond(value[0] / norm, value[1] / norm, value[2] / norm, value[3] / norm));
+    }
+  }
+  return x;
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,179 @@
+#include "experiments/analysis/sweep_trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lie/quaternion.hpp"
+
+namespace lgi::experiments {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+lie::Vec3 gamma_of(const system::State& x) { return x.R.transpose() * lie::Vec3::UnitZ(); }
+
+/// The spec's surfaces: g = quantity[component] − value.
+class SpecEvents final : public integrators::EventFunctions {
+ public:
+  SpecEvents(const std::vector<EventSpec>& events, const lie::Mat3& J_inv) : events_(events), J_inv_(J_inv) {}
+  int count() const override { return static_cast<int>(events_.size()); }
+  double value(int i, double, const system::State& x) const override {
+    const EventSpec& e = events_[static_cast<std::size_t>(i)];
+    const int k = e.component - 1;
+    switch (e.quantity) {
+      case EventSpec::Quantity::angular_momentum: return x.Pi(k) - e.value;
+      case EventSpec::Quantity::angular_velocity: return (J_inv_ * x.Pi)(k) - e.value;
+      case EventSpec::Quantity::gamma: return x.R(2, k) - e.value;  // Γ_k = (Rᵀe3)_k = R(2, k)
+    }
+    return 0.0;
+  }
+  int direction(int i) const override { return events_[static_cast<std::size_t>(i)].direction; }
+
+ private:
+  const std::vector<EventSpec>& events_;
+  lie::Mat3 J_inv_;
+};
+
+/// Largest invariant errors over the observed samples; crossings as rows.
+class SweepObserver final : public integrators::Observer {
+ public:
+  SweepObserver(const system::SceneInvariants& invariants, const std::vector<int>& error_slots, std::int64_t index,
+                std::int64_t max_events, std::vector<double>& events, std::vector<double>& max_errors)
+      : invariants_(invariants),
+        slots_(error_slots),
+        index_(index),
+        max_events_(max_events),
+        events_(events),
+        max_(max_errors) {}
+
+  void observe(std::int64_t, double, const system::State& x) override {
+    const system::InvariantValues v = invariants_.evaluate(x);
+    if (!have_initial_) {
+      initial_ = v;
+      have_initial_ = true;
+    }
+    invariants_.errors(initial_, v, errors_);
+    for (std::size_t k = 0; k < slots_.size(); ++k) {
+      if (slots_[k] < 0) continue;
+      const double e = errors_[static_cast<std::size_t>(slots_[k])];
+      // NaN propagates: a non-finite error is the largest.
+      if (std::isnan(e) || e > max_[k]) max_[k] = e;
+    }
+  }
+  void on_event(const integrators::EventHit& hit) override {
+    ++count_;
+    if (count_ > max_events_) return;
+    const auto q = lie::to_wxyz(lie::quat_from_matrix(hit.state.R));
+    const lie::Vec3 g = gamma_of(hit.state);
+    const double row[event_row_width] = {static_cast<double>(index_), static_cast<double>(hit.event),
+                                         static_cast<double>(hit.direction), static_cast<double>(hit.step), hit.t,
+                                         hit.state.Pi.x(), hit.state.Pi.y(), hit.state.Pi.z(),
+                                         q[0], q[1], q[2], q[3], g.x(), g.y(), g.z()};
+    events_.insert(events_.end(), row, row + event_row_width);
+  }
+  std::int64_t crossings() const { return count_; }
+
+ private:
+  const system::SceneInvariants& invariants_;
+  const std::vector<int>& slots_;
+  std::int64_t index_, max_events_, count_ = 0;
+  std::vector<double>& events_;
+  std::vector<double>& max_;
+  bool have_initial_ = false;
+  system::InvariantValues initial_{};
+  std::vector<double> errors_;
+};
+
+}  // namespace
+
+struct SweepRunner::Context {
+  system::Scene scene;
+  system::AnyModel model;
+  system::SceneInvariants invariants;
+  SpecEvents events;
+  std::vector<int> error_slots;  // for each sweep error column, its index in invariants.error_names() (−1: none)
+  std::vector<double> inputs;    // the inputs it was built for
+  Context(system::Scene s, const std::vector<EventSpec>& spec_events, const std::vector<std::string>& error_names)
+      : scene(std::move(s)),
+        model(system::make_model(scene)),
+        invariants(scene, model),
+        events(spec_events, scene.inertia.inverse()) {
+    const auto names = invariants.error_names();
+    for (const auto& n : error_names) {
+      const auto it = std::find(names.begin(), names.end(), n);
+      error_slots.push_back(it == names.end() ? -1 : static_cast<int>(it - names.begin()));
+    }
+  }
+};
+
+SweepRunner::SweepRunner(const SweepSpec& spec, const SweepPlan& plan, const integrators::SchemeInfo& scheme,
+                         const integrators::RunConfig& base_config, const std::vector<std::string>& error_names)
+    : spec_(spec), plan_(plan), scheme_(scheme), config_(base_config), error_names_(error_names) {}
+
+SweepRunner::~SweepRunner() = default;
+
+void SweepRunner::prepare(std::int64_t i, TrajectoryRow& row) {
+  plan_.inputs(i, inputs_);
+  if (!context_ || !plan_.same_scene(context_->inputs, inputs_)) {
+    context_.reset();
+    context_ = std::make_unique<Context>(plan_.scene(inputs_), spec_.events, error_names_);
+    context_->inputs = inputs_;
+  }
+  (void)row;
+}
+
+TrajectoryRow SweepRunner::run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop) {
+  TrajectoryRow row;
+  row.index = i;
+  row.max_errors.assign(error_names_.size(), nan);
+  row.angular_momentum.fill(nan), row.gamma.fill(nan), row.orientation.fill(nan);
+  system::State x;
+  try {
+    prepare(i, row);
+    x = plan_.initial_state(i, context_->scene, inputs_);
+  } catch (const std::exception& e) {  // an invalid varied scene, an empty level set
+    row.inputs = inputs_;
+    row.status = sweep_setup_failed;
+    row.reason = e.what();
+    return row;
+  }
+  row.inputs = inputs_;
+  const std::string refusal = integrators::unsupported_reason(scheme_, context_->model);
+  if (!refusal.empty()) {
+    row.status = sweep_setup_failed;
+    row.reason = refusal;
+    return row;
+  }
+  std::fill(row.max_errors.begin(), row.max_errors.end(), 0.0);
+  for (std::size_t k = 0; k < row.max_errors.size(); ++k)
+    if (context_->error_slots[k] < 0) row.max_errors[k] = nan;
+  const std::size_t events_before = events.size();
+  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, events, row.max_errors);
+  integrators::RunConfig cfg = config_;
+  cfg.stop = stop;
+  if (!spec_.events.empty()) cfg.events = &context_->events;
+  const integrators::RunStats stats = scheme_.run(context_->model, x, cfg, observer);
+  row.interrupted = stats.interrupted;
+  row.steps = stats.steps;
+  row.rejected_steps = stats.work.rejected_steps;
+  row.cpu_seconds = stats.cpu_seconds;
+  row.t_final = stats.t_final;
+  row.event_count = static_cast<std::int64_t>((events.size() - events_before) / event_row_width);
+  std::copy(x.Pi.data(), x.Pi.data() + 3, row.angular_momentum.begin());
+  const lie::Vec3 g = gamma_of(x);
+  std::copy(g.data(), g.data() + 3, row.gamma.begin());
+  row.orientation = lie::to_wxyz(lie::quat_from_matrix(x.R));
+  if (!stats.ok) {
+    row.status = sweep_run_failed;
+    row.reason = stats.status;
+  } else if (observer.crossings() > spec_.max_events) {
+    row.status = sweep_events_truncated;
+    row.reason = std::to_string(observer.crossings()) + " crossings, more than max_events = " +
+                 std::to_string(spec_.max_events) + "; the first " + std::to_string(spec_.max_events) + " kept";
+  }
+  return row;
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,65 @@
+#pragma once
+// One trajectory of a sweep, run through the registry and the one time loop
+// (integrators/stepper_loop.hpp), with an observer that keeps the largest
+// invariant errors and the located crossings. Fills one row of /sweep and
+// its /events rows (experiments/SWEEPS.md); writes no file.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "experiments/analysis/sweep_plan.hpp"
+#include "experiments/io/sweep_file.hpp"  // event_row_width
+#include "integrators/registry.hpp"
+#include "integrators/system/invariants.hpp"
+
+namespace lgi::experiments {
+
+/// /sweep status codes.
+enum SweepStatus : std::int64_t {
+  sweep_ok = 0,
+  sweep_run_failed = 1,    // the run stopped: a solve, a blow-up, a collapsing step, a refusal
+  sweep_setup_failed = 2,  // no initial state (an empty level set) or an invalid varied scene
+  sweep_events_truncated = 3,  // ran to t_end, but more than max_events crossings: the first ones kept
+};
+
+struct TrajectoryRow {
+  std::int64_t index = 0, status = sweep_ok, steps = 0, rejected_steps = 0, event_count = 0;
+  std::string reason;
+  double cpu_seconds = 0.0, t_final = 0.0;
+  std::array<double, 3> angular_momentum{}, gamma{};
+  std::array<double, 4> orientation{};
+  std::vector<double> inputs;      // SweepPlan::input_width()
+  std::vector<double> max_errors;  // one per SweepRunner::error_names()
+  bool interrupted = false;        // ended by the stop flag: not a result
+};
+
+/// The per-thread state of a sweep: the current scene and model (rebuilt
+/// only when a body or term key changes), the spec's event functions.
+class SweepRunner {
+ public:
+  SweepRunner(const SweepSpec& spec, const SweepPlan& plan, const integrators::SchemeInfo& scheme,
+              const integrators::RunConfig& base_config, const std::vector<std::string>& error_names);
+  ~SweepRunner();
+  SweepRunner(const SweepRunner&) = delete;
+  SweepRunner& operator=(const SweepRunner&) = delete;
+
+  /// Runs trajectory i; appends its crossings to `events` (event_row_width
+  /// values each). `stop`: the interrupt flag, passed to the loop.
+  TrajectoryRow run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop);
+
+ private:
+  struct Context;
+  void prepare(std::int64_t i, TrajectoryRow& row);
+  const SweepSpec& spec_;
+  const SweepPlan& plan_;
+  const integrators::SchemeInfo& scheme_;
+  integrators::RunConfig config_;
+  std::vector<std::string> error_names_;
+  std::unique_ptr<Context> context_;  // the scene, model and invariants in use
+  std::vector<double> inputs_;
+};
+
+}  // namespace lgi::experiments

@@ -1,0 +1,180 @@
+// lgi sweep --spec FILE.toml --out FILE.h5 [--threads N] [--resume] [--quiet] [--force]
+// Many trajectories of one scheme on a family of scenes and initial states
+// (experiments/SWEEPS.md): the spec and its scene are read and checked, the
+// trajectories are cut into chunks of consecutive indices, the chunks run on
+// OpenMP threads (and MPI ranks, sweep/sweep_ranks.hpp), each completed chunk
+// goes to <out>.partial, and the final file is written from it at the end.
+#include <omp.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "experiments/analysis/sweep_trajectory.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/scheme_lookup.hpp"
+#include "experiments/cli/sweep_progress.hpp"
+#include "experiments/commands/sweep/sweep_chunks.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/h5md_writer.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/trajectory_observer.hpp"
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+struct SweepOptions {
+  std::string spec, out;
+  int threads = 0;
+  bool resume = false, quiet = false, force = false;
+  std::string command_line;
+};
+
+bool exists(const std::string& path) {
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0;
+}
+
+/// dt or tol from the spec, else the scene's [run]; t_end likewise.
+integrators::RunConfig sweep_run_config(const SweepSpec& spec, const system::Scene& scene,
+                                        const integrators::SchemeInfo& scheme) {
+  integrators::RunConfig cfg;
+  const bool adaptive = scheme.properties.adaptive;
+  const std::string where = spec.file + ": ";
+  if (adaptive && spec.dt) throw InputError(where + "dt: " + scheme.name + " is adaptive; give tol");
+  if (!adaptive && spec.tol) throw InputError(where + "tol: " + scheme.name + " takes a fixed step; give dt");
+  if (adaptive) {
+    const auto tol = spec.tol ? spec.tol : scene.tol;
+    if (!tol) throw InputError(where + "tol: missing, and the scene " + scene.file + " has no [run] tol");
+    cfg.tol = *tol;
+  } else {
+    const auto dt = spec.dt ? spec.dt : scene.dt;
+    if (!dt) throw InputError(where + "dt: missing, and the scene " + scene.file + " has no [run] dt");
+    cfg.dt = *dt;
+  }
+  const auto t_end = spec.t_end ? spec.t_end : scene.t_end;
+  if (!t_end || !(*t_end > 0.0)) throw InputError(where + "t_end: missing, and the scene " + scene.file + " has no [run] t_end > 0");
+  cfg.t_end = *t_end;
+  cfg.save_every = spec.monitor_every;
+  return cfg;
+}
+
+const integrators::SchemeInfo& sweep_scheme(const SweepSpec& spec) {
+  try {
+    return scheme_by_name(spec.scheme, "scheme");
+  } catch (const UsageError& e) {
+    throw InputError(spec.file + ": " + e.what());
+  }
+}
+
+std::string fingerprint(const SweepSpec& spec, const system::Scene& scene, const integrators::SchemeInfo& scheme) {
+  return std::string("lgi ") + build_info::version + "\nscheme " + scheme.name + "\n--- spec\n" + spec.text +
+         "\n--- scene\n" + scene.toml_text;
+}
+
+SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& scene, const integrators::RunConfig& cfg,
+                                 const integrators::SchemeInfo& scheme, const SweepOptions& o, const ChunkRunStats& run) {
+  SweepAttributes a;
+  a.parameters = {{"subcommand", "sweep"},        {"scheme", scheme.name},
+                  {"spec_file", spec.file},       {"spec_toml", spec.text},
+                  {"scene_file", scene.file},     {"scene_toml", scene.toml_text},
+                  {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
+                  {"cxx_flags", build_info::cxx_flags}, {"build_type", build_info::build_type}};
+  a.numbers = {{"t_end", cfg.t_end}, {"trajectories", static_cast<double>(spec.count())}};
+  if (cfg.dt > 0.0) a.numbers.push_back({"dt", cfg.dt});
+  if (cfg.tol > 0.0) a.numbers.push_back({"tol", cfg.tol});
+  a.provenance = {{"command_line", o.command_line},
+                  {"threads", std::to_string(run.threads)},
+                  {"ranks", std::to_string(run.ranks)},
+                  {"resumed", o.resume ? "yes" : "no"},
+                  {"utc_start", run.utc_start},
+                  {"utc_end", hdf5::utc_now_iso8601()},
+                  {"wall_seconds", format_general(run.wall_seconds, 6)}};
+  return a;
+}
+
+int run_sweep(const SweepOptions& o) {
+  const SweepSpec spec = read_sweep_spec(o.spec);
+  const system::Scene scene = read_scene(spec.scene_path);
+  const integrators::SchemeInfo& scheme = sweep_scheme(spec);
+  const integrators::RunConfig cfg = sweep_run_config(spec, scene, scheme);
+  if (!spec.events.empty() && !scheme.locates_events)
+    throw InputError(spec.file + ": event: " + scheme.name +
+                     " does not locate events (the baselines keep their own loop); use a Lie-group scheme");
+  const system::AnyModel model = system::make_model(scene);
+  if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
+    throw InputError(spec.file + ": scheme: " + why + "; the scene " + scene.file + " is not one");
+  const SweepPlan plan(spec, scene);
+
+  SweepLayout layout;
+  layout.count = spec.count();
+  layout.inputs = plan.input_columns();
+  layout.error_names = system::SceneInvariants(scene, model).error_names();
+  for (const auto& e : spec.events) layout.event_names.push_back(e.name);
+
+  const std::string partial = o.out + ".partial", writing = o.out + ".writing";
+  if (!o.resume && exists(partial))
+    throw UsageError("--out: " + partial + " exists (an interrupted sweep): finish it with --resume, or remove it");
+  if (o.resume && !exists(partial))
+    throw UsageError("--resume: there is no " + partial + " to resume" +
+                     (exists(o.out) ? " (" + o.out + " is complete)" : ""));
+  if (!o.force && exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
+
+  const std::string print = fingerprint(spec, scene, scheme);
+  SweepPartialFile file = o.resume ? SweepPartialFile(partial, layout, print, true)
+                                   : SweepPartialFile(partial, layout, print);
+  const int threads = o.threads > 0 ? o.threads : omp_get_num_procs();
+  ChunkRunStats run;
+  {
+    const InterruptGuard interrupt_guard;
+    run = run_chunks(spec, plan, scheme, cfg, layout, file, threads, o.quiet, interrupt_requested);
+  }
+  const auto done = std::count(file.done().begin(), file.done().end(), char{1});
+  if (run.interrupted) {
+    std::cerr << "lgi: sweep interrupted by signal; " << done << " of " << layout.count << " trajectories kept in "
+              << partial << " (finish with --resume)\n";
+    return exit_run_failed;
+  }
+  std::remove(writing.c_str());
+  file.write_final(writing, final_attributes(spec, scene, cfg, scheme, o, run));
+  file.close();
+  hdf5::publish(writing, o.out, o.force, "the sweep is");
+  std::remove(partial.c_str());
+  if (!o.quiet) {
+    std::cout << "sweep: " << layout.count << " trajectories of " << scheme.name << " on " << scene.file << ", "
+              << file.failures() << " failed, " << run.events << " crossings; " << format_general(run.cpu_seconds, 3)
+              << " s CPU in trajectories, " << format_general(run.wall_seconds, 3) << " s wall on " << run.threads
+              << " threads x " << run.ranks << " ranks; wrote " << o.out << '\n';
+  }
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<SweepOptions>();
+  auto* sub = app.add_subcommand(
+      "sweep",
+      "Many trajectories at once: a base scene, a scheme and what varies (initial states on a grid, at random or "
+      "on a level set; any scene key), with events; OpenMP threads and MPI ranks, resumable (experiments/SWEEPS.md)");
+  sub->add_option("--spec", o->spec, "Sweep spec (TOML; experiments/SWEEPS.md, examples in experiments/sweeps/)")
+      ->required();
+  sub->add_option("--out", o->out, "Output file (HDF5); <out>.partial while it runs")->required();
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_flag("--resume", o->resume, "Finish an interrupted sweep from <out>.partial (same spec and arguments)");
+  sub->add_flag("--force", o->force, "Replace an existing output file");
+  sub->add_flag("--quiet", o->quiet, "No progress line and no summary");
+  return {sub, [o, context] {
+            o->command_line = context.command_line;
+            return run_sweep(*o);
+          }};
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,205 @@
+// The partial and final files of `lgi sweep` (sweep_file.hpp; layout in
+// experiments/SWEEPS.md).
+#include "experiments/io/sweep_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <unistd.h>
+
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/sweep_hdf5.hpp"
+
+namespace lgi::experiments {
+
+using hdf5::Handle;
+using namespace sweep_hdf5;
+
+namespace {
+
+constexpr std::int64_t first_block_rows = 4096;  // crossings in /partial/events_0
+
+
+}  // namespace
+
+void SweepPartialFile::fail(const std::string& what) const {
+  throw OutputFileError(path_ + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
+}
+
+SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& layout, const std::string& fingerprint)
+    : path_(path), layout_(layout) {
+  const hdf5::QuietHdf5Errors quiet;
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  file_ = hdf5::create_file(path, fail_fn);
+  create_columns();
+  Handle partial = hdf5::create_group(file_.get(), "/partial", fail_fn);
+  hdf5::write_vlen_string(partial.get(), "fingerprint", fingerprint, false, fail_fn);
+  done_.assign(static_cast<std::size_t>(layout.count), 0);
+  if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+}
+
+SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& layout, const std::string& fingerprint,
+                                   bool /*resume*/)
+    : path_(path), layout_(layout) {
+  const hdf5::QuietHdf5Errors quiet;
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
+  file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
+  if (!file_.valid()) throw OutputFileError(path + ": cannot open the partial sweep to resume it");
+  std::string stored;
+  {
+    Handle g(H5Gopen2(file_.get(), "/partial", H5P_DEFAULT), H5Gclose);
+    Handle a(g.valid() ? H5Aopen(g.get(), "fingerprint", H5P_DEFAULT) : H5I_INVALID_HID, H5Aclose);
+    Handle t(a.valid() ? H5Aget_type(a.get()) : H5I_INVALID_HID, H5Tclose);
+    char* text = nullptr;
+    if (t.valid() && H5Aread(a.get(), t.get(), &text) >= 0 && text) {
+      stored = text;
+      H5free_memory(text);
+    }
+  }
+  if (stored != fingerprint)
+    throw OutputFileError(path + ": --resume: this partial sweep was started with a different spec, scene, scheme or "
+                                 "lgi version; remove it or run without --resume");
+  read_progress();
+}
+
+void SweepPartialFile::create_columns() {
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  const SweepHdf5 h5(fail_fn);
+  Handle sweep = hdf5::create_group(file_.get(), "/sweep", fail_fn);
+  const std::int64_t n = layout_.count;
+  const std::int64_t not_done = -1, zero = 0;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  h5.create_allocated(sweep.get(), "index", H5T_STD_I64LE, n, 1, &zero);
+  for (const auto& c : layout_.inputs) h5.create_allocated(sweep.get(), c.name, H5T_IEEE_F64LE, n, c.width, &nan);
+  for (const auto& c : fixed_columns)
+    h5.create_allocated(sweep.get(), c.name, c.integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, n, c.width,
+                        c.integer ? static_cast<const void*>(std::strcmp(c.name, "status") == 0 ? &not_done : &zero)
+                                  : static_cast<const void*>(&nan));
+  for (const auto& e : layout_.error_names)
+    h5.create_allocated(sweep.get(), error_column(e), H5T_IEEE_F64LE, n, 1, &nan);
+  h5.create_allocated(sweep.get(), "event_first", H5T_STD_I64LE, n, 1, &not_done);
+  Handle reason = fixed_string_type(reason_width);
+  h5.create_allocated(sweep.get(), "reason", reason.get(), n, 1, nullptr);
+}
+
+void SweepPartialFile::read_progress() {
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  const SweepHdf5 h5(fail_fn);
+  const std::int64_t n = layout_.count;
+  Handle sweep(H5Gopen2(file_.get(), "/sweep", H5P_DEFAULT), H5Gclose);
+  if (!sweep.valid() || h5.rows_of(sweep.get(), "status") != n)
+    throw OutputFileError(path_ + ": --resume: not a partial sweep of " + std::to_string(n) + " trajectories");
+  std::vector<std::int64_t> status(static_cast<std::size_t>(n)), first(static_cast<std::size_t>(n)),
+      count(static_cast<std::size_t>(n));
+  h5.read_rows(sweep.get(), "status", H5T_NATIVE_INT64, 0, n, 1, status.data());
+  h5.read_rows(sweep.get(), "event_first", H5T_NATIVE_INT64, 0, n, 1, first.data());
+  h5.read_rows(sweep.get(), "event_count", H5T_NATIVE_INT64, 0, n, 1, count.data());
+  done_.assign(static_cast<std::size_t>(n), 0);
+  // Blocks that exist; the last block's use is the furthest crossing of a completed row in it.
+  for (int k = 0;; ++k) {
+    const std::int64_t rows = h5.rows_of(file_.get(), "/partial/events_" + std::to_string(k));
+    if (rows < 0) break;
+    block_capacity_.push_back(rows);
+  }
+  const std::int64_t last = static_cast<std::int64_t>(block_capacity_.size()) - 1;
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    if (status[i] < 0) continue;
+    done_[i] = 1;
+    if (status[i] != 0) ++failures_;
+    if (first[i] >= 0 && (first[i] >> block_shift) == last)
+      block_used_ = std::max(block_used_, (first[i] & ((std::int64_t{1} << block_shift) - 1)) + count[i]);
+  }
+}
+
+std::int64_t SweepPartialFile::event_position(std::int64_t rows_needed) {
+  const std::int64_t last = static_cast<std::int64_t>(block_capacity_.size()) - 1;
+  if (last >= 0 && block_used_ + rows_needed <= block_capacity_.back()) {
+    const std::int64_t position = (last << block_shift) | block_used_;
+    block_used_ += rows_needed;
+    return position;
+  }
+  // A new block, twice the last (at least what this chunk needs); created and flushed before use.
+  const std::int64_t capacity =
+      std::max(rows_needed, block_capacity_.empty() ? first_block_rows : 2 * block_capacity_.back());
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  const SweepHdf5 h5(fail_fn);
+  const std::int64_t k = last + 1;
+  h5.create_allocated(file_.get(), "/partial/events_" + std::to_string(k), H5T_IEEE_F64LE, capacity,
+                      event_row_width, nullptr);
+  if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+  block_capacity_.push_back(capacity);
+  block_used_ = rows_needed;
+  return k << block_shift;
+}
+
+void SweepPartialFile::write(const SweepChunk& c) {
+  const hdf5::QuietHdf5Errors quiet;
+  auto fail_fn = [this](const std::string& what) { fail(what); };
+  const SweepHdf5 h5(fail_fn);
+  Handle sweep(H5Gopen2(file_.get(), "/sweep", H5P_DEFAULT), H5Gclose);
+  const auto rows = c.rows;
+  // Crossings, then the rows, then (after a flush) the status that marks them complete.
+  const std::int64_t crossings = static_cast<std::int64_t>(c.events.size()) / event_row_width;
+  std::vector<std::int64_t> event_first(static_cast<std::size_t>(rows), -1);
+  if (crossings > 0) {
+    const std::int64_t position = event_position(crossings);
+    const std::int64_t block = position >> block_shift, offset = position & ((std::int64_t{1} << block_shift) - 1);
+    h5.write_rows(file_.get(), "/partial/events_" + std::to_string(block), H5T_NATIVE_DOUBLE, offset, crossings,
+                  event_row_width, c.events.data());
+    std::int64_t cursor = position;
+    for (std::int64_t r = 0; r < rows; ++r) {
+      event_first[static_cast<std::size_t>(r)] = cursor;
+      cursor += c.event_count[static_cast<std::size_t>(r)];
+    }
+  }
+  std::vector<std::int64_t> index(static_cast<std::size_t>(rows));
+  for (std::int64_t r = 0; r < rows; ++r) index[static_cast<std::size_t>(r)] = c.first + r;
+  h5.write_rows(sweep.get(), "index", H5T_NATIVE_INT64, c.first, rows, 1, index.data());
+  std::size_t offset = 0;
+  int width = 0;
+  for (const auto& in : layout_.inputs) width += in.width;
+  std::vector<double> column(static_cast<std::size_t>(rows) * 4);
+  for (const auto& in : layout_.inputs) {
+    column.resize(static_cast<std::size_t>(rows * in.width));
+    for (std::int64_t r = 0; r < rows; ++r)
+      for (int k = 0; k < in.width; ++k)
+        column[static_cast<std::size_t>(r * in.width + k)] = c.inputs[static_cast<std::size_t>(r * width) + offset + static_cast<std::size_t>(k)];
+    h5.write_rows(sweep.get(), in.name, H5T_NATIVE_DOUBLE, c.first, rows, in.width, column.data());
+    offset += static_cast<std::size_t>(in.width);
+  }
+  h5.write_rows(sweep.get(), "steps", H5T_NATIVE_INT64, c.first, rows, 1, c.steps.data());
+  h5.write_rows(sweep.get(), "rejected_steps", H5T_NATIVE_INT64, c.first, rows, 1, c.rejected_steps.data());
+  h5.write_rows(sweep.get(), "event_count", H5T_NATIVE_INT64, c.first, rows, 1, c.event_count.data());
+  h5.write_rows(sweep.get(), "event_first", H5T_NATIVE_INT64, c.first, rows, 1, event_first.data());
+  h5.write_rows(sweep.get(), "cpu_seconds", H5T_NATIVE_DOUBLE, c.first, rows, 1, c.cpu_seconds.data());
+  h5.write_rows(sweep.get(), "t_final", H5T_NATIVE_DOUBLE, c.first, rows, 1, c.t_final.data());
+  h5.write_rows(sweep.get(), "angular_momentum", H5T_NATIVE_DOUBLE, c.first, rows, 3, c.angular_momentum.data());
+  h5.write_rows(sweep.get(), "orientation", H5T_NATIVE_DOUBLE, c.first, rows, 4, c.orientation.data());
+  h5.write_rows(sweep.get(), "gamma", H5T_NATIVE_DOUBLE, c.first, rows, 3, c.gamma.data());
+  const auto errors = layout_.error_names.size();
+  column.resize(static_cast<std::size_t>(rows));
+  for (std::size_t e = 0; e < errors; ++e) {
+    for (std::int64_t r = 0; r < rows; ++r) column[static_cast<std::size_t>(r)] = c.max_errors[static_cast<std::size_t>(r) * errors + e];
+    h5.write_rows(sweep.get(), error_column(layout_.error_names[e]), H5T_NATIVE_DOUBLE, c.first, rows, 1, column.data());
+  }
+  std::vector<char> reasons(static_cast<std::size_t>(rows) * reason_width, '\0');
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const std::string& s = c.reasons[static_cast<std::size_t>(r)];
+    std::memcpy(reasons.data() + static_cast<std::size_t>(r) * reason_width, s.data(), std::min(s.size(), reason_width));
+  }
+  Handle reason_type = fixed_string_type(reason_width);
+  h5.write_rows(sweep.get(), "reason", reason_type.get(), c.first, rows, 1, reasons.data());
+  if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+  h5.write_rows(sweep.get(), "status", H5T_NATIVE_INT64, c.first, rows, 1, c.status.data());
+  if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+  for (std::int64_t r = 0; r < rows; ++r) {
+    done_[static_cast<std::size_t>(c.first + r)] = 1;
+    if (c.status[static_cast<std::size_t>(r)] != 0) ++failures_;
+  }
+}
+
+void SweepPartialFile::close() { file_.reset(); }
+
+}  // namespace lgi::experiments

@@ -1,0 +1,193 @@
+// The final file of `lgi sweep`, written from the partial one
+// (sweep_file.hpp): /sweep in index order, /events sorted by trajectory
+// index (and in time within a trajectory), /parameters and /provenance.
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/sweep_file.hpp"
+#include "experiments/io/sweep_hdf5.hpp"
+
+namespace lgi::experiments {
+
+using hdf5::Handle;
+using namespace sweep_hdf5;
+
+namespace {
+
+/// /events columns, appended in batches to extendible chunked datasets.
+class EventColumns {
+ public:
+  EventColumns(hid_t group, const hdf5::Fail& fail) : group_(group), fail_(fail) {
+    create("index", H5T_STD_I64LE, 1);
+    create("event", H5T_STD_I32LE, 1);
+    create("direction", H5T_STD_I32LE, 1);
+    create("step", H5T_STD_I64LE, 1);
+    create("t", H5T_IEEE_F64LE, 1);
+    create("angular_momentum", H5T_IEEE_F64LE, 3);
+    create("orientation", H5T_IEEE_F64LE, 4);
+    create("gamma", H5T_IEEE_F64LE, 3);
+  }
+  /// Partial-file rows (event_row_width values each).
+  void append(const std::vector<double>& rows) {
+    const auto n = static_cast<std::int64_t>(rows.size()) / event_row_width;
+    if (n == 0) return;
+    std::vector<std::int64_t> i64(static_cast<std::size_t>(n));
+    std::vector<std::int32_t> i32(static_cast<std::size_t>(n));
+    std::vector<double> f(static_cast<std::size_t>(n) * 4);
+    auto ints64 = [&](int col, const char* name) {
+      for (std::int64_t r = 0; r < n; ++r) i64[static_cast<std::size_t>(r)] = static_cast<std::int64_t>(at(rows, r, col));
+      put(name, H5T_NATIVE_INT64, n, 1, i64.data());
+    };
+    auto ints32 = [&](int col, const char* name) {
+      for (std::int64_t r = 0; r < n; ++r) i32[static_cast<std::size_t>(r)] = static_cast<std::int32_t>(at(rows, r, col));
+      put(name, H5T_NATIVE_INT32, n, 1, i32.data());
+    };
+    auto reals = [&](int col, int width, const char* name) {
+      f.resize(static_cast<std::size_t>(n * width));
+      for (std::int64_t r = 0; r < n; ++r)
+        for (int k = 0; k < width; ++k) f[static_cast<std::size_t>(r * width + k)] = at(rows, r, col + k);
+      put(name, H5T_NATIVE_DOUBLE, n, width, f.data());
+    };
+    ints64(0, "index");
+    ints32(1, "event");
+    ints32(2, "direction");
+    ints64(3, "step");
+    reals(4, 1, "t");
+    reals(5, 3, "angular_momentum");
+    reals(8, 4, "orientation");
+    reals(12, 3, "gamma");
+    rows_ += n;
+  }
+
+ private:
+  static double at(const std::vector<double>& rows, std::int64_t r, int col) {
+    return rows[static_cast<std::size_t>(r * event_row_width + col)];
+  }
+  void create(const char* name, hid_t type, int width) {
+    Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    H5Pset_obj_track_times(dcpl.get(), false);
+    const hsize_t chunk[2] = {16384, static_cast<hsize_t>(width)};
+    H5Pset_chunk(dcpl.get(), width > 1 ? 2 : 1, chunk);
+    const hsize_t dims[2] = {0, static_cast<hsize_t>(width)}, max[2] = {H5S_UNLIMITED, static_cast<hsize_t>(width)};
+    Handle s(H5Screate_simple(width > 1 ? 2 : 1, dims, max), H5Sclose);
+    Handle d(H5Dcreate2(group_, name, type, s.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose);
+    if (!d.valid()) fail_(std::string("cannot create /events/") + name);
+  }
+  void put(const char* name, hid_t memory_type, std::int64_t n, int width, const void* data) {
+    Handle d(H5Dopen2(group_, name, H5P_DEFAULT), H5Dclose);
+    const hsize_t dims[2] = {static_cast<hsize_t>(rows_ + n), static_cast<hsize_t>(width)};
+    if (!d.valid() || H5Dset_extent(d.get(), dims) < 0) fail_(std::string("cannot extend /events/") + name);
+    Handle file_space = row_selection(d.get(), rows_, n, width);
+    Handle memory = space(n, width);
+    if (H5Dwrite(d.get(), memory_type, memory.get(), file_space.get(), H5P_DEFAULT, data) < 0)
+      fail_(std::string("cannot write /events/") + name);
+  }
+  hid_t group_;
+  const hdf5::Fail& fail_;
+  std::int64_t rows_ = 0;
+};
+
+void write_text_attributes(hid_t loc, const std::vector<std::pair<std::string, std::string>>& text,
+                           const hdf5::Fail& fail) {
+  for (const auto& [k, v] : text) hdf5::write_vlen_string(loc, k.c_str(), v, false, fail);
+}
+
+}  // namespace
+
+void SweepPartialFile::write_final(const std::string& path, const SweepAttributes& attributes) {
+  const hdf5::QuietHdf5Errors quiet;
+  auto fail_in = [this](const std::string& what) { fail(what); };
+  auto fail_out = [&path](const std::string& what) {
+    throw OutputFileError(path + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
+  };
+  const SweepHdf5 in(fail_in), out(fail_out);
+  Handle file = hdf5::create_file(path, fail_out);
+  Handle src(H5Gopen2(file_.get(), "/sweep", H5P_DEFAULT), H5Gclose);
+  Handle dst = hdf5::create_group(file.get(), "/sweep", fail_out);
+  const std::int64_t n = layout_.count;
+  std::vector<double> real;
+  std::vector<std::int64_t> integer;
+  auto copy = [&](const std::string& name, int width, bool is_integer) {
+    const auto size = static_cast<std::size_t>(n * width);
+    if (is_integer) {
+      integer.resize(size);
+      in.read_rows(src.get(), name, H5T_NATIVE_INT64, 0, n, width, integer.data());
+      out.write_whole(dst.get(), name, H5T_STD_I64LE, H5T_NATIVE_INT64, n, width, integer.data());
+    } else {
+      real.resize(size);
+      in.read_rows(src.get(), name, H5T_NATIVE_DOUBLE, 0, n, width, real.data());
+      out.write_whole(dst.get(), name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, width, real.data());
+    }
+  };
+  copy("index", 1, true);
+  for (const auto& c : layout_.inputs) copy(c.name, c.width, false);
+  for (const auto& c : fixed_columns) copy(c.name, c.width, c.integer);
+  for (const auto& e : layout_.error_names) copy(error_column(e), 1, false);
+
+  // reason: as wide as the longest one (fixed length, so h5py compares rows as bytes).
+  std::vector<char> reasons(static_cast<std::size_t>(n) * reason_width);
+  {
+    Handle t = fixed_string_type(reason_width);
+    in.read_rows(src.get(), "reason", t.get(), 0, n, 1, reasons.data());
+  }
+  std::size_t longest = 1;
+  for (std::int64_t r = 0; r < n; ++r)
+    longest = std::max(longest, ::strnlen(reasons.data() + static_cast<std::size_t>(r) * reason_width, reason_width));
+  std::vector<char> narrow(static_cast<std::size_t>(n) * longest);
+  for (std::int64_t r = 0; r < n; ++r)
+    std::memcpy(narrow.data() + static_cast<std::size_t>(r) * longest,
+                reasons.data() + static_cast<std::size_t>(r) * reason_width, longest);
+  {
+    Handle t = fixed_string_type(longest);
+    out.write_whole(dst.get(), "reason", t.get(), t.get(), n, 1, narrow.data());
+  }
+
+  // /events in index order; event_first becomes the row in /events.
+  std::vector<std::int64_t> first(static_cast<std::size_t>(n)), count(static_cast<std::size_t>(n));
+  in.read_rows(src.get(), "event_first", H5T_NATIVE_INT64, 0, n, 1, first.data());
+  in.read_rows(src.get(), "event_count", H5T_NATIVE_INT64, 0, n, 1, count.data());
+  Handle events_group = hdf5::create_group(file.get(), "/events", fail_out);
+  hdf5::write_fixed_strings(events_group.get(), "names", layout_.event_names.empty() ? std::vector<std::string>{""} : layout_.event_names,
+                            false, fail_out);
+  EventColumns events(events_group.get(), fail_out);
+  std::vector<std::int64_t> final_first(static_cast<std::size_t>(n), 0);
+  std::vector<double> batch;
+  std::int64_t written = 0;
+  for (std::int64_t r = 0; r < n;) {
+    // A run of rows whose crossings are adjacent in one block: one read.
+    std::int64_t end = r + 1, total = count[static_cast<std::size_t>(r)];
+    while (end < n && first[static_cast<std::size_t>(end)] == first[static_cast<std::size_t>(r)] + total &&
+           (first[static_cast<std::size_t>(end)] >> block_shift) == (first[static_cast<std::size_t>(r)] >> block_shift))
+      total += count[static_cast<std::size_t>(end++)];
+    for (std::int64_t k = r; k < end; ++k) {
+      final_first[static_cast<std::size_t>(k)] = written;
+      written += count[static_cast<std::size_t>(k)];
+    }
+    if (total > 0) {
+      const std::int64_t block = first[static_cast<std::size_t>(r)] >> block_shift;
+      const std::int64_t offset = first[static_cast<std::size_t>(r)] & ((std::int64_t{1} << block_shift) - 1);
+      const std::size_t old = batch.size();
+      batch.resize(old + static_cast<std::size_t>(total * event_row_width));
+      in.read_rows(file_.get(), "/partial/events_" + std::to_string(block), H5T_NATIVE_DOUBLE, offset, total,
+                   event_row_width, batch.data() + old);
+      if (batch.size() >= static_cast<std::size_t>(65536 * event_row_width)) {
+        events.append(batch);
+        batch.clear();
+      }
+    }
+    r = end;
+  }
+  events.append(batch);
+  out.write_whole(dst.get(), "event_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, final_first.data());
+
+  Handle parameters = hdf5::create_group(file.get(), "/parameters", fail_out);
+  write_text_attributes(parameters.get(), attributes.parameters, fail_out);
+  for (const auto& [k, v] : attributes.numbers) hdf5::write_double_attribute(parameters.get(), k.c_str(), v, fail_out);
+  Handle provenance = hdf5::create_group(file.get(), "/provenance", fail_out);
+  write_text_attributes(provenance.get(), attributes.provenance, fail_out);
+  if (file.reset() < 0) fail_out("cannot close");
+}
+
+}  // namespace lgi::experiments
