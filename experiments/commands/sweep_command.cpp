@@ -100,6 +100,20 @@ SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& sce
   return a;
 }
 
+/// <out>.partial, new or (--resume) the one an interrupted run left.
+std::unique_ptr<SweepPartialFile> open_partial_file(const SweepOptions& o, const SweepLayout& layout,
+                                                    const std::string& print) {
+  const std::string partial = o.out + ".partial";
+  if (!o.resume && exists(partial))
+    throw UsageError("--out: " + partial + " exists (an interrupted sweep): finish it with --resume, or remove it");
+  if (o.resume && !exists(partial))
+    throw UsageError("--resume: there is no " + partial + " to resume" +
+                     (exists(o.out) ? " (" + o.out + " is complete)" : ""));
+  if (!o.force && exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
+  if (o.resume) return std::make_unique<SweepPartialFile>(partial, layout, print, true);
+  return std::make_unique<SweepPartialFile>(partial, layout, print);
+}
+
 int run_sweep(const SweepOptions& o) {
   const SweepSpec spec = read_sweep_spec(o.spec);
   const system::Scene scene = read_scene(spec.scene_path);
@@ -120,36 +134,47 @@ int run_sweep(const SweepOptions& o) {
   for (const auto& e : spec.events) layout.event_names.push_back(e.name);
 
   const std::string partial = o.out + ".partial", writing = o.out + ".writing";
-  if (!o.resume && exists(partial))
-    throw UsageError("--out: " + partial + " exists (an interrupted sweep): finish it with --resume, or remove it");
-  if (o.resume && !exists(partial))
-    throw UsageError("--resume: there is no " + partial + " to resume" +
-                     (exists(o.out) ? " (" + o.out + " is complete)" : ""));
-  if (!o.force && exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
-
-  const std::string print = fingerprint(spec, scene, scheme);
-  SweepPartialFile file = o.resume ? SweepPartialFile(partial, layout, print, true)
-                                   : SweepPartialFile(partial, layout, print);
-  const int threads = o.threads > 0 ? o.threads : omp_get_num_procs();
+  SweepRanks& ranks = SweepRanks::world();
+  // Rank 0 alone checks and opens the files; the others learn the outcome.
+  std::unique_ptr<SweepPartialFile> file;
+  std::vector<char> done;
+  std::exception_ptr refused;
+  if (ranks.root()) {
+    try {
+      file = open_partial_file(o, layout, fingerprint(spec, scene, scheme));
+      done = file->done();
+    } catch (...) {
+      refused = std::current_exception();
+    }
+  }
+  if (ranks.broadcast(refused ? 1 : 0) != 0) {
+    if (refused) std::rethrow_exception(refused);
+    return exit_bad_input;  // rank 0 says why
+  }
+  ranks.broadcast(done);
+  const int threads = o.threads > 0 ? o.threads : ranks.default_threads();
   ChunkRunStats run;
   {
     const InterruptGuard interrupt_guard;
-    run = run_chunks(spec, plan, scheme, cfg, layout, file, threads, o.quiet, interrupt_requested);
+    run = run_chunks(spec, plan, scheme, cfg, layout, std::move(done), file.get(), threads, o.quiet,
+                     interrupt_requested, ranks);
   }
-  const auto done = std::count(file.done().begin(), file.done().end(), char{1});
-  if (run.interrupted) {
-    std::cerr << "lgi: sweep interrupted by signal; " << done << " of " << layout.count << " trajectories kept in "
-              << partial << " (finish with --resume)\n";
+  if (!ranks.root()) return run.interrupted ? exit_run_failed : exit_ok;
+  const auto completed = std::count(file->done().begin(), file->done().end(), char{1});
+  if (run.interrupted || completed < layout.count) {
+    std::cerr << "lgi: sweep " << (run.interrupted ? "interrupted by signal" : "incomplete (a rank stopped)") << "; "
+              << completed << " of " << layout.count << " trajectories kept in " << partial
+              << " (finish with --resume)\n";
     return exit_run_failed;
   }
   std::remove(writing.c_str());
-  file.write_final(writing, final_attributes(spec, scene, cfg, scheme, o, run));
-  file.close();
+  file->write_final(writing, final_attributes(spec, scene, cfg, scheme, o, run));
+  file->close();
   hdf5::publish(writing, o.out, o.force, "the sweep is");
   std::remove(partial.c_str());
   if (!o.quiet) {
     std::cout << "sweep: " << layout.count << " trajectories of " << scheme.name << " on " << scene.file << ", "
-              << file.failures() << " failed, " << run.events << " crossings; " << format_general(run.cpu_seconds, 3)
+              << file->failures() << " failed, " << run.events << " crossings; " << format_general(run.cpu_seconds, 3)
               << " s CPU in trajectories, " << format_general(run.wall_seconds, 3) << " s wall on " << run.threads
               << " threads x " << run.ranks << " ranks; wrote " << o.out << '\n';
   }
@@ -173,7 +198,20 @@ Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
   sub->add_flag("--quiet", o->quiet, "No progress line and no summary");
   return {sub, [o, context] {
             o->command_line = context.command_line;
-            return run_sweep(*o);
+            SweepRanks& ranks = SweepRanks::world();
+            if (ranks.size() == 1) return run_sweep(*o);
+            try {
+              return run_sweep(*o);
+            } catch (const InputError& e) {  // every rank read the same input: rank 0 alone says why
+              if (ranks.root()) throw;
+              return static_cast<int>(exit_bad_input);
+            } catch (const UsageError& e) {
+              if (ranks.root()) throw;
+              return static_cast<int>(exit_bad_input);
+            } catch (const std::exception& e) {  // during the run: the other ranks cannot finish
+              std::cerr << "lgi: rank " << ranks.rank() << ": " << e.what() << '\n';
+              ranks.abort(exit_run_failed);
+            }
           }};
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -67,60 +68,120 @@ std::int64_t chunk_size(const SweepSpec& spec, std::int64_t pending, int threads
   return std::clamp<std::int64_t>(pending / (16 * std::max(threads, 1)), 1, 4096);
 }
 
-ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const integrators::SchemeInfo& scheme,
-                         const integrators::RunConfig& config, const SweepLayout& layout, SweepPartialFile& file,
-                         int threads, bool quiet, const std::atomic<bool>& stop) {
-  ChunkRunStats stats;
-  stats.threads = threads;
-  stats.utc_start = hdf5::utc_now_iso8601();
-  const auto wall0 = std::chrono::steady_clock::now();
-  const auto done_before = std::count(file.done().begin(), file.done().end(), char{1});
-  const std::vector<Range> chunks =
-      pending_chunks(file.done(), chunk_size(spec, layout.count - done_before, threads));
-  SweepProgress progress(quiet, layout.count, done_before);
-  std::int64_t done = done_before;
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  double cpu = 0.0;
-  std::int64_t events_total = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : cpu, events_total)
-  {
-    SweepRunner runner(spec, plan, scheme, config, layout.error_names);
-#pragma omp for schedule(dynamic, 1)
-    for (std::size_t k = 0; k < chunks.size(); ++k) {
-      if (stop.load(std::memory_order_relaxed) || failed.load()) continue;
-      try {
-        SweepChunk chunk;
-        chunk.first = chunks[k].first;
-        bool interrupted = false;
-        for (std::int64_t i = chunk.first; i < chunk.first + chunks[k].rows && !interrupted; ++i) {
-          const TrajectoryRow row = runner.run(i, chunk.events, &stop);
-          interrupted = row.interrupted;
-          append_row(chunk, row);
-        }
-        if (interrupted) continue;  // dropped: --resume runs this chunk again
-        for (const double s : chunk.cpu_seconds) cpu += s;
-        events_total += static_cast<std::int64_t>(chunk.events.size()) / event_row_width;
+namespace {
+
+/// Rank 0's writer: the chunks of every rank go to the partial file under one lock.
+class ChunkSink {
+ public:
+  ChunkSink(SweepPartialFile* file, SweepProgress& progress, std::int64_t done)
+      : file_(file), progress_(progress), done_(done) {}
+  void write(const SweepChunk& chunk) {
 #pragma omp critical(sweep_partial_file)
-        {
-          try {  // no exception may leave a critical section
-            file.write(chunk);
-            done += chunk.rows;
-            progress.update(done, file.failures());
-          } catch (...) {
-            keep_first_error(error, failed);
-          }
-        }
+    {
+      try {  // no exception may leave a critical section
+        file_->write(chunk);
+        done_ += chunk.rows;
+        progress_.update(done_, file_->failures());
       } catch (...) {
         keep_first_error(error, failed);
       }
     }
   }
+  /// Rank 0: writes what the other ranks sent so far. Called under the MPI lock.
+  void drain(SweepRanks& ranks) {
+    SweepChunk remote;
+    while (ranks.receive_chunk(remote)) write(remote);
+  }
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+
+ private:
+  SweepPartialFile* file_;
+  SweepProgress& progress_;
+  std::int64_t done_;
+};
+
+/// Trajectories first..first+rows−1; false if the stop flag cut one short.
+bool run_chunk(SweepRunner& runner, std::int64_t first, std::int64_t rows, const std::atomic<bool>& stop,
+               SweepChunk& chunk) {
+  chunk.first = first;
+  for (std::int64_t i = first; i < first + rows; ++i) {
+    const TrajectoryRow row = runner.run(i, chunk.events, &stop);
+    if (row.interrupted) return false;
+    append_row(chunk, row);
+  }
+  return true;
+}
+
+}  // namespace
+
+ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const integrators::SchemeInfo& scheme,
+                         const integrators::RunConfig& config, const SweepLayout& layout, std::vector<char> done,
+                         SweepPartialFile* file, int threads, bool quiet, const std::atomic<bool>& stop,
+                         SweepRanks& ranks) {
+  ChunkRunStats stats;
+  stats.threads = threads;
+  stats.ranks = ranks.size();
+  stats.utc_start = hdf5::utc_now_iso8601();
+  const auto wall0 = std::chrono::steady_clock::now();
+  const auto done_before = std::count(done.begin(), done.end(), char{1});
+  // One chunk size for every rank: rank 0's.
+  const std::int64_t size =
+      ranks.broadcast(chunk_size(spec, layout.count - done_before, threads * ranks.size()));
+  const std::vector<Range> chunks = pending_chunks(done, size);
+  SweepProgress progress(quiet || !ranks.root(), layout.count, done_before);
+  ChunkSink sink(file, progress, done_before);
+  ranks.start_counter();
+  double cpu = 0.0;
+  std::int64_t events_total = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : cpu, events_total)
+  {
+    SweepRunner runner(spec, plan, scheme, config, layout.error_names);
+    for (;;) {
+      std::int64_t k = 0;
+#pragma omp critical(lgi_mpi)
+      {
+        try {
+          k = ranks.claim_chunk();
+          if (ranks.root()) sink.drain(ranks);
+        } catch (...) {
+          keep_first_error(sink.error, sink.failed);
+        }
+      }
+      if (k >= static_cast<std::int64_t>(chunks.size()) || stop.load(std::memory_order_relaxed) || sink.failed) break;
+      try {
+        SweepChunk chunk;
+        const Range& r = chunks[static_cast<std::size_t>(k)];
+        if (!run_chunk(runner, r.first, r.rows, stop, chunk)) continue;  // dropped: --resume runs it again
+        for (const double s : chunk.cpu_seconds) cpu += s;
+        events_total += static_cast<std::int64_t>(chunk.events.size()) / event_row_width;
+        if (ranks.root()) {
+          sink.write(chunk);
+        } else {
+#pragma omp critical(lgi_mpi)
+          {
+            try {
+              ranks.send_chunk(chunk);
+            } catch (...) {
+              keep_first_error(sink.error, sink.failed);
+            }
+          }
+        }
+      } catch (...) {
+        keep_first_error(sink.error, sink.failed);
+      }
+    }
+  }
+  ranks.finish(cpu, events_total);
+  while (ranks.root() && !ranks.others_finished() && !sink.failed) {
+    sink.drain(ranks);
+    if (!ranks.others_finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   progress.finish();
-  if (error) std::rethrow_exception(error);
+  if (sink.error) std::rethrow_exception(sink.error);
   stats.interrupted = stop.load();
-  stats.cpu_seconds = cpu;
-  stats.events = events_total;
+  stats.cpu_seconds = cpu + ranks.others_cpu_seconds();
+  stats.events = events_total + ranks.others_events();
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return stats;
 }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "experiments/analysis/sweep_trajectory.hpp"
+#include "experiments/commands/sweep/sweep_ranks.hpp"
 #include "experiments/io/sweep_file.hpp"
 
 namespace lgi::experiments {
@@ -27,9 +28,13 @@ struct ChunkRunStats {
 /// thread (load balance) and at most 4096 trajectories.
 std::int64_t chunk_size(const SweepSpec& spec, std::int64_t pending, int threads);
 
-/// Runs every trajectory the partial file does not have yet.
+/// Runs every trajectory not marked in `done` (the partial file's, broadcast
+/// from rank 0), on this rank's threads; rank 0 writes every chunk, its own
+/// and those the other ranks send, to `file` (null on the other ranks).
+/// Collective over the ranks.
 ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const integrators::SchemeInfo& scheme,
-                         const integrators::RunConfig& config, const SweepLayout& layout, SweepPartialFile& file,
-                         int threads, bool quiet, const std::atomic<bool>& stop);
+                         const integrators::RunConfig& config, const SweepLayout& layout, std::vector<char> done,
+                         SweepPartialFile* file, int threads, bool quiet, const std::atomic<bool>& stop,
+                         SweepRanks& ranks);
 
 }  // namespace lgi::experiments
