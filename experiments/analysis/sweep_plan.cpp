@@ -156,8 +156,12 @@ SweepPlan::SweepPlan(const SweepSpec& spec, const system::Scene& base) : spec_(s
         system::Scene s = scene(probe);
         if (v.initial_state()) (void)initial_state(0, s, probe);
       } catch (const std::exception& err) {
+        // The scene reader's message without its file and line (those of the re-read text).
+        std::string why = err.what();
+        if (const auto at = why.find(": ["); at != std::string::npos) why = why.substr(at + 2);
         rd.fail(v.line, "vary", "key", "\"" + v.key + "\" = " + scene_toml::fmt(value[0]) +
-                                           (value.size() > 1 ? ", ..." : "") + ": " + err.what());
+                                           (value.size() > 1 ? ", ..." : "") + " makes the scene " + base.file +
+                                           " invalid: " + why);
       }
     }
   }
@@ -174,7 +178,7 @@ SweepPlan::SweepPlan(const SweepSpec& spec, const system::Scene& base) : spec_(s
         } catch (const TrajectorySetupError&) {
           rd.fail(spec.level_set->line, "level_set", "h",
                   "the level set is empty for this body: at l = " + scene_toml::fmt(spec.level_set->l) + ", H >= " +
-                      scene_toml::fmt(lowest) + " in every direction of Gamma sampled, above h = " +
+                      scene_toml::fmt(lowest) + " for every direction of Gamma (20000 sampled), above h = " +
                       scene_toml::fmt(spec.level_set->h));
         }
       }
