@@ -1,6 +1,7 @@
 #include "experiments/analysis/sweep_trajectory.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -40,13 +41,15 @@ class SpecEvents final : public integrators::EventFunctions {
 class SweepObserver final : public integrators::Observer {
  public:
   SweepObserver(const system::SceneInvariants& invariants, const std::vector<int>& error_slots, std::int64_t index,
-                std::int64_t max_events, std::vector<double>& events, std::vector<double>& max_errors)
+                std::int64_t max_events, std::vector<double>& events, std::vector<double>& max_errors,
+                std::vector<double>& scratch)
       : invariants_(invariants),
         slots_(error_slots),
         index_(index),
         max_events_(max_events),
         events_(events),
-        max_(max_errors) {}
+        max_(max_errors),
+        errors_(scratch) {}
 
   void observe(std::int64_t, double, const system::State& x) override {
     const system::InvariantValues v = invariants_.evaluate(x);
@@ -83,7 +86,7 @@ class SweepObserver final : public integrators::Observer {
   std::vector<double>& max_;
   bool have_initial_ = false;
   system::InvariantValues initial_{};
-  std::vector<double> errors_;
+  std::vector<double>& errors_;  // the runner's, reused (no allocation per trajectory)
 };
 
 }  // namespace
@@ -94,6 +97,7 @@ struct SweepRunner::Context {
   system::SceneInvariants invariants;
   SpecEvents events;
   std::vector<int> error_slots;  // for each sweep error column, its index in invariants.error_names() (−1: none)
+  std::string refusal;           // why the scheme cannot run on this model (empty: it can)
   std::vector<double> inputs;    // the inputs it was built for
   Context(system::Scene s, const std::vector<EventSpec>& spec_events, const std::vector<std::string>& error_names)
       : scene(std::move(s)),
@@ -120,13 +124,25 @@ void SweepRunner::prepare(std::int64_t i, TrajectoryRow& row) {
     context_.reset();
     context_ = std::make_unique<Context>(plan_.scene(inputs_), spec_.events, error_names_);
     context_->inputs = inputs_;
+    context_->refusal = integrators::unsupported_reason(scheme_, context_->model);
   }
   (void)row;
 }
 
-TrajectoryRow SweepRunner::run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop) {
-  TrajectoryRow row;
+void SweepRunner::run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row) {
+  const auto start = std::chrono::steady_clock::now();
+  run_timed(i, events, stop, row);
+  row.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop,
+                            TrajectoryRow& row) {
   row.index = i;
+  row.status = sweep_ok;
+  row.reason.clear();
+  row.steps = row.rejected_steps = row.event_count = 0;
+  row.t_final = 0.0;
+  row.interrupted = false;
   row.max_errors.assign(error_names_.size(), nan);
   row.angular_momentum.fill(nan), row.gamma.fill(nan), row.orientation.fill(nan);
   system::State x;
@@ -137,28 +153,28 @@ TrajectoryRow SweepRunner::run(std::int64_t i, std::vector<double>& events, cons
     row.inputs = inputs_;
     row.status = sweep_setup_failed;
     row.reason = e.what();
-    return row;
+    return;
   }
   row.inputs = inputs_;
-  const std::string refusal = integrators::unsupported_reason(scheme_, context_->model);
-  if (!refusal.empty()) {
+  if (!context_->refusal.empty()) {
     row.status = sweep_setup_failed;
-    row.reason = refusal;
-    return row;
+    row.reason = context_->refusal;
+    return;
   }
   std::fill(row.max_errors.begin(), row.max_errors.end(), 0.0);
   for (std::size_t k = 0; k < row.max_errors.size(); ++k)
     if (context_->error_slots[k] < 0) row.max_errors[k] = nan;
   const std::size_t events_before = events.size();
-  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, events, row.max_errors);
+  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, events, row.max_errors,
+                         scratch_);
   integrators::RunConfig cfg = config_;
   cfg.stop = stop;
+  cfg.cpu_clock = false;  // timed by run() and the chunk (sweep_trajectory.hpp)
   if (!spec_.events.empty()) cfg.events = &context_->events;
   const integrators::RunStats stats = scheme_.run(context_->model, x, cfg, observer);
   row.interrupted = stats.interrupted;
   row.steps = stats.steps;
   row.rejected_steps = stats.work.rejected_steps;
-  row.cpu_seconds = stats.cpu_seconds;
   row.t_final = stats.t_final;
   row.event_count = static_cast<std::int64_t>((events.size() - events_before) / event_row_width);
   std::copy(x.Pi.data(), x.Pi.data() + 3, row.angular_momentum.begin());
@@ -173,7 +189,6 @@ TrajectoryRow SweepRunner::run(std::int64_t i, std::vector<double>& events, cons
     row.reason = std::to_string(observer.crossings()) + " crossings, more than max_events = " +
                  std::to_string(spec_.max_events) + "; the first " + std::to_string(spec_.max_events) + " kept";
   }
-  return row;
 }
 
 }  // namespace lgi::experiments

@@ -28,7 +28,7 @@ enum SweepStatus : std::int64_t {
 struct TrajectoryRow {
   std::int64_t index = 0, status = sweep_ok, steps = 0, rejected_steps = 0, event_count = 0;
   std::string reason;
-  double cpu_seconds = 0.0, t_final = 0.0;
+  double cpu_seconds = 0.0, t_final = 0.0;  // see SweepRunner::run
   std::array<double, 3> angular_momentum{}, gamma{};
   std::array<double, 4> orientation{};
   std::vector<double> inputs;      // SweepPlan::input_width()
@@ -48,11 +48,16 @@ class SweepRunner {
 
   /// Runs trajectory i; appends its crossings to `events` (event_row_width
   /// values each). `stop`: the interrupt flag, passed to the loop.
-  TrajectoryRow run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop);
+  /// cpu_seconds is the trajectory's time on the monotonic clock (set-up
+  /// included); the caller rescales a chunk's rows to its thread CPU time
+  /// (scale_to_cpu_time), one system call per chunk instead of two per trajectory.
+  /// `row` is overwritten (a caller reuses one row: no allocation per trajectory).
+  void run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
 
  private:
   struct Context;
   void prepare(std::int64_t i, TrajectoryRow& row);
+  void run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
   const SweepSpec& spec_;
   const SweepPlan& plan_;
   const integrators::SchemeInfo& scheme_;
@@ -60,6 +65,7 @@ class SweepRunner {
   std::vector<std::string> error_names_;
   std::unique_ptr<Context> context_;  // the scene, model and invariants in use
   std::vector<double> inputs_;
+  std::vector<double> scratch_;  // invariant errors of one sample
 };
 
 }  // namespace lgi::experiments

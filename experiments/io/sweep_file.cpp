@@ -69,16 +69,14 @@ void SweepPartialFile::create_columns() {
   const SweepHdf5 h5(fail_fn);
   Handle sweep = hdf5::create_group(file_.get(), "/sweep", fail_fn);
   const std::int64_t n = layout_.count;
-  const std::int64_t not_done = -1, zero = 0;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  h5.create_allocated(sweep.get(), "index", H5T_STD_I64LE, n, 1, &zero);
-  for (const auto& c : layout_.inputs) h5.create_allocated(sweep.get(), c.name, H5T_IEEE_F64LE, n, c.width, &nan);
+  const std::int64_t not_done = -1;
+  h5.create_allocated(sweep.get(), "index", H5T_STD_I64LE, n, 1, nullptr);
+  for (const auto& c : layout_.inputs) h5.create_allocated(sweep.get(), c.name, H5T_IEEE_F64LE, n, c.width, nullptr);
   for (const auto& c : fixed_columns)
     h5.create_allocated(sweep.get(), c.name, c.integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, n, c.width,
-                        c.integer ? static_cast<const void*>(std::strcmp(c.name, "status") == 0 ? &not_done : &zero)
-                                  : static_cast<const void*>(&nan));
+                        std::strcmp(c.name, "status") == 0 ? &not_done : nullptr);
   for (const auto& e : layout_.error_names)
-    h5.create_allocated(sweep.get(), error_column(e), H5T_IEEE_F64LE, n, 1, &nan);
+    h5.create_allocated(sweep.get(), error_column(e), H5T_IEEE_F64LE, n, 1, nullptr);
   h5.create_allocated(sweep.get(), "event_first", H5T_STD_I64LE, n, 1, &not_done);
   Handle reason = fixed_string_type(reason_width);
   h5.create_allocated(sweep.get(), "reason", reason.get(), n, 1, nullptr);
@@ -184,13 +182,17 @@ void SweepPartialFile::write(const SweepChunk& c) {
     for (std::int64_t r = 0; r < rows; ++r) column[static_cast<std::size_t>(r)] = c.max_errors[static_cast<std::size_t>(r) * errors + e];
     h5.write_rows(sweep.get(), error_column(layout_.error_names[e]), H5T_NATIVE_DOUBLE, c.first, rows, 1, column.data());
   }
-  std::vector<char> reasons(static_cast<std::size_t>(rows) * reason_width, '\0');
-  for (std::int64_t r = 0; r < rows; ++r) {
-    const std::string& s = c.reasons[static_cast<std::size_t>(r)];
-    std::memcpy(reasons.data() + static_cast<std::size_t>(r) * reason_width, s.data(), std::min(s.size(), reason_width));
+  // Reasons only for a chunk that has one (unwritten rows read as empty strings).
+  if (std::any_of(c.reasons.begin(), c.reasons.end(), [](const std::string& s) { return !s.empty(); })) {
+    std::vector<char> reasons(static_cast<std::size_t>(rows) * reason_width, '\0');
+    for (std::int64_t r = 0; r < rows; ++r) {
+      const std::string& s = c.reasons[static_cast<std::size_t>(r)];
+      std::memcpy(reasons.data() + static_cast<std::size_t>(r) * reason_width, s.data(),
+                  std::min(s.size(), reason_width));
+    }
+    Handle reason_type = fixed_string_type(reason_width);
+    h5.write_rows(sweep.get(), "reason", reason_type.get(), c.first, rows, 1, reasons.data());
   }
-  Handle reason_type = fixed_string_type(reason_width);
-  h5.write_rows(sweep.get(), "reason", reason_type.get(), c.first, rows, 1, reasons.data());
   if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
   h5.write_rows(sweep.get(), "status", H5T_NATIVE_INT64, c.first, rows, 1, c.status.data());
   if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");

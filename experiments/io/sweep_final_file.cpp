@@ -126,20 +126,38 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
   for (const auto& c : fixed_columns) copy(c.name, c.width, c.integer);
   for (const auto& e : layout_.error_names) copy(error_column(e), 1, false);
 
-  // reason: as wide as the longest one (fixed length, so h5py compares rows as bytes).
-  std::vector<char> reasons(static_cast<std::size_t>(n) * reason_width);
+  // reason: as wide as the longest one (fixed length, so h5py compares rows
+  // as bytes). Only failed rows have one: read those, in runs of consecutive rows.
+  std::vector<std::int64_t> status(static_cast<std::size_t>(n));
+  in.read_rows(src.get(), "status", H5T_NATIVE_INT64, 0, n, 1, status.data());
+  std::vector<std::string> reasons(static_cast<std::size_t>(n));
+  std::size_t longest = 1;
   {
     Handle t = fixed_string_type(reason_width);
-    in.read_rows(src.get(), "reason", t.get(), 0, n, 1, reasons.data());
+    std::vector<char> text;
+    for (std::int64_t r = 0; r < n;) {
+      if (status[static_cast<std::size_t>(r)] == 0) {
+        ++r;
+        continue;
+      }
+      std::int64_t end = r;
+      while (end < n && status[static_cast<std::size_t>(end)] != 0) ++end;
+      text.assign(static_cast<std::size_t>(end - r) * reason_width, '\0');
+      in.read_rows(src.get(), "reason", t.get(), r, end - r, 1, text.data());
+      for (std::int64_t k = r; k < end; ++k) {
+        const char* p = text.data() + static_cast<std::size_t>(k - r) * reason_width;
+        reasons[static_cast<std::size_t>(k)].assign(p, ::strnlen(p, reason_width));
+        longest = std::max(longest, reasons[static_cast<std::size_t>(k)].size());
+      }
+      r = end;
+    }
   }
-  std::size_t longest = 1;
-  for (std::int64_t r = 0; r < n; ++r)
-    longest = std::max(longest, ::strnlen(reasons.data() + static_cast<std::size_t>(r) * reason_width, reason_width));
-  std::vector<char> narrow(static_cast<std::size_t>(n) * longest);
-  for (std::int64_t r = 0; r < n; ++r)
-    std::memcpy(narrow.data() + static_cast<std::size_t>(r) * longest,
-                reasons.data() + static_cast<std::size_t>(r) * reason_width, longest);
   {
+    std::vector<char> narrow(static_cast<std::size_t>(n) * longest, '\0');
+    for (std::int64_t r = 0; r < n; ++r) {
+      const std::string& text = reasons[static_cast<std::size_t>(r)];
+      std::memcpy(narrow.data() + static_cast<std::size_t>(r) * longest, text.data(), text.size());
+    }
     Handle t = fixed_string_type(longest);
     out.write_whole(dst.get(), "reason", t.get(), t.get(), n, 1, narrow.data());
   }

@@ -43,13 +43,16 @@ class SweepHdf5 {
   explicit SweepHdf5(hdf5::Fail fail) : fail_(std::move(fail)) {}
 
   /// A dataset of rows × width, every row allocated now (contiguous, no
-  /// metadata changes when written), filled with `fill`.
+  /// metadata changes when written), filled with `fill` if given.
   void create_allocated(hid_t loc, const std::string& name, hid_t type, std::int64_t rows, int width,
                         const void* fill) const {
     Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     H5Pset_obj_track_times(dcpl.get(), false);
     H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY);
-    H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_ALLOC);
+    // Filled where a value must mean "not written yet" (status, event_first);
+    // elsewhere never (unwritten rows of a new file read as zeros), which
+    // spares writing every row twice.
+    H5Pset_fill_time(dcpl.get(), fill ? H5D_FILL_TIME_ALLOC : H5D_FILL_TIME_NEVER);
     if (fill) H5Pset_fill_value(dcpl.get(), type, fill);
     Handle s = space(std::max<std::int64_t>(rows, 0), width);
     Handle d(H5Dcreate2(loc, name.c_str(), type, s.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose);

@@ -36,6 +36,27 @@ std::vector<Range> pending_chunks(const std::vector<char>& done, std::int64_t si
   return chunks;
 }
 
+/// Empties a chunk, keeping its buffers (a thread reuses one chunk: no
+/// allocation, and no page faults, per chunk).
+void clear_rows(SweepChunk& c) {
+  c.rows = 0;
+  for (auto* v : {&c.status, &c.steps, &c.rejected_steps, &c.event_count}) v->clear();
+  for (auto* v : {&c.inputs, &c.cpu_seconds, &c.t_final, &c.angular_momentum, &c.orientation, &c.gamma,
+                  &c.max_errors, &c.events})
+    v->clear();
+  c.reasons.clear();
+}
+
+void reserve_rows(SweepChunk& c, std::int64_t rows, const TrajectoryRow& row) {
+  const auto n = static_cast<std::size_t>(rows);
+  for (auto* v : {&c.status, &c.steps, &c.rejected_steps, &c.event_count}) v->reserve(n);
+  for (auto* v : {&c.cpu_seconds, &c.t_final}) v->reserve(n);
+  c.inputs.reserve(n * row.inputs.size());
+  c.max_errors.reserve(n * row.max_errors.size());
+  c.angular_momentum.reserve(3 * n), c.gamma.reserve(3 * n), c.orientation.reserve(4 * n);
+  c.reasons.reserve(n);
+}
+
 void append_row(SweepChunk& c, const TrajectoryRow& row) {
   c.status.push_back(row.status);
   c.steps.push_back(row.steps);
@@ -104,12 +125,23 @@ class ChunkSink {
 /// Trajectories first..first+rows−1; false if the stop flag cut one short.
 bool run_chunk(SweepRunner& runner, std::int64_t first, std::int64_t rows, const std::atomic<bool>& stop,
                SweepChunk& chunk) {
+  clear_rows(chunk);
   chunk.first = first;
+  const double cpu0 = integrators::detail::cpu_now();
+  TrajectoryRow row;
   for (std::int64_t i = first; i < first + rows; ++i) {
-    const TrajectoryRow row = runner.run(i, chunk.events, &stop);
+    runner.run(i, chunk.events, &stop, row);
     if (row.interrupted) return false;
+    if (i == first) reserve_rows(chunk, rows, row);
     append_row(chunk, row);
   }
+  // The chunk's thread CPU time, shared among its trajectories in proportion
+  // to their monotonic-clock times (SweepRunner::run).
+  const double cpu = integrators::detail::cpu_now() - cpu0;
+  double wall = 0.0;
+  for (const double t : chunk.cpu_seconds) wall += t;
+  if (wall > 0.0)
+    for (double& t : chunk.cpu_seconds) t *= cpu / wall;
   return true;
 }
 
@@ -137,6 +169,7 @@ ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const int
 #pragma omp parallel num_threads(threads) reduction(+ : cpu, events_total)
   {
     SweepRunner runner(spec, plan, scheme, config, layout.error_names);
+    SweepChunk chunk;
     for (;;) {
       std::int64_t k = 0;
 #pragma omp critical(lgi_mpi)
@@ -150,7 +183,6 @@ ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const int
       }
       if (k >= static_cast<std::int64_t>(chunks.size()) || stop.load(std::memory_order_relaxed) || sink.failed) break;
       try {
-        SweepChunk chunk;
         const Range& r = chunks[static_cast<std::size_t>(k)];
         if (!run_chunk(runner, r.first, r.rows, stop, chunk)) continue;  // dropped: --resume runs it again
         for (const double s : chunk.cpu_seconds) cpu += s;
