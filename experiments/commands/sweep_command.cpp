@@ -96,7 +96,8 @@ SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& sce
                   {"resumed", o.resume ? "yes" : "no"},
                   {"utc_start", run.utc_start},
                   {"utc_end", hdf5::utc_now_iso8601()},
-                  {"wall_seconds", format_general(run.wall_seconds, 6)}};
+                  {"wall_seconds", format_general(run.wall_seconds, 6)},
+                  {"partial_write_seconds", format_general(run.write_seconds, 6)}};
   return a;
 }
 

@@ -2,6 +2,7 @@
 // (sweep_file.hpp): /sweep in index order, /events sorted by trajectory
 // index (and in time within a trajectory), /parameters and /provenance.
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <limits>
 
@@ -97,6 +98,7 @@ void write_text_attributes(hid_t loc, const std::vector<std::pair<std::string, s
 }  // namespace
 
 void SweepPartialFile::write_final(const std::string& path, const SweepAttributes& attributes) {
+  const auto start = std::chrono::steady_clock::now();
   const hdf5::QuietHdf5Errors quiet;
   auto fail_in = [this](const std::string& what) { fail(what); };
   auto fail_out = [&path](const std::string& what) {
@@ -205,6 +207,9 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
   for (const auto& [k, v] : attributes.numbers) hdf5::write_double_attribute(parameters.get(), k.c_str(), v, fail_out);
   Handle provenance = hdf5::create_group(file.get(), "/provenance", fail_out);
   write_text_attributes(provenance.get(), attributes.provenance, fail_out);
+  // The cost of this file (the scaling model of scripts/plots/sweep_scaling.py uses it).
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  hdf5::write_vlen_string(provenance.get(), "final_write_seconds", hdf5::csv_number(seconds), false, fail_out);
   if (file.reset() < 0) fail_out("cannot close");
 }
 

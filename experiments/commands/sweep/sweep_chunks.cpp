@@ -100,7 +100,9 @@ class ChunkSink {
 #pragma omp critical(sweep_partial_file)
     {
       try {  // no exception may leave a critical section
+        const auto start = std::chrono::steady_clock::now();
         file_->write(chunk);
+        write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         done_ += chunk.rows;
         progress_.update(done_, file_->failures());
       } catch (...) {
@@ -115,6 +117,7 @@ class ChunkSink {
   }
   std::exception_ptr error;
   std::atomic<bool> failed{false};
+  double write_seconds = 0.0;
 
  private:
   SweepPartialFile* file_;
@@ -215,6 +218,7 @@ ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const int
   stats.cpu_seconds = cpu + ranks.others_cpu_seconds();
   stats.events = events_total + ranks.others_events();
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  stats.write_seconds = sink.write_seconds;
   return stats;
 }
 

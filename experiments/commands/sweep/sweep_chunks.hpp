@@ -21,6 +21,7 @@ struct ChunkRunStats {
   std::int64_t events = 0;      // crossings recorded by this run
   double cpu_seconds = 0.0;     // summed over this run's trajectories
   double wall_seconds = 0.0;
+  double write_seconds = 0.0;   // rank 0: writing chunks to the partial file (wall)
   std::string utc_start;
 };
 
