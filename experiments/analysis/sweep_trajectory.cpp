@@ -41,9 +41,10 @@ class SpecEvents final : public integrators::EventFunctions {
 class SweepObserver final : public integrators::Observer {
  public:
   SweepObserver(const system::SceneInvariants& invariants, const std::vector<int>& error_slots, std::int64_t index,
-                std::int64_t max_events, std::vector<double>& events, std::vector<double>& max_errors,
-                std::vector<double>& scratch)
+                std::int64_t max_events, std::int64_t trajectory_every, std::vector<double>& events,
+                std::vector<double>& max_errors, std::vector<double>& scratch)
       : invariants_(invariants),
+        trajectory_every_(trajectory_every),
         slots_(error_slots),
         index_(index),
         max_events_(max_events),
@@ -51,7 +52,8 @@ class SweepObserver final : public integrators::Observer {
         max_(max_errors),
         errors_(scratch) {}
 
-  void observe(std::int64_t, double, const system::State& x) override {
+  void observe(std::int64_t step, double t, const system::State& x) override {
+    if (trajectory_every_ > 0 && step % trajectory_every_ == 0) sample(step, t, x);
     const system::InvariantValues v = invariants_.evaluate(x);
     if (!have_initial_) {
       initial_ = v;
@@ -68,18 +70,29 @@ class SweepObserver final : public integrators::Observer {
   void on_event(const integrators::EventHit& hit) override {
     ++count_;
     if (count_ > max_events_) return;
-    const auto q = lie::to_wxyz(lie::quat_from_matrix(hit.state.R));
-    const lie::Vec3 g = gamma_of(hit.state);
-    const double row[event_row_width] = {static_cast<double>(index_), static_cast<double>(hit.event),
-                                         static_cast<double>(hit.direction), static_cast<double>(hit.step), hit.t,
-                                         hit.state.Pi.x(), hit.state.Pi.y(), hit.state.Pi.z(),
-                                         q[0], q[1], q[2], q[3], g.x(), g.y(), g.z()};
-    events_.insert(events_.end(), row, row + event_row_width);
+    append(hit.event, hit.direction, hit.step, hit.t, hit.state);
+  }
+  /// A state of the thinned trajectory (trajectory_every).
+  void sample(std::int64_t step, double t, const system::State& x) {
+    append(sample_row, 0, step, t, x);
+    ++samples_;
+    last_sample_ = step;
   }
   std::int64_t crossings() const { return count_; }
+  std::int64_t samples() const { return samples_; }
+  std::int64_t last_sample() const { return last_sample_; }
 
  private:
+  void append(int event, int direction, std::int64_t step, double t, const system::State& x) {
+    const auto q = lie::to_wxyz(lie::quat_from_matrix(x.R));
+    const lie::Vec3 g = gamma_of(x);
+    const double row[event_row_width] = {static_cast<double>(index_), static_cast<double>(event),
+                                         static_cast<double>(direction), static_cast<double>(step), t,
+                                         x.Pi.x(), x.Pi.y(), x.Pi.z(), q[0], q[1], q[2], q[3], g.x(), g.y(), g.z()};
+    events_.insert(events_.end(), row, row + event_row_width);
+  }
   const system::SceneInvariants& invariants_;
+  std::int64_t trajectory_every_, samples_ = 0, last_sample_ = -1;
   const std::vector<int>& slots_;
   std::int64_t index_, max_events_, count_ = 0;
   std::vector<double>& events_;
@@ -140,7 +153,7 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
   row.index = i;
   row.status = sweep_ok;
   row.reason.clear();
-  row.steps = row.rejected_steps = row.event_count = 0;
+  row.steps = row.rejected_steps = row.event_count = row.sample_count = 0;
   row.t_final = 0.0;
   row.interrupted = false;
   row.max_errors.assign(error_names_.size(), nan);
@@ -165,8 +178,8 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
   for (std::size_t k = 0; k < row.max_errors.size(); ++k)
     if (context_->error_slots[k] < 0) row.max_errors[k] = nan;
   const std::size_t events_before = events.size();
-  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, events, row.max_errors,
-                         scratch_);
+  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, spec_.trajectory_every,
+                         events, row.max_errors, scratch_);
   integrators::RunConfig cfg = config_;
   cfg.stop = stop;
   cfg.cpu_clock = false;  // timed by run() and the chunk (sweep_trajectory.hpp)
@@ -176,7 +189,10 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
   row.steps = stats.steps;
   row.rejected_steps = stats.work.rejected_steps;
   row.t_final = stats.t_final;
-  row.event_count = static_cast<std::int64_t>((events.size() - events_before) / event_row_width);
+  // The thinned trajectory ends with the final state.
+  if (spec_.trajectory_every > 0 && observer.last_sample() != stats.steps) observer.sample(stats.steps, stats.t_final, x);
+  row.sample_count = observer.samples();
+  row.event_count = static_cast<std::int64_t>((events.size() - events_before) / event_row_width) - row.sample_count;
   std::copy(x.Pi.data(), x.Pi.data() + 3, row.angular_momentum.begin());
   const lie::Vec3 g = gamma_of(x);
   std::copy(g.data(), g.data() + 3, row.gamma.begin());

@@ -26,7 +26,7 @@ enum SweepStatus : std::int64_t {
 };
 
 struct TrajectoryRow {
-  std::int64_t index = 0, status = sweep_ok, steps = 0, rejected_steps = 0, event_count = 0;
+  std::int64_t index = 0, status = sweep_ok, steps = 0, rejected_steps = 0, event_count = 0, sample_count = 0;
   std::string reason;
   double cpu_seconds = 0.0, t_final = 0.0;  // see SweepRunner::run
   std::array<double, 3> angular_momentum{}, gamma{};

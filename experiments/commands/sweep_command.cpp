@@ -133,6 +133,7 @@ int run_sweep(const SweepOptions& o) {
   layout.inputs = plan.input_columns();
   layout.error_names = system::SceneInvariants(scene, model).error_names();
   for (const auto& e : spec.events) layout.event_names.push_back(e.name);
+  layout.trajectories = spec.trajectory_every > 0;
 
   const std::string partial = o.out + ".partial", writing = o.out + ".writing";
   SweepRanks& ranks = SweepRanks::world();

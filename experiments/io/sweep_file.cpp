@@ -90,10 +90,12 @@ void SweepPartialFile::read_progress() {
   if (!sweep.valid() || h5.rows_of(sweep.get(), "status") != n)
     throw OutputFileError(path_ + ": --resume: not a partial sweep of " + std::to_string(n) + " trajectories");
   std::vector<std::int64_t> status(static_cast<std::size_t>(n)), first(static_cast<std::size_t>(n)),
-      count(static_cast<std::size_t>(n));
+      count(static_cast<std::size_t>(n)), samples(static_cast<std::size_t>(n));
   h5.read_rows(sweep.get(), "status", H5T_NATIVE_INT64, 0, n, 1, status.data());
   h5.read_rows(sweep.get(), "event_first", H5T_NATIVE_INT64, 0, n, 1, first.data());
   h5.read_rows(sweep.get(), "event_count", H5T_NATIVE_INT64, 0, n, 1, count.data());
+  h5.read_rows(sweep.get(), "sample_count", H5T_NATIVE_INT64, 0, n, 1, samples.data());
+  for (std::size_t i = 0; i < count.size(); ++i) count[i] += samples[i];  // block rows of the trajectory
   done_.assign(static_cast<std::size_t>(n), 0);
   // Blocks that exist; the last block's use is the furthest crossing of a completed row in it.
   for (int k = 0;; ++k) {
@@ -149,7 +151,7 @@ void SweepPartialFile::write(const SweepChunk& c) {
     std::int64_t cursor = position;
     for (std::int64_t r = 0; r < rows; ++r) {
       event_first[static_cast<std::size_t>(r)] = cursor;
-      cursor += c.event_count[static_cast<std::size_t>(r)];
+      cursor += c.event_count[static_cast<std::size_t>(r)] + c.sample_count[static_cast<std::size_t>(r)];
     }
   }
   std::vector<std::int64_t> index(static_cast<std::size_t>(rows));
@@ -170,6 +172,7 @@ void SweepPartialFile::write(const SweepChunk& c) {
   h5.write_rows(sweep.get(), "steps", H5T_NATIVE_INT64, c.first, rows, 1, c.steps.data());
   h5.write_rows(sweep.get(), "rejected_steps", H5T_NATIVE_INT64, c.first, rows, 1, c.rejected_steps.data());
   h5.write_rows(sweep.get(), "event_count", H5T_NATIVE_INT64, c.first, rows, 1, c.event_count.data());
+  h5.write_rows(sweep.get(), "sample_count", H5T_NATIVE_INT64, c.first, rows, 1, c.sample_count.data());
   h5.write_rows(sweep.get(), "event_first", H5T_NATIVE_INT64, c.first, rows, 1, event_first.data());
   h5.write_rows(sweep.get(), "cpu_seconds", H5T_NATIVE_DOUBLE, c.first, rows, 1, c.cpu_seconds.data());
   h5.write_rows(sweep.get(), "t_final", H5T_NATIVE_DOUBLE, c.first, rows, 1, c.t_final.data());

@@ -24,8 +24,10 @@
 namespace lgi::experiments {
 
 /// Values per crossing in the partial file: index, event, direction, step,
-/// t, Π (3), q = (w, x, y, z), Γ (3).
+/// t, Π (3), q = (w, x, y, z), Γ (3). A sample of a thinned trajectory is a
+/// row of the same form with event = sample_row (−1) and direction 0.
 inline constexpr int event_row_width = 15;
+inline constexpr int sample_row = -1;
 
 /// The columns of a sweep's /sweep table beside the fixed ones.
 struct SweepLayout {
@@ -33,15 +35,16 @@ struct SweepLayout {
   std::vector<InputColumn> inputs;
   std::vector<std::string> error_names;  // "energy" → max_energy_error
   std::vector<std::string> event_names;
+  bool trajectories = false;  // /trajectory: thinned trajectories (trajectory_every)
 };
 
 /// Completed trajectories first..first+rows−1, column by column.
 struct SweepChunk {
   std::int64_t first = 0, rows = 0;
-  std::vector<std::int64_t> status, steps, rejected_steps, event_count;
+  std::vector<std::int64_t> status, steps, rejected_steps, event_count, sample_count;
   std::vector<double> inputs, cpu_seconds, t_final, angular_momentum, orientation, gamma, max_errors;
   std::vector<std::string> reasons;
-  std::vector<double> events;  // event_row_width values per crossing, in trajectory order
+  std::vector<double> events;  // event_row_width values per crossing or sample, in trajectory order
 };
 
 /// Text written to the final file: /parameters (results) and /provenance

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "experiments/io/sweep_file.hpp"
@@ -17,13 +18,17 @@ using namespace sweep_hdf5;
 
 namespace {
 
-/// /events columns, appended in batches to extendible chunked datasets.
+/// /events (crossings: with the event and direction columns) or /trajectory
+/// (samples) columns, appended in batches to extendible chunked datasets.
 class EventColumns {
  public:
-  EventColumns(hid_t group, const hdf5::Fail& fail) : group_(group), fail_(fail) {
+  EventColumns(hid_t group, bool crossings, const hdf5::Fail& fail)
+      : group_(group), crossings_(crossings), fail_(fail) {
     create("index", H5T_STD_I64LE, 1);
-    create("event", H5T_STD_I32LE, 1);
-    create("direction", H5T_STD_I32LE, 1);
+    if (crossings_) {
+      create("event", H5T_STD_I32LE, 1);
+      create("direction", H5T_STD_I32LE, 1);
+    }
     create("step", H5T_STD_I64LE, 1);
     create("t", H5T_IEEE_F64LE, 1);
     create("angular_momentum", H5T_IEEE_F64LE, 3);
@@ -52,8 +57,10 @@ class EventColumns {
       put(name, H5T_NATIVE_DOUBLE, n, width, f.data());
     };
     ints64(0, "index");
-    ints32(1, "event");
-    ints32(2, "direction");
+    if (crossings_) {
+      ints32(1, "event");
+      ints32(2, "direction");
+    }
     ints64(3, "step");
     reals(4, 1, "t");
     reals(5, 3, "angular_momentum");
@@ -86,9 +93,61 @@ class EventColumns {
       fail_(std::string("cannot write /events/") + name);
   }
   hid_t group_;
+  bool crossings_;
   const hdf5::Fail& fail_;
   std::int64_t rows_ = 0;
 };
+
+/// The partial file's crossing and sample rows, trajectory by trajectory
+/// (index order), into /events and /trajectory; returns each trajectory's
+/// first row in both.
+struct RowOffsets {
+  std::vector<std::int64_t> events, samples;
+};
+RowOffsets copy_event_rows(const SweepHdf5& in, hid_t partial, const std::vector<std::int64_t>& first,
+                           const std::vector<std::int64_t>& crossings, const std::vector<std::int64_t>& samples,
+                           EventColumns& events, EventColumns* trajectory) {
+  const auto n = static_cast<std::int64_t>(first.size());
+  RowOffsets at{std::vector<std::int64_t>(first.size()), std::vector<std::int64_t>(first.size())};
+  std::vector<double> batch, crossing_rows, sample_rows;
+  std::int64_t next_event = 0, next_sample = 0;
+  auto flush = [&] {
+    crossing_rows.clear(), sample_rows.clear();
+    for (std::size_t r = 0; r < batch.size(); r += event_row_width) {
+      auto& to = batch[r + 1] == sample_row ? sample_rows : crossing_rows;
+      to.insert(to.end(), batch.begin() + static_cast<std::ptrdiff_t>(r),
+                batch.begin() + static_cast<std::ptrdiff_t>(r + event_row_width));
+    }
+    events.append(crossing_rows);
+    if (trajectory) trajectory->append(sample_rows);
+    batch.clear();
+  };
+  auto rows_of = [&](std::int64_t k) { return crossings[static_cast<std::size_t>(k)] + samples[static_cast<std::size_t>(k)]; };
+  for (std::int64_t r = 0; r < n;) {
+    // A run of trajectories whose rows are adjacent in one block: one read.
+    const std::int64_t start = first[static_cast<std::size_t>(r)];
+    std::int64_t end = r + 1, total = rows_of(r);
+    while (end < n && first[static_cast<std::size_t>(end)] == start + total &&
+           (first[static_cast<std::size_t>(end)] >> block_shift) == (start >> block_shift))
+      total += rows_of(end++);
+    for (std::int64_t k = r; k < end; ++k) {
+      at.events[static_cast<std::size_t>(k)] = next_event;
+      at.samples[static_cast<std::size_t>(k)] = next_sample;
+      next_event += crossings[static_cast<std::size_t>(k)];
+      next_sample += samples[static_cast<std::size_t>(k)];
+    }
+    if (total > 0) {
+      const std::size_t old = batch.size();
+      batch.resize(old + static_cast<std::size_t>(total * event_row_width));
+      in.read_rows(partial, "/partial/events_" + std::to_string(start >> block_shift), H5T_NATIVE_DOUBLE,
+                   start & ((std::int64_t{1} << block_shift) - 1), total, event_row_width, batch.data() + old);
+      if (batch.size() >= static_cast<std::size_t>(65536 * event_row_width)) flush();
+    }
+    r = end;
+  }
+  flush();
+  return at;
+}
 
 void write_text_attributes(hid_t loc, const std::vector<std::pair<std::string, std::string>>& text,
                            const hdf5::Fail& fail) {
@@ -164,43 +223,27 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
     out.write_whole(dst.get(), "reason", t.get(), t.get(), n, 1, narrow.data());
   }
 
-  // /events in index order; event_first becomes the row in /events.
-  std::vector<std::int64_t> first(static_cast<std::size_t>(n)), count(static_cast<std::size_t>(n));
+  // /events and /trajectory in index order; event_first and sample_first become rows there.
+  std::vector<std::int64_t> first(static_cast<std::size_t>(n)), crossings(static_cast<std::size_t>(n)),
+      samples(static_cast<std::size_t>(n));
   in.read_rows(src.get(), "event_first", H5T_NATIVE_INT64, 0, n, 1, first.data());
-  in.read_rows(src.get(), "event_count", H5T_NATIVE_INT64, 0, n, 1, count.data());
+  in.read_rows(src.get(), "event_count", H5T_NATIVE_INT64, 0, n, 1, crossings.data());
+  in.read_rows(src.get(), "sample_count", H5T_NATIVE_INT64, 0, n, 1, samples.data());
   Handle events_group = hdf5::create_group(file.get(), "/events", fail_out);
-  hdf5::write_fixed_strings(events_group.get(), "names", layout_.event_names.empty() ? std::vector<std::string>{""} : layout_.event_names,
-                            false, fail_out);
-  EventColumns events(events_group.get(), fail_out);
-  std::vector<std::int64_t> final_first(static_cast<std::size_t>(n), 0);
-  std::vector<double> batch;
-  std::int64_t written = 0;
-  for (std::int64_t r = 0; r < n;) {
-    // A run of rows whose crossings are adjacent in one block: one read.
-    std::int64_t end = r + 1, total = count[static_cast<std::size_t>(r)];
-    while (end < n && first[static_cast<std::size_t>(end)] == first[static_cast<std::size_t>(r)] + total &&
-           (first[static_cast<std::size_t>(end)] >> block_shift) == (first[static_cast<std::size_t>(r)] >> block_shift))
-      total += count[static_cast<std::size_t>(end++)];
-    for (std::int64_t k = r; k < end; ++k) {
-      final_first[static_cast<std::size_t>(k)] = written;
-      written += count[static_cast<std::size_t>(k)];
-    }
-    if (total > 0) {
-      const std::int64_t block = first[static_cast<std::size_t>(r)] >> block_shift;
-      const std::int64_t offset = first[static_cast<std::size_t>(r)] & ((std::int64_t{1} << block_shift) - 1);
-      const std::size_t old = batch.size();
-      batch.resize(old + static_cast<std::size_t>(total * event_row_width));
-      in.read_rows(file_.get(), "/partial/events_" + std::to_string(block), H5T_NATIVE_DOUBLE, offset, total,
-                   event_row_width, batch.data() + old);
-      if (batch.size() >= static_cast<std::size_t>(65536 * event_row_width)) {
-        events.append(batch);
-        batch.clear();
-      }
-    }
-    r = end;
+  hdf5::write_fixed_strings(events_group.get(), "names",
+                            layout_.event_names.empty() ? std::vector<std::string>{""} : layout_.event_names, false,
+                            fail_out);
+  EventColumns events(events_group.get(), true, fail_out);
+  Handle trajectory_group;
+  std::unique_ptr<EventColumns> trajectory;
+  if (layout_.trajectories) {
+    trajectory_group = hdf5::create_group(file.get(), "/trajectory", fail_out);
+    trajectory = std::make_unique<EventColumns>(trajectory_group.get(), false, fail_out);
   }
-  events.append(batch);
-  out.write_whole(dst.get(), "event_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, final_first.data());
+  const RowOffsets at = copy_event_rows(in, file_.get(), first, crossings, samples, events, trajectory.get());
+  out.write_whole(dst.get(), "event_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, at.events.data());
+  if (layout_.trajectories)
+    out.write_whole(dst.get(), "sample_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, at.samples.data());
 
   Handle parameters = hdf5::create_group(file.get(), "/parameters", fail_out);
   write_text_attributes(parameters.get(), attributes.parameters, fail_out);

@@ -113,7 +113,7 @@ struct FixedColumn {
 };
 inline constexpr FixedColumn fixed_columns[] = {
     {"status", 1, true},        {"steps", 1, true},          {"rejected_steps", 1, true},
-    {"event_count", 1, true},   {"cpu_seconds", 1, false},   {"t_final", 1, false},
+    {"event_count", 1, true},   {"sample_count", 1, true},   {"cpu_seconds", 1, false},   {"t_final", 1, false},
     {"angular_momentum", 3, false}, {"orientation", 4, false}, {"gamma", 3, false},
 };
 

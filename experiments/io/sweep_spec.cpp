@@ -46,9 +46,9 @@ std::string variable_key_list() {
   return s;
 }
 
-constexpr std::array<std::string_view, 15> top_keys{"name",    "description", "scene",      "scheme",     "dt",
-                                                    "tol",     "t_end",       "seed",       "samples",    "chunk",
-                                                    "max_events", "monitor_every", "vary", "level_set", "event"};
+constexpr std::array<std::string_view, 16> top_keys{
+    "name",       "description",   "scene",            "scheme", "dt",        "tol",  "t_end", "seed",
+    "samples",    "chunk",         "max_events",       "monitor_every", "trajectory_every", "vary", "level_set", "event"};
 constexpr std::array<std::string_view, 6> vary_keys{"key", "component", "values", "linspace", "logspace", "uniform"};
 constexpr std::array<std::string_view, 2> level_keys{"h", "l"};
 constexpr std::array<std::string_view, 5> event_keys{"name", "quantity", "component", "value", "direction"};
@@ -238,6 +238,12 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("chunk")) s.chunk = integer(root, "chunk", *n, 1);
   if (const toml::node* n = root.get("max_events")) s.max_events = integer(root, "max_events", *n, 0);
   if (const toml::node* n = root.get("monitor_every")) s.monitor_every = integer(root, "monitor_every", *n, 1);
+  if (const toml::node* n = root.get("trajectory_every")) {
+    s.trajectory_every = integer(root, "trajectory_every", *n, 1);
+    if (s.trajectory_every % s.monitor_every != 0)
+      root.fail(*n, "trajectory_every",
+                "must be a multiple of monitor_every (" + std::to_string(s.monitor_every) + "): states are seen every monitor_every steps");
+  }
 
   if (const toml::node* n = root.get("vary")) {
     const auto* a = n->as_array();

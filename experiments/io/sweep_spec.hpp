@@ -67,6 +67,7 @@ struct SweepSpec {
   std::int64_t chunk = 0;         // trajectories per chunk (0: automatic)
   std::int64_t max_events = 10000;  // per trajectory
   std::int64_t monitor_every = 1;   // invariant errors every N steps (and at the end)
+  std::int64_t trajectory_every = 0;  // a thinned trajectory: the state every N steps and at the end (0: none)
   std::vector<VaryEntry> vary;
   std::optional<LevelSetSpec> level_set;
   std::vector<EventSpec> events;

@@ -34,8 +34,8 @@ def columns(path):
     """Every dataset but cpu_seconds, as bytes, by path."""
     out = {}
     with h5py.File(path, "r") as f:
-        for g in ("sweep", "events"):
-            for k in f[g]:
+        for g in ("sweep", "events", "trajectory"):
+            for k in (f[g] if g in f else []):
                 if k != "cpu_seconds":
                     out[g + "/" + k] = f[g][k][()].tobytes()
     return out
@@ -49,6 +49,7 @@ dt = 0.01
 t_end = 20.0
 seed = 7
 samples = 3
+trajectory_every = 300
 [[vary]]
 key = "body.center_of_mass"
 component = 1
@@ -92,6 +93,15 @@ def test_threads_give_identical_results(tmp_path):
         assert (f["sweep/status"][()] == 0).all()
         assert len(f["events/t"]) > 0
         assert (np.diff(f["events/index"][()]) >= 0).all()  # sorted by trajectory
+        # The thinned trajectory: steps 0, 300, ..., 1800 and the last (2000), per trajectory.
+        counts = f["sweep/sample_count"][()]
+        assert (counts == 8).all()
+        steps = f["trajectory/step"][()].reshape(6, 8)
+        assert (steps == [0, 300, 600, 900, 1200, 1500, 1800, 2000]).all()
+        first = f["sweep/sample_first"][()]
+        assert list(first) == [8 * k for k in range(6)]
+        last = f["trajectory/angular_momentum"][()][first + 7]
+        assert last.tobytes() == f["sweep/angular_momentum"][()].tobytes()
 
 
 @pytest.mark.skipif(not LGI_MPI, reason="lgi-mpi is not built (MPI not installed)")

@@ -58,7 +58,7 @@ class Reader {
 std::vector<char> pack_chunk(const SweepChunk& c) {
   Writer w;
   w.value(c.first), w.value(c.rows);
-  w.array(c.status), w.array(c.steps), w.array(c.rejected_steps), w.array(c.event_count);
+  w.array(c.status), w.array(c.steps), w.array(c.rejected_steps), w.array(c.event_count), w.array(c.sample_count);
   w.array(c.inputs), w.array(c.cpu_seconds), w.array(c.t_final), w.array(c.angular_momentum);
   w.array(c.orientation), w.array(c.gamma), w.array(c.max_errors), w.array(c.events);
   for (const auto& r : c.reasons) w.bytes.insert(w.bytes.end(), r.c_str(), r.c_str() + r.size() + 1);
@@ -71,6 +71,7 @@ SweepChunk unpack_chunk(const std::vector<char>& bytes) {
   c.first = r.value<std::int64_t>(), c.rows = r.value<std::int64_t>();
   c.status = r.array<std::int64_t>(), c.steps = r.array<std::int64_t>();
   c.rejected_steps = r.array<std::int64_t>(), c.event_count = r.array<std::int64_t>();
+  c.sample_count = r.array<std::int64_t>();
   c.inputs = r.array<double>(), c.cpu_seconds = r.array<double>(), c.t_final = r.array<double>();
   c.angular_momentum = r.array<double>(), c.orientation = r.array<double>(), c.gamma = r.array<double>();
   c.max_errors = r.array<double>(), c.events = r.array<double>();

@@ -40,7 +40,7 @@ std::vector<Range> pending_chunks(const std::vector<char>& done, std::int64_t si
 /// allocation, and no page faults, per chunk).
 void clear_rows(SweepChunk& c) {
   c.rows = 0;
-  for (auto* v : {&c.status, &c.steps, &c.rejected_steps, &c.event_count}) v->clear();
+  for (auto* v : {&c.status, &c.steps, &c.rejected_steps, &c.event_count, &c.sample_count}) v->clear();
   for (auto* v : {&c.inputs, &c.cpu_seconds, &c.t_final, &c.angular_momentum, &c.orientation, &c.gamma,
                   &c.max_errors, &c.events})
     v->clear();
@@ -49,7 +49,7 @@ void clear_rows(SweepChunk& c) {
 
 void reserve_rows(SweepChunk& c, std::int64_t rows, const TrajectoryRow& row) {
   const auto n = static_cast<std::size_t>(rows);
-  for (auto* v : {&c.status, &c.steps, &c.rejected_steps, &c.event_count}) v->reserve(n);
+  for (auto* v : {&c.status, &c.steps, &c.rejected_steps, &c.event_count, &c.sample_count}) v->reserve(n);
   for (auto* v : {&c.cpu_seconds, &c.t_final}) v->reserve(n);
   c.inputs.reserve(n * row.inputs.size());
   c.max_errors.reserve(n * row.max_errors.size());
@@ -62,6 +62,7 @@ void append_row(SweepChunk& c, const TrajectoryRow& row) {
   c.steps.push_back(row.steps);
   c.rejected_steps.push_back(row.rejected_steps);
   c.event_count.push_back(row.event_count);
+  c.sample_count.push_back(row.sample_count);
   c.inputs.insert(c.inputs.end(), row.inputs.begin(), row.inputs.end());
   c.cpu_seconds.push_back(row.cpu_seconds);
   c.t_final.push_back(row.t_final);
