@@ -1,10 +1,10 @@
 #pragma once
 // Ctrl-C (SIGINT) and SIGTERM during a run: while an InterruptGuard lives,
 // both signals set interrupt_requested (io/trajectory_observer.hpp). Commands
-// pass it as RunConfig::stop, so the Lie-group loop ends after the current
-// step with its statistics (status "interrupted by signal at step K, t = T");
-// loops that do not read RunConfig::stop (the baselines; lgi stress) are
-// stopped by their observers, which check the flag and throw Interrupted.
+// pass it as RunConfig::stop, so every loop (the Lie-group schemes' and the
+// baselines') ends after the current step with its statistics (status
+// "interrupted by signal at step K, t = T"); lgi stress and lgi sweep then
+// stop between runs, keeping what finished.
 // Construction clears the flag and installs the handler; destruction puts
 // back the handlers that were there before, also when the run leaves by an
 // exception.

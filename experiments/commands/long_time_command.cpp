@@ -34,7 +34,7 @@
 #include "experiments/io/output_timing.hpp"
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested, Interrupted
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/registry.hpp"
 #include "integrators/system/invariants.hpp"
 
@@ -161,12 +161,10 @@ class LongTimeObserver final : public integrators::Observer {
     }
     if ((step & 4095) == 0) [[unlikely]]
       housekeeping();
-    if (interrupt_requested.load(std::memory_order_relaxed)) [[unlikely]] {
-      if (!emitted_) emit();
-      // The Lie-group loop ends on RunConfig::stop after this sample; a loop
-      // that does not read it (the baselines) is stopped here.
-      if (!stopping_) throw Interrupted("interrupted by signal");
-    }
+    // A run ended by RunConfig::stop observes its final state right after
+    // on_stop(): that state is the last sample.
+    if (stopping_ && !emitted_) [[unlikely]]
+      emit();
   }
   void on_stop() override { stopping_ = true; }
 
@@ -269,24 +267,12 @@ int long_time(const LongTimeOptions& o) {
   bool interrupted = false;
   {
     const InterruptGuard interrupt_guard;
-    const double cpu0 = integrators::detail::cpu_now();
     integrators::RunConfig c = cfg;
-    c.stop = &interrupt_requested;
-    try {
-      stats = scheme->run(model, state, c, timed);
-      if (stats.interrupted) {  // reported as before, with the loop's own statistics
-        interrupted = true;
-        stats.status = integrators::interrupted_status;
-      }
-    } catch (const Interrupted& e) {
+    c.stop = &interrupt_requested;  // every loop (the baselines' too) ends cleanly, with its statistics
+    stats = scheme->run(model, state, c, timed);
+    if (stats.interrupted) {  // reported as before, with the loop's own statistics
       interrupted = true;
-      stats.ok = false;
-      stats.status = e.what();
-      stats.steps = observer.last_observed_step();
-      stats.work.rhs_evaluations = stats.work.rejected_steps = -1;
-      stats.work.newton_iterations_max = stats.work.newton_failures = -1;
-      stats.cpu_seconds = integrators::detail::cpu_now() - cpu0;
-      stats.t_final = observer.last_observed_time();
+      stats.status = integrators::interrupted_status;
     }
   }
   progress.done();

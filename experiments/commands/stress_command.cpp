@@ -29,7 +29,7 @@
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scenes_location.hpp"
-#include "experiments/io/trajectory_observer.hpp"  // Interrupted
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/registry.hpp"
 
 namespace lgi::experiments {
@@ -77,24 +77,31 @@ std::vector<Row> run_suite(std::vector<Variant>& variants, const std::vector<con
   const InterruptGuard interrupt_guard;
   std::vector<Row> rows;
   std::size_t k = 0;
-  try {
-    for (Variant& v : variants) {
-      ++k;
-      if (progress)
-        std::cerr << "\r\033[K[" << k << "/" << variants.size() << "] " << v.case_id << ": " << v.variant
-                  << std::flush;
-      compute_reference(v, budget);
-      char group[32];
-      std::snprintf(group, sizeof group, "case_%02zu", k - 1);
-      file.write_group(group, case_attributes(v));
-      for (const SchemeInfo* s : schemes) {
-        Row row = run_row(v, *s, budget);
-        append_row(file, row, v);
-        rows.push_back(std::move(row));
-      }
+  // Every run reads the flag as RunConfig::stop and ends after its current
+  // step; the run it cut short is not a result, so the suite stops before
+  // writing it (the rows before it are in the file).
+  auto interrupted = [&stopped] {
+    if (!interrupt_requested.load(std::memory_order_relaxed)) return false;
+    stopped = integrators::interrupted_status;
+    return true;
+  };
+  for (Variant& v : variants) {
+    ++k;
+    if (progress)
+      std::cerr << "\r\033[K[" << k << "/" << variants.size() << "] " << v.case_id << ": " << v.variant
+                << std::flush;
+    compute_reference(v, budget);
+    if (interrupted()) break;
+    char group[32];
+    std::snprintf(group, sizeof group, "case_%02zu", k - 1);
+    file.write_group(group, case_attributes(v));
+    for (const SchemeInfo* s : schemes) {
+      Row row = run_row(v, *s, budget);
+      if (interrupted()) break;
+      append_row(file, row, v);
+      rows.push_back(std::move(row));
     }
-  } catch (const Interrupted& e) {
-    stopped = e.what();
+    if (!stopped.empty()) break;
   }
   if (progress) std::cerr << "\r\033[K" << std::flush;
   return rows;

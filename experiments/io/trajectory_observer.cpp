@@ -22,7 +22,6 @@ TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants, bo
 }
 
 void TrajectoryObserver::observe(std::int64_t step, double t, const system::State& s) {
-  if (!stopping_ && interrupt_requested.load(std::memory_order_relaxed)) throw Interrupted("interrupted by signal");
   latest_ = invariants_.evaluate(s);
   latest_state_ = s;
   latest_time_ = t;

@@ -13,16 +13,11 @@
 namespace lgi::experiments {
 
 /// Set by the SIGINT/SIGTERM handler (InterruptGuard, cli/interrupt_guard.hpp).
-/// Commands pass it as RunConfig::stop: the Lie-group loop (stepper_loop.hpp)
-/// then ends the run after the current step and observes its final state
-/// (Observer::on_stop() first). Loops that do not read RunConfig::stop (the
-/// baselines) are stopped by the observer instead, which throws Interrupted
-/// at the next sample when it sees the flag without on_stop() having been called.
+/// Commands pass it as RunConfig::stop: every loop (stepper_loop.hpp, and the
+/// baselines' baselines/runner.hpp) then ends the run after the current step
+/// with its statistics and observes its final state (Observer::on_stop()
+/// first). No observer throws: a run always returns.
 extern std::atomic<bool> interrupt_requested;
-
-struct Interrupted : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 /// The file layout for a scene's invariants (units in H5MD spelling).
 TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants, bool euler_zxz = false);
@@ -34,7 +29,6 @@ class TrajectoryObserver final : public integrators::Observer {
 
   void observe(std::int64_t step, double t, const system::State& s) override;
   void observe_euler_zxz(const lie::EulerZXZ& angles) override { euler_zxz_ = {angles.psi, angles.theta, angles.phi}; }
-  void on_stop() override { stopping_ = true; }
 
   bool has_samples() const { return have_initial_; }
   const system::InvariantValues& initial() const { return initial_; }
@@ -50,7 +44,6 @@ class TrajectoryObserver final : public integrators::Observer {
   const system::SceneInvariants& invariants_;
   TrajectoryWriter* writer_;  // may be null (no file)
   bool have_initial_ = false;
-  bool stopping_ = false;  // the loop ends on RunConfig::stop after this sample
   system::InvariantValues initial_{}, latest_{};
   system::State latest_state_{};
   double latest_time_ = 0.0;

@@ -1,5 +1,5 @@
-"""pytest set-up of the sweep tests (tests/sweep): temporary files go under
-$LGI_TEST_TMPDIR/scripts_pytest (the build tree under CTest), never into the
+"""pytest set-up of the command tests (tests/commands): temporary files go under
+$LGI_TEST_TMPDIR/commands_pytest (the build tree under CTest), never into the
 source tree; no bytecode is written beside the scripts."""
 import os
 import sys
@@ -11,4 +11,4 @@ def pytest_configure(config):
     base = os.environ.get("LGI_TEST_TMPDIR")
     if base and not config.option.basetemp:
         # pytest empties its basetemp at start: a folder of its own, not the shared tmp.
-        config.option.basetemp = os.path.join(base, "sweep_pytest")
+        config.option.basetemp = os.path.join(base, "commands_pytest")
