@@ -48,6 +48,7 @@ int run_cli(int argc, char** argv) {
       add_singularity_subcommand(app, context),
       add_stress_subcommand(app, context),
       add_sweep_subcommand(app, context),
+      add_equilibria_subcommand(app, context),
   };
 
   try {

@@ -1,0 +1,78 @@
+#include "experiments/io/table_file.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sys/stat.h>
+
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/results_file.hpp"  // results_csv_path
+#include "experiments/io/sweep_hdf5.hpp"
+
+namespace lgi::experiments {
+
+namespace {
+
+void refuse_existing(const std::string& path, bool force) {
+  struct stat st {};
+  if (!force && ::lstat(path.c_str(), &st) == 0)
+    throw OutputFileError("output file '" + path + "' exists (--force replaces it)");
+}
+
+void write_csv(const std::string& path, const std::vector<TableColumn>& columns, std::size_t rows) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw OutputFileError("cannot create '" + path + "'");
+  bool first = true;
+  for (const auto& c : columns)
+    for (int k = 0; k < c.width; ++k) {
+      out << (first ? "" : ",") << c.name;
+      if (c.width > 1) out << '_' << k + 1;
+      first = false;
+    }
+  out << '\n';
+  for (std::size_t r = 0; r < rows; ++r) {
+    first = true;
+    for (const auto& c : columns)
+      for (int k = 0; k < c.width; ++k) {
+        const std::size_t i = r * static_cast<std::size_t>(c.width) + static_cast<std::size_t>(k);
+        out << (first ? "" : ",") << (c.integer ? std::to_string(c.whole[i]) : hdf5::csv_number(c.real[i]));
+        first = false;
+      }
+    out << '\n';
+  }
+  if (!out.flush()) throw OutputFileError("cannot write '" + path + "'");
+}
+
+}  // namespace
+
+void write_table_file(const std::string& path, bool force, const std::string& group,
+                      const std::vector<TableColumn>& columns, const std::map<std::string, std::string>& parameters) {
+  const std::string csv = results_csv_path(path);
+  refuse_existing(path, force);
+  refuse_existing(csv, force);
+  const std::size_t rows = columns.empty() ? 0
+                           : static_cast<std::size_t>(columns[0].integer ? columns[0].whole.size() : columns[0].real.size()) /
+                                 static_cast<std::size_t>(columns[0].width);
+  const std::string partial = path + ".partial", csv_partial = csv + ".partial";
+  {
+    const hdf5::QuietHdf5Errors quiet;
+    auto fail = [&partial](const std::string& what) {
+      throw OutputFileError(partial + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
+    };
+    hdf5::Handle file = hdf5::create_file(partial, fail);
+    hdf5::Handle table = hdf5::create_group(file.get(), "/" + group, fail);
+    const sweep_hdf5::SweepHdf5 h5(fail);
+    for (const auto& c : columns) {
+      const auto n = static_cast<std::int64_t>(rows);
+      if (c.integer) h5.write_whole(table.get(), c.name, H5T_STD_I64LE, H5T_NATIVE_INT64, n, c.width, c.whole.data());
+      else h5.write_whole(table.get(), c.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, c.width, c.real.data());
+    }
+    hdf5::Handle params = hdf5::create_group(file.get(), "/parameters", fail);
+    for (const auto& [k, v] : parameters) hdf5::write_vlen_string(params.get(), k.c_str(), v, false, fail);
+    if (file.reset() < 0) fail("cannot close");
+  }
+  write_csv(csv_partial, columns, rows);
+  hdf5::publish(partial, path, force, "the table is");
+  hdf5::publish(csv_partial, csv, force, "the table is");
+}
+
+}  // namespace lgi::experiments

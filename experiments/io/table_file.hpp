@@ -1,0 +1,27 @@
+#pragma once
+// A finished table written at once: /<group>/<column> datasets (n, or n×k
+// for vector columns; float64 or int64) with /parameters attributes, and the
+// same table as CSV beside it (vector columns as <name>_1, <name>_2, ...).
+// For results computed in full before they are written (lgi equilibria);
+// tables that grow while a run goes on use ResultsFile (results_file.hpp).
+// The file is written as <path>.partial and renamed; an existing file is
+// replaced only with `force`.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lgi::experiments {
+
+struct TableColumn {
+  std::string name;
+  int width = 1;
+  bool integer = false;
+  std::vector<double> real{};         // rows × width
+  std::vector<std::int64_t> whole{};  // rows × width, for integer columns
+};
+
+void write_table_file(const std::string& path, bool force, const std::string& group,
+                      const std::vector<TableColumn>& columns, const std::map<std::string, std::string>& parameters);
+
+}  // namespace lgi::experiments
