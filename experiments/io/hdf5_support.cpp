@@ -159,10 +159,12 @@ Handle open_or_create_group(hid_t parent, const std::string& name, const Fail& f
   return g;
 }
 
-Handle create_file(const std::string& path, const Fail& fail) {
+Handle create_file(const std::string& path, const Fail& fail, std::size_t sieve_bytes) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   // STRONG: H5Fclose closes every object, so the file is complete when it returns.
-  if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot set up file access");
+  if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0 ||
+      H5Pset_sieve_buf_size(fapl.get(), sieve_bytes) < 0)
+    fail("cannot set up file access");
   // Default library-version bounds (earliest format): no superblock status
   // flags, so a file left by a killed run opens without h5clear.
   Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);

@@ -103,7 +103,9 @@ Handle create_group(hid_t loc, const std::string& path, const Fail& fail);
 /// Opens the group `name` below parent, creating it if missing.
 Handle open_or_create_group(hid_t parent, const std::string& name, const Fail& fail);
 /// Creates (truncates) an HDF5 file whose H5Fclose closes every object in it.
-Handle create_file(const std::string& path, const Fail& fail);
+/// `sieve_bytes`: HDF5's sieve buffer for raw data (0: each write goes to the
+/// file at once, with no read of the region first; the sweep's partial file).
+Handle create_file(const std::string& path, const Fail& fail, std::size_t sieve_bytes = 64 * 1024);
 /// /h5md as H5MD 1.1 asks: version, author/name, creator/name and version,
 /// and with units_module the units module (modules/units: version, system "SI").
 void write_h5md_metadata(hid_t file, bool units_module, const Fail& fail);

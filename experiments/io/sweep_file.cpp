@@ -31,7 +31,7 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
     : path_(path), layout_(layout) {
   const hdf5::QuietHdf5Errors quiet;
   auto fail_fn = [this](const std::string& what) { fail(what); };
-  file_ = hdf5::create_file(path, fail_fn);
+  file_ = hdf5::create_file(path, fail_fn, 0);  // rows go to the file as they are written
   create_columns();
   Handle partial = hdf5::create_group(file_.get(), "/partial", fail_fn);
   hdf5::write_vlen_string(partial.get(), "fingerprint", fingerprint, false, fail_fn);
@@ -45,6 +45,7 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   const hdf5::QuietHdf5Errors quiet;
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
+  H5Pset_sieve_buf_size(fapl.get(), 0);
   file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
   if (!file_.valid()) throw OutputFileError(path + ": cannot open the partial sweep to resume it");
   std::string stored;
