@@ -13,6 +13,7 @@ packages=(
   libcli11-dev             # CLI11
   libtomlplusplus-dev      # toml++
   libbenchmark-dev         # Google Benchmark
+  clang libclang-rt-14-dev  # the fuzz preset: libFuzzer harnesses with ASan + UBSan (scripts/fuzz.sh)
   libopenmpi-dev openmpi-bin  # MPI for `mpirun -np K lgi sweep` (-DLGI_MPI=ON; the lgi-mpi test build)
   python3-matplotlib python3-h5py python3-numpy  # Debian's /usr/bin/python3 for plots
   python3-pil                                     # GIF animations (matplotlib's PillowWriter)

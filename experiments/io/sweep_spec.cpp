@@ -75,6 +75,7 @@ void read_values(const Table& t, VaryEntry& v) {
     const auto* a = n.as_array();
     if (!a) t.fail(n, "values", "expected an array of values, got " + scene_toml::type_name(n));
     if (a->empty()) t.fail(n, "values", "empty: give at least one value");
+    v.values.reserve(a->size());
     for (std::size_t i = 0; i < a->size(); ++i)
       v.values.push_back(value_of_width(t, "values", (*a)[i], v.width, "value " + std::to_string(i + 1) + ": "));
     return;
@@ -98,6 +99,7 @@ void read_values(const Table& t, VaryEntry& v) {
   if (!c) t.fail(n, *which, "count: expected an integer, got " + scene_toml::type_name((*a)[2]));
   if (c->get() < 0) t.fail(n, *which, "count: negative (" + std::to_string(c->get()) + ")");
   if (c->get() == 0) t.fail(n, *which, "count: 0 gives an empty range");
+  if (c->get() > 10000000) t.fail(n, *which, "count: more than 10000000 points on one axis");
   const bool log = *which == "logspace";
   if (log && !(from > 0.0 && to > 0.0)) t.fail(n, *which, "from and to must be > 0");
   const std::int64_t count = c->get();
