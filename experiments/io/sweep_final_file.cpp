@@ -154,6 +154,46 @@ void write_text_attributes(hid_t loc, const std::vector<std::pair<std::string, s
   for (const auto& [k, v] : text) hdf5::write_vlen_string(loc, k.c_str(), v, false, fail);
 }
 
+/// /sweep/reason of the final file: fixed-length text as wide as the longest
+/// reason (so h5py compares rows as bytes). Only failed rows have one: those
+/// are read, in runs of consecutive rows.
+void write_reasons(const SweepHdf5& in, const SweepHdf5& out, hid_t src, hid_t dst, std::int64_t n) {
+  std::vector<std::int64_t> status(static_cast<std::size_t>(n));
+  in.read_rows(src, "status", H5T_NATIVE_INT64, 0, n, 1, status.data());
+  std::vector<std::string> reasons(static_cast<std::size_t>(n));
+  std::size_t longest = 1;
+  {
+    Handle t = fixed_string_type(reason_width);
+    std::vector<char> text;
+    for (std::int64_t r = 0; r < n;) {
+      if (status[static_cast<std::size_t>(r)] == 0) {
+        ++r;
+        continue;
+      }
+      std::int64_t end = r;
+      while (end < n && status[static_cast<std::size_t>(end)] != 0) ++end;
+      text.assign(static_cast<std::size_t>(end - r) * reason_width, '\0');
+      in.read_rows(src, "reason", t.get(), r, end - r, 1, text.data());
+      for (std::int64_t k = r; k < end; ++k) {
+        const char* p = text.data() + static_cast<std::size_t>(k - r) * reason_width;
+        reasons[static_cast<std::size_t>(k)].assign(p, ::strnlen(p, reason_width));
+        longest = std::max(longest, reasons[static_cast<std::size_t>(k)].size());
+      }
+      r = end;
+    }
+  }
+  {
+    std::vector<char> narrow(static_cast<std::size_t>(n) * longest, '\0');
+    for (std::int64_t r = 0; r < n; ++r) {
+      const std::string& text = reasons[static_cast<std::size_t>(r)];
+      std::memcpy(narrow.data() + static_cast<std::size_t>(r) * longest, text.data(), text.size());
+    }
+    Handle t = fixed_string_type(longest);
+    out.write_whole(dst, "reason", t.get(), t.get(), n, 1, narrow.data());
+  }
+
+}
+
 }  // namespace
 
 void SweepPartialFile::write_final(const std::string& path, const SweepAttributes& attributes) {
@@ -187,41 +227,7 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
   for (const auto& c : fixed_columns) copy(c.name, c.width, c.integer);
   for (const auto& e : layout_.error_names) copy(error_column(e), 1, false);
 
-  // reason: as wide as the longest one (fixed length, so h5py compares rows
-  // as bytes). Only failed rows have one: read those, in runs of consecutive rows.
-  std::vector<std::int64_t> status(static_cast<std::size_t>(n));
-  in.read_rows(src.get(), "status", H5T_NATIVE_INT64, 0, n, 1, status.data());
-  std::vector<std::string> reasons(static_cast<std::size_t>(n));
-  std::size_t longest = 1;
-  {
-    Handle t = fixed_string_type(reason_width);
-    std::vector<char> text;
-    for (std::int64_t r = 0; r < n;) {
-      if (status[static_cast<std::size_t>(r)] == 0) {
-        ++r;
-        continue;
-      }
-      std::int64_t end = r;
-      while (end < n && status[static_cast<std::size_t>(end)] != 0) ++end;
-      text.assign(static_cast<std::size_t>(end - r) * reason_width, '\0');
-      in.read_rows(src.get(), "reason", t.get(), r, end - r, 1, text.data());
-      for (std::int64_t k = r; k < end; ++k) {
-        const char* p = text.data() + static_cast<std::size_t>(k - r) * reason_width;
-        reasons[static_cast<std::size_t>(k)].assign(p, ::strnlen(p, reason_width));
-        longest = std::max(longest, reasons[static_cast<std::size_t>(k)].size());
-      }
-      r = end;
-    }
-  }
-  {
-    std::vector<char> narrow(static_cast<std::size_t>(n) * longest, '\0');
-    for (std::int64_t r = 0; r < n; ++r) {
-      const std::string& text = reasons[static_cast<std::size_t>(r)];
-      std::memcpy(narrow.data() + static_cast<std::size_t>(r) * longest, text.data(), text.size());
-    }
-    Handle t = fixed_string_type(longest);
-    out.write_whole(dst.get(), "reason", t.get(), t.get(), n, 1, narrow.data());
-  }
+  write_reasons(in, out, src.get(), dst.get(), n);
 
   // /events and /trajectory in index order; event_first and sample_first become rows there.
   std::vector<std::int64_t> first(static_cast<std::size_t>(n)), crossings(static_cast<std::size_t>(n)),
