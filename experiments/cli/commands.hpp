@@ -29,5 +29,6 @@ Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& conte
 Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context);  // commands/stress_command.cpp
 Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context);   // commands/sweep_command.cpp
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
+Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 
 }  // namespace lgi::experiments

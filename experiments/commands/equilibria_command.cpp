@@ -1,4 +1,5 @@
 // lgi equilibria --scene FILE [--l L] [--samples N] --out FILE.h5 [--force] [--quiet]
+// lgi bifurcation --scene FILE [--samples N] --out FILE.h5: the same without --l
 // The relative equilibria (Staude's permanent rotations) of a scene's heavy
 // top and their stability (analysis/relative_equilibria.hpp; layout and
 // meaning: experiments/EQUILIBRIA.md).
@@ -102,6 +103,22 @@ Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& contex
   sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a free body")->required();
   sub->add_option("--l", o->l, "The momentum l = Pi.Gamma: every equilibrium there, polished to round-off");
   sub->add_option("--samples", o->samples, "Points per branch without --l")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
+  add_force_quiet_flags(*sub, *o, "Replace existing output files");
+  return {sub, [o, context] {
+            o->command_line = context.command_line;
+            return run_equilibria(*o);
+          }};
+}
+
+Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<EquilibriaOptions>();
+  auto* sub = app.add_subcommand(
+      "bifurcation",
+      "The (l, h) bifurcation diagram of a heavy top: every branch of relative equilibria sampled, with its "
+      "stability and folds (the table of lgi equilibria without --l; figure: scripts/plots/bifurcation.py)");
+  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a free body")->required();
+  sub->add_option("--samples", o->samples, "Points per branch")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
   return {sub, [o, context] {
