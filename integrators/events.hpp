@@ -85,6 +85,10 @@ bool locate_crossing(const EventFunctions& events, int i, double t0, double h, c
       break;
     }
     const double fc = events.value(i, t0 + c, xc);
+    if (!std::isfinite(fc)) {  // a search step that blew up: no crossing can be vouched for
+      ok = false;
+      break;
+    }
     if ((fc < 0.0) == (fb < 0.0) && fc != 0.0) {  // c replaces b
       b = c, fb = fc, xb = xc;
       if (side == -1) fa *= 0.5;

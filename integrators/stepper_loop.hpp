@@ -28,9 +28,10 @@
 // (events.hpp), then hands it to Observer::on_event() before the step's
 // observe(). Crossings in one step are reported in the order of the event
 // functions. The run's steps and states are the same with or without events;
-// the location steps add to WorkCounters::rhs_evaluations only. A location
-// step whose implicit solve fails ends the run (not ok, status "event
-// location failed ...").
+// the location steps add to WorkCounters::rhs_evaluations only (they are
+// taken as the run's steps are, with the same halving retries). A location
+// step whose implicit solve fails, or that leaves a non-finite state, ends
+// the run (not ok, status "event location failed ...").
 //
 // With all three null, the loop is the one it always was: the same steps,
 // the same arithmetic and the same observe() calls.
@@ -173,7 +174,9 @@ std::string report_crossings(const EventFunctions& events, std::vector<double>& 
       hit.direction = d;
       hit.step = step;
       if (!locate_crossing(events, i, t0, h, x0, x1, g[k], g1, advance, hit))
-        failure = failure_message("event location failed: a step of the root search did not succeed", step, t0 + h, nullptr);
+        failure = failure_message(
+            "event location failed: a step of the root search did not succeed (no convergence, or a non-finite state)",
+            step, t0 + h, nullptr);
       observer.on_event(hit);
     }
     g[k] = g1;
@@ -265,9 +268,12 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     }
     if (events) {
       const double t_start = t;
+      // The search's steps are taken as the run's are (with the same halving retries).
       auto advance = [&](double theta, State& x) {
         Scheme copy = *scheme_before;
         x = x_before;
+        if (cfg.retry_halving > 0)
+          return detail::step_with_halving(copy, model, x, t_start, theta, cfg.retry_halving, stats.work).converged;
         return copy.step(model, x, t_start, theta, stats.work).converged;
       };
       std::string why = detail::report_crossings(*events, g, t, t_next - t, x_before, s, k + 1, advance, observer);
@@ -353,8 +359,10 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
       break;
     }
     if (events) {
-      // The search takes steps of the accepted pair's solution whatever its
-      // error estimate says (a step no longer than an accepted one).
+      // The search takes steps of the pair's propagated solution whatever its
+      // error estimate says (a step no longer than an accepted one): step(),
+      // the forced attempt. A scheme without step() can only offer its
+      // accepted attempts, so a rejected trial there ends the search.
       auto advance = [&](double theta, State& x) {
         Scheme copy = *scheme_before;
         x = before;

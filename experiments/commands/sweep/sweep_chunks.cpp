@@ -190,7 +190,7 @@ ChunkRunStats run_chunks(const SweepSpec& spec, const SweepPlan& plan, const int
         const Range& r = chunks[static_cast<std::size_t>(k)];
         if (!run_chunk(runner, r.first, r.rows, stop, chunk)) continue;  // dropped: --resume runs it again
         for (const double s : chunk.cpu_seconds) cpu += s;
-        events_total += static_cast<std::int64_t>(chunk.events.size()) / event_row_width;
+        for (const std::int64_t n : chunk.event_count) events_total += n;  // crossings, not thinned-trajectory rows
         if (ranks.root()) {
           sink.write(chunk);
         } else {
