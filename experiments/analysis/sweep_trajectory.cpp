@@ -131,7 +131,7 @@ SweepRunner::SweepRunner(const SweepSpec& spec, const SweepPlan& plan, const int
 
 SweepRunner::~SweepRunner() = default;
 
-void SweepRunner::prepare(std::int64_t i, TrajectoryRow& row) {
+void SweepRunner::prepare(std::int64_t i) {
   plan_.inputs(i, inputs_);
   if (!context_ || !plan_.same_scene(context_->inputs, inputs_)) {
     context_.reset();
@@ -139,7 +139,6 @@ void SweepRunner::prepare(std::int64_t i, TrajectoryRow& row) {
     context_->inputs = inputs_;
     context_->refusal = integrators::unsupported_reason(scheme_, context_->model);
   }
-  (void)row;
 }
 
 void SweepRunner::run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row) {
@@ -160,7 +159,7 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
   row.angular_momentum.fill(nan), row.gamma.fill(nan), row.orientation.fill(nan);
   system::State x;
   try {
-    prepare(i, row);
+    prepare(i);
     x = plan_.initial_state(i, context_->scene, inputs_);
   } catch (const std::exception& e) {  // an invalid varied scene, an empty level set
     row.inputs = inputs_;

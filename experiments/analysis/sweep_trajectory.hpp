@@ -56,7 +56,7 @@ class SweepRunner {
 
  private:
   struct Context;
-  void prepare(std::int64_t i, TrajectoryRow& row);
+  void prepare(std::int64_t i);
   void run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
   const SweepSpec& spec_;
   const SweepPlan& plan_;

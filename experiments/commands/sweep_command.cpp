@@ -5,7 +5,6 @@
 // OpenMP threads (and MPI ranks, sweep/sweep_ranks.hpp), each completed chunk
 // goes to <out>.partial, and the final file is written from it at the end.
 #include <omp.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
@@ -36,11 +35,6 @@ struct SweepOptions {
   bool resume = false, quiet = false, force = false;
   std::string command_line;
 };
-
-bool exists(const std::string& path) {
-  struct stat st {};
-  return ::lstat(path.c_str(), &st) == 0;
-}
 
 /// dt or tol from the spec, else the scene's [run]; t_end likewise.
 integrators::RunConfig sweep_run_config(const SweepSpec& spec, const system::Scene& scene,
@@ -105,12 +99,12 @@ SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& sce
 std::unique_ptr<SweepPartialFile> open_partial_file(const SweepOptions& o, const SweepLayout& layout,
                                                     const std::string& print) {
   const std::string partial = o.out + ".partial";
-  if (!o.resume && exists(partial))
+  if (!o.resume && hdf5::path_exists(partial))
     throw UsageError("--out: " + partial + " exists (an interrupted sweep): finish it with --resume, or remove it");
-  if (o.resume && !exists(partial))
+  if (o.resume && !hdf5::path_exists(partial))
     throw UsageError("--resume: there is no " + partial + " to resume" +
-                     (exists(o.out) ? " (" + o.out + " is complete)" : ""));
-  if (!o.force && exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
+                     (hdf5::path_exists(o.out) ? " (" + o.out + " is complete)" : ""));
+  if (!o.force && hdf5::path_exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
   if (o.resume) return std::make_unique<SweepPartialFile>(partial, layout, print, true);
   return std::make_unique<SweepPartialFile>(partial, layout, print);
 }

@@ -216,6 +216,11 @@ std::string csv_text(const std::string& s) {
   return out + '"';
 }
 
+bool path_exists(const std::string& path) {
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0;
+}
+
 void publish(const std::string& from, const std::string& to, bool force, const std::string& contents) {
   const std::string appeared = "output file '" + to + "' appeared during the run; " + contents + " in '" + from + "'";
   if (!force) {
@@ -224,8 +229,7 @@ void publish(const std::string& from, const std::string& to, bool force, const s
     if (err == EEXIST) throw OutputFileError(appeared);
     if (err != EINVAL && err != ENOSYS && err != ENOTSUP)
       throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + errno_text(err));
-    struct stat st {};  // file system without RENAME_NOREPLACE
-    if (::lstat(to.c_str(), &st) == 0) throw OutputFileError(appeared);
+    if (path_exists(to)) throw OutputFileError(appeared);  // file system without RENAME_NOREPLACE
   }
   if (std::rename(from.c_str(), to.c_str()) != 0)
     throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + errno_text(errno));

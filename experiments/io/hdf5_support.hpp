@@ -118,6 +118,9 @@ std::string csv_number(double x);
 /// Quoted (with doubled quotes) when it holds a comma, quote or line break.
 std::string csv_text(const std::string& s);
 
+/// Whether anything (a file, a link, a folder) is at `path`.
+bool path_exists(const std::string& path);
+
 /// Renames `from` to `to`; without force never replaces an existing `to`.
 /// `contents` names what `from` holds in the refusal: "the trajectory is".
 void publish(const std::string& from, const std::string& to, bool force, const std::string& contents);

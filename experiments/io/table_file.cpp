@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <fstream>
-#include <sys/stat.h>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "experiments/io/results_file.hpp"  // results_csv_path
@@ -13,8 +12,7 @@ namespace lgi::experiments {
 namespace {
 
 void refuse_existing(const std::string& path, bool force) {
-  struct stat st {};
-  if (!force && ::lstat(path.c_str(), &st) == 0)
+  if (!force && hdf5::path_exists(path))
     throw OutputFileError("output file '" + path + "' exists (--force replaces it)");
 }
 
