@@ -47,8 +47,8 @@ class Composition {
                                      .reference = Coefficients.citation};
 
   template <class Model>
-  void start(const Model& model, const State& initial, double t0) {
-    if constexpr (detail::has_start<Base, Model>) base_.start(model, initial, t0);
+  StepStatus start(const Model& model, const State& initial, double t0) {
+    return detail::start(base_, model, initial, t0);
   }
 
   template <class Model>

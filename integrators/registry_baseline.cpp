@@ -12,7 +12,7 @@ using baselines::Stepper;
 template <Coordinates C, Stepper S>
 RunStats run_registered_baseline(const system::AnyModel& model, State& state, const RunConfig& cfg,
                                  Observer& observer) {
-  return baselines::run_baseline(C, S, model, state, cfg, observer, baselines::BaselineOptions{});
+  return baselines::run_baseline(C, S, model, state, cfg, observer);
 }
 
 template <Coordinates C>

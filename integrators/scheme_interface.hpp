@@ -5,11 +5,19 @@
 //   template <class Model> StepStatus step(const Model&, State&, double t, double h, WorkCounters&);
 // and optionally
 //   template <class Model> void start(const Model&, const State& initial, double t0);
-// (per-run set-up, e.g. the exact flow's constants). An adaptive scheme has
+// (per-run set-up, e.g. the exact flow's constants; it may return a
+// StepStatus, refused if the scheme cannot start from that state). An
+// adaptive scheme has
 //   template <class Model> AdaptiveStatus attempt(const Model&, State&, double t, double h, WorkCounters&);
 // which either accepts (advancing the state by h) or rejects, and proposes
-// the next step in both cases. Schemes never write files and never
-// renormalise the attitude.
+// the next step in both cases, and
+//   template <class Model> double initial_step(const Model&, const State&, double t, double span);
+// for runs without a first trial step. Optional, for the baselines' charts
+// (baselines/chart_scheme.hpp): interpolate(model, t, out) (dense output at
+// output times inside a step), euler_angles() and interpolated_euler_angles()
+// (Observer::observe_euler_zxz), refusal_reason() (StepStatus::refused).
+// Schemes never write files and never renormalise the attitude (a baseline
+// chart that projects, quat-normalized, says so in its name).
 #include <cstdint>
 
 #include "integrators/scheme_facts.hpp"
@@ -33,6 +41,12 @@ struct StepStatus {
   /// because no solution of the scheme's equations approximates the flow).
   /// A string literal; it goes into the run's status message.
   const char* reason = nullptr;
+  /// The scheme refused the step and left its state as it was before it
+  /// (a chart that cannot be trusted beyond this point: the Euler-angle
+  /// guard of the baselines, baselines/chart_scheme.hpp). The run stops with
+  /// the scheme's refusal_reason(); the step counts as neither a step nor a
+  /// Newton failure. start() may refuse the initial state the same way.
+  bool refused = false;
 };
 
 struct AdaptiveStatus {

@@ -50,13 +50,13 @@ int stepper_order(Stepper s) {
 bool stepper_is_adaptive(Stepper s) { return s != Stepper::rk4; }
 
 RunStats run_baseline(Coordinates c, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
-                      Observer& observer, const BaselineOptions& options) {
+                      Observer& observer) {
   switch (c) {
-    case Coordinates::euler_zxz: return run_euler_zxz(s, model, state, cfg, observer, options);
-    case Coordinates::rotvec: return run_rotvec(s, model, state, cfg, observer, options);
-    case Coordinates::quat: return run_quat(false, s, model, state, cfg, observer, options);
-    case Coordinates::quat_normalized: return run_quat(true, s, model, state, cfg, observer, options);
-    case Coordinates::matrix: return run_matrix(s, model, state, cfg, observer, options);
+    case Coordinates::euler_zxz: return run_euler_zxz(s, model, state, cfg, observer);
+    case Coordinates::rotvec: return run_rotvec(s, model, state, cfg, observer);
+    case Coordinates::quat: return run_quat(false, s, model, state, cfg, observer);
+    case Coordinates::quat_normalized: return run_quat(true, s, model, state, cfg, observer);
+    case Coordinates::matrix: return run_matrix(s, model, state, cfg, observer);
   }
   return {};
 }

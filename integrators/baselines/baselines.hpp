@@ -9,7 +9,8 @@
 //                matrix           matrix.hpp           (Ṙ = R Ω̂ in ℝ⁹; R' = W R of seed 002, docs/sources.md)
 //   STEPPER      rk4 (fixed step, --dt), dopri5, rkf78, bs, rosenbrock4 (controlled, --tol)
 //                odeint_steppers.hpp; the error measure in error_control.hpp;
-//                the run loop and the Euler-angle singularity in runner.hpp.
+//                the scheme the time loop drives and the Euler-angle singularity
+//                guard in chart_scheme.hpp.
 // This header is the non-template entry point; the instantiations live in
 // baselines_<coordinates>.cpp (one file per chart, to keep compile units small).
 #include <array>
@@ -17,7 +18,7 @@
 #include <string>
 #include <string_view>
 
-#include "integrators/baselines/runner.hpp"
+#include "integrators/baselines/chart_scheme.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::integrators::baselines {
@@ -47,30 +48,28 @@ bool stepper_is_adaptive(Stepper s);
 
 /// Runs one baseline on any scene's model (dispatched once per run).
 RunStats run_baseline(Coordinates c, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
-                      Observer& observer, const BaselineOptions& options = {});
+                      Observer& observer);
 
 // One function per chart (baselines_<chart>.cpp).
 RunStats run_euler_zxz(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
-                       Observer& observer, const BaselineOptions& options);
-RunStats run_rotvec(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer,
-                    const BaselineOptions& options);
+                       Observer& observer);
+RunStats run_rotvec(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer);
 RunStats run_quat(bool normalized, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
-                  Observer& observer, const BaselineOptions& options);
-RunStats run_matrix(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer,
-                    const BaselineOptions& options);
+                  Observer& observer);
+RunStats run_matrix(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer);
 
 /// The stepper switch for one chart, compiled in each baselines_<chart>.cpp.
 template <class Coords>
 RunStats run_with_stepper(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
-                          Observer& observer, const BaselineOptions& options) {
+                          Observer& observer) {
   return std::visit(
       [&](const auto& m) -> RunStats {
         switch (s) {
-          case Stepper::rk4: return run_baseline<Coords, Rk4Stepper>(m, state, cfg, observer, options);
-          case Stepper::dopri5: return run_baseline<Coords, Dopri5Stepper>(m, state, cfg, observer, options);
-          case Stepper::rkf78: return run_baseline<Coords, Rkf78Stepper>(m, state, cfg, observer, options);
-          case Stepper::bs: return run_baseline<Coords, BsStepper>(m, state, cfg, observer, options);
-          case Stepper::rosenbrock4: return run_baseline<Coords, Rosenbrock4Stepper>(m, state, cfg, observer, options);
+          case Stepper::rk4: return run_baseline<Coords, Rk4Stepper>(m, state, cfg, observer);
+          case Stepper::dopri5: return run_baseline<Coords, Dopri5Stepper>(m, state, cfg, observer);
+          case Stepper::rkf78: return run_baseline<Coords, Rkf78Stepper>(m, state, cfg, observer);
+          case Stepper::bs: return run_baseline<Coords, BsStepper>(m, state, cfg, observer);
+          case Stepper::rosenbrock4: return run_baseline<Coords, Rosenbrock4Stepper>(m, state, cfg, observer);
         }
         return {};
       },

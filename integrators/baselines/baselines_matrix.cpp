@@ -5,9 +5,8 @@
 
 namespace lgi::integrators::baselines {
 
-RunStats run_matrix(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer,
-                    const BaselineOptions& options) {
-  return run_with_stepper<MatrixCoordinates>(s, model, state, cfg, observer, options);
+RunStats run_matrix(Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg, Observer& observer) {
+  return run_with_stepper<MatrixCoordinates>(s, model, state, cfg, observer);
 }
 
 }  // namespace lgi::integrators::baselines

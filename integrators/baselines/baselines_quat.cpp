@@ -6,9 +6,9 @@
 namespace lgi::integrators::baselines {
 
 RunStats run_quat(bool normalized, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
-                  Observer& observer, const BaselineOptions& options) {
-  if (normalized) return run_with_stepper<QuatNormalizedCoordinates>(s, model, state, cfg, observer, options);
-  return run_with_stepper<QuatCoordinates>(s, model, state, cfg, observer, options);
+                  Observer& observer) {
+  if (normalized) return run_with_stepper<QuatNormalizedCoordinates>(s, model, state, cfg, observer);
+  return run_with_stepper<QuatCoordinates>(s, model, state, cfg, observer);
 }
 
 }  // namespace lgi::integrators::baselines

@@ -23,7 +23,7 @@
 // with the algebra BaselineAlgebra<Coords> (odeint's array_algebra under a
 // name of our own), and the partial specialisation below supplies the
 // measure above for exactly those steppers. rosenbrock4's controller has its
-// own, fixed, measure; runner-side code (odeint_steppers.hpp) replaces it by
+// own, fixed, measure; the stepper wrappers (odeint_steppers.hpp) replaces it by
 // weighted_error() too.
 #include <algorithm>
 #include <array>

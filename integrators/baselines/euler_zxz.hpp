@@ -12,7 +12,7 @@
 // integrated as they are: ψ and φ are never wrapped, θ is never reflected.
 // The chart is singular where sinθ = 0 (det T = −sinθ, their eq. 16): the
 // rates grow like 1/sinθ and ψ, φ are separately undefined at θ ∈ {0, π}.
-// What the baseline runner does there is documented in runner.hpp.
+// What the baselines do there is documented in chart_scheme.hpp.
 //
 // Jacobian (rosenbrock4), with a = ψ̇, b = θ̇ (∂ of the three rows above):
 //   ∂ψ̇/∂θ = −a cosθ/sinθ, ∂ψ̇/∂φ = b/sinθ, ∂ψ̇/∂Ω1 = sinφ/sinθ, ∂ψ̇/∂Ω2 = cosφ/sinθ

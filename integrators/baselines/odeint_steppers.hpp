@@ -1,6 +1,6 @@
 #pragma once
 // The Boost.Odeint steppers behind the baselines, behind one small interface
-// the runner (runner.hpp) drives, and the counting system functor.
+// ChartScheme (chart_scheme.hpp) drives, and the counting system functor.
 //
 //   rk4          odeint::runge_kutta4 (classical RK4, Kutta 1901), fixed step.
 //   dopri5       odeint::controlled_runge_kutta<runge_kutta_dopri5> (Dormand &
@@ -45,7 +45,7 @@ namespace odeint = boost::numeric::odeint;
 
 /// What the right-hand side saw during one attempted step: the smallest
 /// |sinθ| and the largest |ψ̇| of the Euler-angle chart. Only used by
-/// euler-zxz; reset by the runner before every attempt.
+/// euler-zxz; reset by ChartScheme before every attempt.
 struct ChartWatch {
   double min_margin = std::numeric_limits<double>::infinity();
   double theta_at_min = 0.0;
@@ -106,12 +106,12 @@ using BaselineBs = odeint::bulirsch_stoer<typename Coords::Vector, double, typen
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
-// ---- the interface the runner drives -----------------------------------------
+// ---- the interface ChartScheme drives ----------------------------------------
 // Fixed step:  step(sys, x, t, h).
 // Controlled:  attempt(sys, x, t, h) → accepted? (x advanced; h the proposal
 //              for the next attempt either way); derivative(): the cached
 //              ẋ at x or nullptr; state_changed(derivative_updated) after the
-//              runner changed x between steps; interpolate(t, out) where
+//              chart projected x between steps; interpolate(t, out) where
 //              dense_output.
 
 template <class Coords>
@@ -177,7 +177,7 @@ class Dopri5Stepper : public CachedDerivative<Coords> {
     return true;
   }
   /// The state at t in [t_old, t_new] of the last accepted step (before any
-  /// projection the runner applied afterwards).
+  /// projection the chart applied afterwards).
   void interpolate(double t, Vector& out) const {
     controller_.stepper().calc_state(t, out, x_old_, dxdt_old_, t_old_, x_new_, dxdt_new_, t_new_);
   }

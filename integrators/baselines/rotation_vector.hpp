@@ -11,7 +11,7 @@
 //
 // Chart switch: the kinematics is singular at |Ψ| = 2π, and |Ψ| grows by the
 // spin about Ψ's own axis (a top spinning at 50 rad/s reaches 2π in 0.13 s).
-// After every accepted step with |Ψ| > π the runner replaces Ψ by the
+// After every accepted step with |Ψ| > π the scheme (chart_scheme.hpp) replaces Ψ by the
 // equivalent Ψ (1 − 2π/|Ψ|) (the same rotation, |Ψ| < π), as any user of the
 // rotation vector must; the state changes chart, not attitude (no projection).
 //

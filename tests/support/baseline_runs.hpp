@@ -27,15 +27,14 @@ inline system::Scene scene(const std::string& name) {
 
 /// Final state of a baseline run (no output), REQUIRE-ing success unless told otherwise.
 inline integrators::RunStats run(integrators::baselines::Coordinates c, integrators::baselines::Stepper s,
-                                 const system::AnyModel& model, system::State& x, double t_end, double dt_or_tol,
-                                 const integrators::baselines::BaselineOptions& opt = {}) {
+                                 const system::AnyModel& model, system::State& x, double t_end, double dt_or_tol) {
   integrators::RunConfig cfg;
   cfg.t_end = t_end;
   if (integrators::baselines::stepper_is_adaptive(s)) cfg.tol = dt_or_tol;
   else cfg.dt = dt_or_tol;
   cfg.save_every = std::int64_t{1} << 40;
   integrators::NullObserver none;
-  return integrators::baselines::run_baseline(c, s, model, x, cfg, none, opt);
+  return integrators::baselines::run_baseline(c, s, model, x, cfg, none);
 }
 
 inline system::State rkmk4_at(const system::AnyModel& model, const system::State& x0, double t_end, double h) {

@@ -48,7 +48,7 @@ class HistoryObserver final : public Observer {
 };
 
 /// Centre of mass R χ at the grid times (every method observes exactly there:
-/// RunConfig::output_times, BaselineOptions::output_times).
+/// RunConfig::output_times).
 class GridObserver final : public Observer {
  public:
   GridObserver(const std::vector<double>& grid, const Vec3& chi, std::vector<double>& com)
@@ -70,17 +70,9 @@ class GridObserver final : public Observer {
 
 RunStats run_method(const Method& m, const system::AnyModel& model, State& s, const RunConfig& cfg, Observer& obs,
                     const std::vector<double>* grid) {
-  if (m.baseline) {
-    bl::BaselineOptions o;
-    if (!m.guarded) {
-      o.euler_singular_threshold = 0.0;
-      o.euler_fixed_step_resolution = 0.0;
-    }
-    o.output_times = grid;
-    return bl::run_baseline(m.id.coordinates, m.id.stepper, model, s, cfg, obs, o);
-  }
   RunConfig c = cfg;
-  c.output_times = grid;  // stepper_loop.hpp: the same rule as the baselines'
+  c.output_times = grid;        // every method observes exactly there (stepper_loop.hpp)
+  c.chart_guards = m.guarded;   // off: the unguarded euler-zxz runs of the study
   return m.scheme->run(model, s, c, obs);
 }
 
@@ -131,6 +123,7 @@ std::vector<Method> study_methods(bool quick, const system::AnyModel& model) {
     m.baseline = true;
     m.id = {c, s};
     m.guarded = guarded;
+    m.scheme = integrators::find_scheme(bl::baseline_name(c, s));
     m.name = bl::baseline_name(c, s) + (guarded ? "" : " (unguarded)");
     m.label = label_of(m.name);
     m.adaptive = bl::stepper_is_adaptive(s);

@@ -27,7 +27,7 @@ struct Method {
   bool baseline = false;
   bl::BaselineId id{bl::Coordinates::euler_zxz, bl::Stepper::rk4};
   bool guarded = true;
-  const integrators::SchemeInfo* scheme = nullptr;
+  const integrators::SchemeInfo* scheme = nullptr;  // the registry's entry, baselines included
   bool adaptive = false;
 };
 

@@ -1,0 +1,216 @@
+#pragma once
+// The pieces of the time loop (integrators/stepper_loop.hpp): the CPU clock,
+// failure messages, output times and dense output, event location after a
+// step, optional scheme hooks (start, refusal, Euler angles) and the
+// fixed-step grid.
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <ctime>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "integrators/run_config.hpp"
+
+namespace lgi::integrators {
+
+namespace detail {
+inline double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);  // this thread: sweeps run trajectories on several
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+inline bool finite_state(const State& s) { return s.R.allFinite() && s.Pi.allFinite(); }
+inline void record_solve(const StepStatus& st, WorkCounters& work) {
+  if (st.iterations > work.newton_iterations_max) work.newton_iterations_max = st.iterations;
+  if (!st.converged) ++work.newton_failures;
+}
+inline std::string failure_message(const char* what, std::int64_t step, double t, const StepStatus* st) {
+  std::ostringstream m;
+  m.precision(17);
+  m << what << " at step " << step << ", t = " << t;
+  if (st) m << " (" << st->iterations << " iterations, residual " << st->residual << ")";
+  return m.str();
+}
+/// Two times closer than this are the same output time.
+inline double land_tolerance(double t, double span) { return 1e-12 * std::max({1.0, std::abs(t), std::abs(span)}); }
+inline bool stop_requested(const RunConfig& cfg) { return cfg.stop && cfg.stop->load(std::memory_order_relaxed); }
+inline void mark_interrupted(RunStats& stats, std::int64_t step, double t) {
+  stats.ok = false;
+  stats.interrupted = true;
+  stats.status = failure_message(interrupted_status, step, t, nullptr);
+}
+/// The output times of cfg.output_times that fall on t (to land_tolerance),
+/// One sample; a scheme on Euler angles first reports its raw angles.
+template <class Scheme>
+void observe_sample(const Scheme& scheme, Observer& observer, std::int64_t step, double t, const State& s) {
+  if constexpr (requires { scheme.euler_angles(); }) observer.observe_euler_zxz(scheme.euler_angles());
+  observer.observe(step, t, s);
+}
+/// observed with state s at the output time itself; passed ones are skipped.
+/// `next` is the first output time not yet observed or skipped. Returns
+/// whether anything was observed.
+template <class Scheme>
+bool observe_output_times(const Scheme& scheme, const std::vector<double>& times, std::size_t& next, double direction,
+                          double span, std::int64_t step, double t, const State& s, Observer& observer) {
+  const double tol = land_tolerance(t, span);
+  while (next < times.size() && direction * (times[next] - t) < -tol) ++next;
+  bool observed = false;
+  while (next < times.size() && std::abs(times[next] - t) <= tol) {
+    observe_sample(scheme, observer, step, times[next++], s);
+    observed = true;
+  }
+  return observed;
+}
+/// A scheme with dense output (interpolate()): every output time in
+/// [t_start, t] is observed, interpolated inside the step and at the state s
+/// at its end (to land_tolerance). Returns whether t itself was observed.
+template <class Scheme, class Model>
+bool observe_dense(Scheme& scheme, const Model& model, const std::vector<double>& times, std::size_t& next,
+                   double span, std::int64_t step, double t_start, double t, const State& s, Observer& observer) {
+  const double tol = land_tolerance(t, span);
+  bool at_end = false;
+  State inside;
+  while (next < times.size() && times[next] <= t + tol) {
+    const double to = times[next++];
+    if (std::abs(to - t) <= tol) {
+      observe_sample(scheme, observer, step, to, s);
+      at_end = true;
+    } else if (to >= t_start) {
+      scheme.interpolate(model, to, inside);
+      if constexpr (requires { scheme.interpolated_euler_angles(); })
+        observer.observe_euler_zxz(scheme.interpolated_euler_angles());
+      observer.observe(step, to, inside);
+    }
+  }
+  return at_end;
+}
+template <class Scheme, class Model>
+concept has_dense_output = requires(Scheme& s, const Model& m, State& x) { s.interpolate(m, 0.0, x); };
+/// Calls the scheme's start() if it has one; its status if it returns one.
+template <class Scheme, class Model>
+StepStatus start(Scheme& scheme, const Model& model, const State& s, double t0) {
+  if constexpr (requires { { scheme.start(model, s, t0) } -> std::same_as<StepStatus>; }) {
+    return scheme.start(model, s, t0);
+  } else if constexpr (requires { scheme.start(model, s, t0); }) {
+    scheme.start(model, s, t0);
+  }
+  return {};
+}
+/// The status of a run whose scheme refused a step (StepStatus::refused).
+template <class Scheme>
+std::string refusal_message(const Scheme& scheme, std::int64_t step, double t) {
+  if constexpr (requires { scheme.refusal_reason(); }) return scheme.refusal_reason();
+  else return failure_message("the scheme refused the step", step, t, nullptr);
+}
+inline void mark_failed(RunStats& stats, std::string why) {
+  stats.ok = false;
+  stats.status = std::move(why);
+}
+/// The values of every event function at (t, x), into g (sized here, before the loop).
+inline void event_values(const EventFunctions& events, double t, const State& x, std::vector<double>& g) {
+  g.resize(static_cast<std::size_t>(events.count()));
+  for (int i = 0; i < events.count(); ++i) g[static_cast<std::size_t>(i)] = events.value(i, t, x);
+}
+/// After an accepted step (t0, x0) → (t0 + h, x1): locates and reports the
+/// crossings in it (events.hpp) and updates g to the values at x1. Returns
+/// an empty string, or why a location step failed.
+template <class Advance>
+std::string report_crossings(const EventFunctions& events, std::vector<double>& g, double t0, double h,
+                             const State& x0, const State& x1, std::int64_t step, Advance&& advance,
+                             Observer& observer) {
+  std::string failure;
+  for (int i = 0; i < events.count(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double g1 = events.value(i, t0 + h, x1);
+    const int d = crossing_direction(g[k], g1, events.direction(i));
+    if (d != 0 && failure.empty()) {
+      EventHit hit;
+      hit.event = i;
+      hit.direction = d;
+      hit.step = step;
+      if (!locate_crossing(events, i, t0, h, x0, x1, g[k], g1, advance, hit))
+        failure = failure_message(
+            "event location failed: a step of the root search did not succeed (no convergence, or a non-finite state)",
+            step, t0 + h, nullptr);
+      observer.on_event(hit);
+    }
+    g[k] = g1;
+  }
+  return failure;
+}
+template <class Scheme, class Model>
+concept has_fixed_step = requires(Scheme& s, const Model& m, State& x, WorkCounters& w) { s.step(m, x, 0.0, 0.0, w); };
+/// One step of size h; while its implicit solve does not converge, it is
+/// redone as two steps of h/2, at most `halvings` times deep (RunConfig::
+/// retry_halving). Records every attempt: each failed solve counts as a
+/// Newton failure and its redone step as a rejected step. Returns the
+/// status of the last attempt (not converged if the halvings ran out).
+template <class Scheme, class Model>
+StepStatus step_with_halving(Scheme& scheme, const Model& model, State& s, double t, double h, int halvings,
+                             WorkCounters& work) {
+  const State before = s;
+  const StepStatus st = scheme.step(model, s, t, h, work);
+  record_solve(st, work);
+  if (st.converged || halvings <= 0) return st;
+  ++work.rejected_steps;
+  s = before;
+  const StepStatus first = step_with_halving(scheme, model, s, t, 0.5 * h, halvings - 1, work);
+  if (!first.converged) return first;
+  return step_with_halving(scheme, model, s, t + 0.5 * h, 0.5 * h, halvings - 1, work);
+}
+/// Where a run is in its output times.
+struct OutputCursor {
+  const std::vector<double>* times = nullptr;
+  std::size_t next = 0;  // the first output time not yet observed or skipped
+  double direction = 1.0;
+  double span = 0.0;
+};
+/// After accepted step k, from t_start to t: the samples due (the output
+/// times, else every save_every-th step and the final one), then the stop
+/// flag. Returns true if the run ends here, interrupted, with its last state
+/// observed once (Observer::on_stop() first).
+template <class Scheme, class Model>
+bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
+                  double t_start, double t, bool final_step, const State& s, Observer& observer, RunStats& stats) {
+  const bool stopping = !final_step && stop_requested(cfg);
+  if (stopping) observer.on_stop();
+  bool observed = false;
+  if (out.times) {
+    if constexpr (has_dense_output<Scheme, Model>)
+      observed = observe_dense(scheme, model, *out.times, out.next, out.span, k, t_start, t, s, observer);
+    else
+      observed = observe_output_times(scheme, *out.times, out.next, out.direction, out.span, k, t, s, observer);
+  } else if (k % cfg.save_every == 0 || final_step) {
+    observe_sample(scheme, observer, k, t, s);
+    observed = true;
+  }
+  if (!stopping) return false;
+  if (!observed) observe_sample(scheme, observer, k, t, s);
+  mark_interrupted(stats, k, t);
+  return true;
+}
+/// The initial sample, and the run's failure if the scheme refused to start.
+template <class Scheme>
+void observe_start(const Scheme& scheme, const StepStatus& started, double t0, OutputCursor& out, const State& s,
+                   Observer& observer, RunStats& stats) {
+  if (out.times) observe_output_times(scheme, *out.times, out.next, out.direction, out.span, 0, t0, s, observer);
+  else observe_sample(scheme, observer, 0, t0, s);
+  if (started.refused) mark_failed(stats, refusal_message(scheme, 0, t0));
+}
+}  // namespace detail
+
+/// Number of fixed steps covering [t0, t_end]: the nearest integer to
+/// span/dt when span is a whole multiple of dt up to 1e-10 relative,
+/// otherwise one more step, and the last step ends exactly at t_end.
+inline std::int64_t fixed_step_count(double span, double dt) {
+  if (span <= 0.0) return 0;
+  const double ratio = span / dt;
+  const double nearest = std::round(ratio);
+  if (nearest >= 1.0 && std::abs(ratio - nearest) <= 1e-10 * nearest) return static_cast<std::int64_t>(nearest);
+  return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+}  // namespace lgi::integrators
