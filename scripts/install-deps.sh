@@ -18,6 +18,8 @@ packages=(
   python3-matplotlib python3-h5py python3-numpy  # Debian's /usr/bin/python3 for plots
   python3-pil                                     # GIF animations (matplotlib's PillowWriter)
   python3-pytest                                  # tests/python (CTest scripts_pytest): the scripts as a user runs them
+  pybind11-dev python3-pybind11 python3-dev        # the Python module `lgi` (python/; CTest python_module)
+  python3-scipy                                   # tests/python: reference integrations in the module tests
   latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended lmodern  # the paper (scripts/build_paper.sh)
 )
 

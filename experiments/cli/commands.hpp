@@ -28,6 +28,17 @@ Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context
 Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& context);  // commands/singularity_command.cpp
 Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context);  // commands/stress_command.cpp
 Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context);   // commands/sweep_command.cpp
+/// `lgi sweep --spec SPEC --out OUT [--threads N] [--force] [--quiet]` without
+/// its command line (lgi.sweep, python/): the same checks, run and file.
+/// Returns the exit status; throws as the subcommand does.
+struct SweepRequest {
+  std::string spec, out;
+  int threads = 0;  // 0: all cores
+  bool force = false, quiet = true;
+  std::string command_line;
+};
+int run_sweep_request(const SweepRequest& request);  // commands/sweep_command.cpp
+
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 

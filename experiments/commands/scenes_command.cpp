@@ -20,10 +20,7 @@ int list_scenes(const std::string& directory) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_directory(directory, ec)) throw UsageError("DIR: '" + directory + "' is not a folder");
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(directory, ec))
-    if (entry.path().extension() == ".toml") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = scene_files(directory);
   int status = exit_ok;
   for (const auto& f : files) {
     try {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/scheme_record.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
@@ -58,22 +59,8 @@ std::string property_list(const integrators::SchemeProperties& p, bool long_name
   return s.empty() ? "-" : s;
 }
 
-const char* support_text(integrators::SceneSupport s) {
-  switch (s) {
-    case integrators::SceneSupport::free_body_only: return "free bodies";
-    case integrators::SceneSupport::conservative_only: return "conservative";
-    case integrators::SceneSupport::any: break;
-  }
-  return "all scenes";
-}
-
-/// What a scheme is, from the registry's fields (never from its name).
-const char* kind_of(const SchemeInfo& s) {
-  if (s.properties.baseline) return "baseline";
-  if (!s.base_scheme.empty()) return "composition";
-  if (s.order == 0) return "exact";
-  return "lie-group";
-}
+const char* support_text(integrators::SceneSupport s) { return scheme_support_text(s); }
+const char* kind_of(const SchemeInfo& s) { return scheme_kind(s); }
 
 /// The scene a listing is restricted to: the schemes that apply, and their order there.
 struct SceneFilter {
@@ -90,9 +77,7 @@ std::optional<SceneFilter> scene_filter(const std::string& path) {
   return f;
 }
 
-int order_on(const SchemeInfo& s, bool has_torque) {
-  return has_torque && s.order_with_torque ? s.order_with_torque : s.order;
-}
+int order_on(const SchemeInfo& s, bool has_torque) { return scheme_order_on(s, has_torque); }
 
 std::vector<const SchemeInfo*> selected(const SchemesOptions& o, const std::optional<SceneFilter>& scene) {
   std::vector<const SchemeInfo*> out;
@@ -105,24 +90,26 @@ std::vector<const SchemeInfo*> selected(const SchemesOptions& o, const std::opti
   return out;
 }
 
+/// One field of a scheme's record as JSON text.
+std::string json_value(const SchemeField& f) {
+  struct Text {
+    std::string operator()(std::monostate) const { return "null"; }
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(int i) const { return std::to_string(i); }
+    std::string operator()(const std::string& s) const { return "\"" + json_escape(s) + "\""; }
+  };
+  return std::visit(Text{}, f.value);
+}
+
 void print_json(const std::vector<const SchemeInfo*>& schemes, const std::optional<SceneFilter>& scene) {
   std::cout << "[\n";
   for (std::size_t i = 0; i < schemes.size(); ++i) {
-    const SchemeInfo& s = *schemes[i];
-    const auto& p = s.properties;
-    std::cout << "  {\"name\": \"" << s.name << "\", \"order\": " << s.order << ", \"family\": \"" << s.family
-              << "\", \"kind\": \"" << kind_of(s) << "\", \"base\": "
-              << (s.base_scheme.empty() ? "null" : "\"" + s.base_scheme + "\"") << ", \"symplectic\": "
-              << std::boolalpha << p.symplectic << ", \"symmetric\": " << p.symmetric
-              << ", \"conserves_energy\": " << p.conserves_energy
-              << ", \"conserves_momentum_norm\": " << p.conserves_momentum_norm
-              << ", \"conserves_spatial_momentum\": " << p.conserves_spatial_momentum
-              << ", \"conserves_vertical_momentum\": " << p.conserves_vertical_momentum
-              << ", \"baseline\": " << p.baseline << ", \"order_with_torque\": " << order_on(s, true);
-    if (scene) std::cout << ", \"order_on_scene\": " << order_on(s, scene->has_torque);
-    std::cout << ", \"implicit\": " << p.implicit << ", \"adaptive\": " << p.adaptive << ", \"scenes\": \""
-              << support_text(s.support) << "\", \"reference\": \"" << json_escape(s.reference) << "\", \"notes\": \""
-              << json_escape(s.notes) << "\"}" << (i + 1 < schemes.size() ? "," : "") << '\n';
+    const std::vector<SchemeField> record =
+        scheme_record(*schemes[i], scene ? std::optional<bool>(scene->has_torque) : std::nullopt);
+    std::cout << "  {";
+    for (std::size_t k = 0; k < record.size(); ++k)
+      std::cout << (k ? ", " : "") << '"' << record[k].key << "\": " << json_value(record[k]);
+    std::cout << '}' << (i + 1 < schemes.size() ? "," : "") << '\n';
   }
   std::cout << "]\n";
 }

@@ -179,6 +179,17 @@ int run_sweep(const SweepOptions& o) {
 
 }  // namespace
 
+int run_sweep_request(const SweepRequest& request) {
+  SweepOptions o;
+  o.spec = request.spec;
+  o.out = request.out;
+  o.threads = request.threads;
+  o.force = request.force;
+  o.quiet = request.quiet;
+  o.command_line = request.command_line;
+  return run_sweep(o);
+}
+
 Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
   auto o = std::make_shared<SweepOptions>();
   auto* sub = app.add_subcommand(

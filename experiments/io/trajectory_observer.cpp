@@ -33,7 +33,7 @@ void TrajectoryObserver::observe(std::int64_t step, double t, const system::Stat
   errors_max_.resize(errors_.size(), 0.0);
   for (std::size_t k = 0; k < errors_.size(); ++k)
     if (!(errors_[k] <= errors_max_[k])) errors_max_[k] = errors_[k];  // NaN propagates
-  if (!writer_) return;
+  if (!writer_ && !sink_) return;
   TrajectorySample sample;
   sample.step = step;
   sample.time = t;
@@ -46,7 +46,8 @@ void TrajectoryObserver::observe(std::int64_t step, double t, const system::Stat
   for (std::size_t k = 0; k < sample.invariant_count; ++k) sample.invariants[k] = latest_.scalars[k];
   sample.orthogonality_error = latest_.orthogonality_error;
   sample.euler_zxz = euler_zxz_;
-  writer_->append(sample);
+  if (writer_) writer_->append(sample);
+  if (sink_) sink_->append(sample, s, errors_);
 }
 
 std::string TrajectoryObserver::invariant_error_summary() const {

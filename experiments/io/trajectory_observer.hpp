@@ -13,8 +13,8 @@
 namespace lgi::experiments {
 
 /// Set by the SIGINT/SIGTERM handler (InterruptGuard, cli/interrupt_guard.hpp).
-/// Commands pass it as RunConfig::stop: every loop (stepper_loop.hpp, and the
-/// baselines' baselines/runner.hpp) then ends the run after the current step
+/// Commands pass it as RunConfig::stop: the time loop (stepper_loop.hpp, which
+/// drives the baselines too) then ends the run after the current step
 /// with its statistics and observes its final state (Observer::on_stop()
 /// first). No observer throws: a run always returns.
 extern std::atomic<bool> interrupt_requested;
@@ -22,10 +22,21 @@ extern std::atomic<bool> interrupt_requested;
 /// The file layout for a scene's invariants (units in H5MD spelling).
 TrajectoryLayout trajectory_layout(const system::SceneInvariants& invariants, bool euler_zxz = false);
 
+/// A second destination for the samples besides the file: the Python module
+/// keeps them in memory (python/). Receives each sample as the writer does,
+/// with the state it came from and the invariant errors against the first
+/// sample (in the order of SceneInvariants::error_names()).
+class SampleSink {
+ public:
+  virtual ~SampleSink() = default;
+  virtual void append(const TrajectorySample& sample, const system::State& state, const std::vector<double>& errors) = 0;
+};
+
 class TrajectoryObserver final : public integrators::Observer {
  public:
-  TrajectoryObserver(const system::SceneInvariants& invariants, TrajectoryWriter* writer)
-      : invariants_(invariants), writer_(writer) {}
+  /// `writer` and `sink` may each be null (no file; nothing kept in memory).
+  TrajectoryObserver(const system::SceneInvariants& invariants, TrajectoryWriter* writer, SampleSink* sink = nullptr)
+      : invariants_(invariants), writer_(writer), sink_(sink) {}
 
   void observe(std::int64_t step, double t, const system::State& s) override;
   void observe_euler_zxz(const lie::EulerZXZ& angles) override { euler_zxz_ = {angles.psi, angles.theta, angles.phi}; }
@@ -43,6 +54,7 @@ class TrajectoryObserver final : public integrators::Observer {
  private:
   const system::SceneInvariants& invariants_;
   TrajectoryWriter* writer_;  // may be null (no file)
+  SampleSink* sink_;          // may be null
   bool have_initial_ = false;
   system::InvariantValues initial_{}, latest_{};
   system::State latest_state_{};

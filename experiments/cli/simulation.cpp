@@ -1,0 +1,110 @@
+#include "experiments/cli/simulation.hpp"
+
+#include <algorithm>
+#include <iostream>
+
+#include "experiments/cli/run_parameters.hpp"
+#include "experiments/cli/step_settings.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/output_timing.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+/// About 128 bytes a sample (time, step, quaternion, Pi, Omega, energy,
+/// invariants); a file over 100 MB deserves a word before it is written.
+void warn_if_large(const integrators::RunConfig& cfg, const system::SceneInvariants& invariants, bool adaptive,
+                   bool quiet) {
+  if (quiet || adaptive || cfg.dt <= 0.0) return;
+  const double samples = static_cast<double>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt)) /
+                             static_cast<double>(cfg.save_every) + 1.0;
+  const double bytes_per_sample = 8.0 * (16.0 + static_cast<double>(invariants.scalar_names().size()));
+  const double megabytes = samples * bytes_per_sample / 1e6;
+  if (megabytes < 100.0) return;
+  std::cerr << "lgi: warning: --save-every " << cfg.save_every << " writes " << format_general(samples, 3)
+            << " samples, about " << format_general(megabytes, 3)
+            << " MB; give --save-every N to keep every N-th step\n";
+}
+
+Provenance run_provenance(const system::Scene& scene, const integrators::SchemeInfo& scheme,
+                          const integrators::RunConfig& cfg, const std::string& command_line) {
+  const ResultAttributes run = run_parameters(scene, scheme, cfg, command_line);
+  Provenance prov{run.text, run.number, run.integer};
+  prov.integer_attributes["save_every"] = cfg.save_every;
+  if (cfg.retry_halving > 0) prov.integer_attributes["retry_halving"] = cfg.retry_halving;
+  return prov;
+}
+
+Diagnostics diagnostics_of(integrators::RunStats& stats, double output_seconds) {
+  // Reported as it always was; the statistics are the loop's own.
+  if (stats.interrupted) stats.status = integrators::interrupted_status;
+  Diagnostics diag;
+  diag.steps = stats.steps;
+  diag.rejected_steps = stats.work.rejected_steps;
+  diag.rhs_evaluations = stats.work.rhs_evaluations;
+  diag.newton_iterations_max = stats.work.newton_iterations_max;
+  diag.newton_failures = stats.work.newton_failures;
+  diag.output_seconds = output_seconds;
+  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
+  diag.status = stats.status;
+  return diag;
+}
+
+}  // namespace
+
+integrators::RunConfig simulation_config(const SimulationRequest& request, const system::Scene& scene,
+                                         const integrators::SchemeInfo& scheme) {
+  if (request.save_every < 1) throw UsageError("--save-every: must be >= 1");
+  integrators::RunConfig cfg =
+      resolve_run_config({request.dt, request.tol, request.t_end}, scene, scheme, /*allow_zero_t_end=*/true);
+  cfg.save_every = request.save_every;
+  if (request.retry_halving < 0 || request.retry_halving > 30)
+    throw UsageError("--retry-halving: must be between 0 and 30");
+  if (request.retry_halving > 0 && scheme.properties.adaptive)
+    throw UsageError("--retry-halving: scheme '" + scheme.name + "' is adaptive and controls its own steps");
+  cfg.retry_halving = request.retry_halving;
+  return cfg;
+}
+
+void check_scheme_supports(const integrators::SchemeInfo& scheme, const system::Scene& scene,
+                           const system::AnyModel& model) {
+  if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
+    throw RunError(why + "; scene " + scene.file + " is not one");
+}
+
+SimulationOutcome run_simulation(const system::Scene& scene, const integrators::SchemeInfo& scheme,
+                                 const integrators::RunConfig& cfg, const SimulationRequest& request,
+                                 SampleSink* sink, const std::atomic<bool>* stop) {
+  const system::AnyModel model = system::make_model(scene);
+  check_scheme_supports(scheme, scene, model);
+  const system::SceneInvariants invariants(scene, model);
+  std::optional<TrajectoryWriter> writer;
+  if (!request.out.empty()) {
+    warn_if_large(cfg, invariants, scheme.properties.adaptive, request.quiet);
+    writer.emplace(request.out, request.force, trajectory_layout(invariants, scheme.properties.euler_angle_chart),
+                   run_provenance(scene, scheme, cfg, request.command_line));
+  }
+  TrajectoryObserver observer(invariants, writer ? &*writer : nullptr, sink);
+  OutputTimingObserver timed(observer);
+
+  system::State state = scene.initial;
+  SimulationOutcome outcome;
+  integrators::RunConfig c = cfg;
+  c.stop = stop;  // every loop (the baselines' too) ends cleanly, with its statistics
+  outcome.stats = scheme.run(model, state, c, timed);
+  outcome.diagnostics = diagnostics_of(outcome.stats, timed.output_seconds());
+  outcome.error_summary = observer.invariant_error_summary();
+  if (!outcome.stats.ok) {
+    outcome.failure_message = scheme.name + " on " + scene.file + ": " + outcome.stats.status;
+    if (writer) {
+      writer->abandon(outcome.diagnostics);
+      outcome.failure_message += "; partial trajectory kept in " + writer->partial_path();
+    }
+    return outcome;
+  }
+  if (writer) writer->finish(outcome.diagnostics);
+  return outcome;
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,134 @@
+# Type stub of the package lgi (python/README.md). Arrays are NumPy float64
+# (step: int64); shapes in the comments, n = number of samples.
+from os import PathLike
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+SceneLike = Union["Scene", str, PathLike[str]]
+
+class Scene:
+    """A scene: the body, its torques, the initial state and the [run] defaults.
+
+    Scene(**keys) takes the keys of a scene file (tables as dicts, arrays of
+    tables as lists of dicts); bad input raises ValueError naming the key as
+    lgi does ('Scene(**kwargs): [body] inertia: ...').
+    """
+    def __init__(self, **keys: Any) -> None: ...
+    @staticmethod
+    def from_file(path: str) -> Scene:
+        """Reads a scene file; ValueError with lgi's message ('<file>:<line>: [table] key: ...')."""
+    @staticmethod
+    def from_toml(text: str, name: str = "<string>") -> Scene:
+        """Parses scene TOML text; `name` stands for the file in messages."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def description(self) -> str: ...
+    @property
+    def file(self) -> str: ...
+    @property
+    def toml(self) -> str: ...
+    @property
+    def inertia(self) -> FloatArray:
+        """J about the reference point, kg m^2, (3, 3)."""
+    @property
+    def mass(self) -> Optional[float]: ...
+    @property
+    def center_of_mass(self) -> Optional[FloatArray]: ...
+    @property
+    def R0(self) -> FloatArray:
+        """Initial attitude, body -> space, (3, 3)."""
+    @property
+    def Pi0(self) -> FloatArray:
+        """Initial body angular momentum, kg m^2/s, (3,)."""
+    @property
+    def t_end(self) -> Optional[float]: ...
+    @property
+    def dt(self) -> Optional[float]: ...
+    @property
+    def tol(self) -> Optional[float]: ...
+    @property
+    def free_body(self) -> bool: ...
+    @property
+    def invariants(self) -> list[str]: ...
+
+class SimulationResult:
+    """The trajectory of one simulate() run (see help(lgi.SimulationResult))."""
+    t: FloatArray                      # (n,) s
+    step: npt.NDArray[np.int64]        # (n,)
+    R: FloatArray                      # (n, 3, 3) body -> space
+    q: FloatArray                      # (n, 4) (w, x, y, z)
+    Pi: FloatArray                     # (n, 3) kg m^2/s
+    omega: FloatArray                  # (n, 3) 1/s
+    energy: FloatArray                 # (n,) kg m^2/s^2
+    orthogonality_error: FloatArray    # (n,)
+    angular_momentum_space: Optional[FloatArray]  # (n, 3), free bodies
+    euler_zxz: Optional[FloatArray]    # (n, 3), Euler-angle baselines
+    invariants: dict[str, FloatArray]  # name -> (n,)
+    errors: dict[str, FloatArray]      # name -> (n,), against the first sample
+    diagnostics: dict[str, Any]        # steps, rhs_evaluations, ..., cpu_seconds, status, ok
+    scheme: str
+    scene: str
+    out: Optional[str]
+    def __len__(self) -> int: ...
+
+class Stepper:
+    """A fixed-step scheme advanced by your own loop; n calls of step() equal one
+    simulate() of n steps for schemes without per-run constants."""
+    def __init__(self, scene: SceneLike, scheme: str, dt: float, t0: float = 0.0) -> None: ...
+    def step(self, n: int = 1) -> None:
+        """Takes n steps (GIL released); RuntimeError with the run's message if one fails."""
+    @property
+    def state(self) -> dict[str, FloatArray]:
+        """{'R': (3, 3), 'Pi': (3,)}"""
+    @property
+    def t(self) -> float: ...
+    @property
+    def dt(self) -> float: ...
+    @property
+    def scheme(self) -> str: ...
+    @property
+    def stats(self) -> dict[str, Any]:
+        """steps, rhs_evaluations, rejected_steps, newton_iterations_max, newton_failures, cpu_seconds."""
+
+def schemes() -> list[dict[str, Any]]:
+    """Every registered scheme: name, order, order_with_torque, family, kind, base,
+    properties (dict of bools), support, reference, notes (`lgi schemes --json`)."""
+
+def scenes_dir(directory: Optional[str] = None) -> str:
+    """The shipped scenes' folder ($LGI_SCENES_DIR, else beside the package)."""
+
+def scenes(directory: Optional[str] = None) -> list[dict[str, Any]]:
+    """The scene files of a folder: file, path, name, description, invariants, free_body,
+    t_end, dt, tol (`lgi scenes`)."""
+
+def simulate(
+    scene: SceneLike,
+    scheme: str,
+    t_end: Optional[float] = None,
+    dt: Optional[float] = None,
+    tol: Optional[float] = None,
+    save_every: int = 1,
+    out: Optional[Union[str, PathLike[str]]] = None,
+    force: bool = False,
+    retry_halving: int = 0,
+) -> SimulationResult:
+    """Integrate a scene with a scheme (lgi simulate); with out= also write its H5MD file.
+
+    Defaults from the scene's [run]; ValueError for bad settings, an unknown scheme or a
+    scheme that does not apply (lgi's messages); RuntimeError for a failed run. GIL released.
+    """
+
+def exact_free_flow(scene: SceneLike, times: Union[float, Sequence[float], FloatArray]) -> tuple[FloatArray, FloatArray]:
+    """(R (n, 3, 3), Pi (n, 3)) of the exact free-body flow at `times`; ValueError for a scene with torques."""
+
+def sweep(
+    spec: Union[str, PathLike[str], dict[str, Any]],
+    threads: int = 1,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> np.ndarray:
+    """lgi sweep in-process: the /sweep table as a structured array (one row per trajectory)."""

@@ -1,0 +1,52 @@
+#pragma once
+// The Python module lgi (python/README.md): one bind_<what>() per binding
+// file, called from module.cpp, and the helpers they share.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/registry.hpp"
+#include "integrators/system/scene.hpp"
+
+namespace lgi::python {
+
+namespace py = pybind11;
+
+void bind_catalog(py::module_& m);     // bind_catalog.cpp: schemes(), scenes()
+void bind_scene(py::module_& m);       // bind_scene.cpp: Scene
+void bind_simulate(py::module_& m);    // bind_simulate.cpp: simulate()
+void bind_stepper(py::module_& m);     // bind_stepper.cpp: Stepper
+void bind_exact_flow(py::module_& m);  // bind_exact_flow.cpp: exact_free_flow()
+void bind_sweep(py::module_& m);       // bind_sweep.cpp: sweep()
+
+/// lgi.Scene: a scene as read by the command line's scene reader (shared, immutable).
+struct PyScene {
+  std::shared_ptr<const system::Scene> scene;
+};
+
+/// A scene argument: an lgi.Scene or the path of a scene file.
+std::shared_ptr<const system::Scene> scene_argument(const py::object& obj);
+
+/// The registry's entry for a scheme name; ValueError with the CLI's message otherwise.
+const integrators::SchemeInfo& scheme_argument(const std::string& name);
+
+/// A Python dict (nested dicts: tables; lists of dicts: arrays of tables;
+/// NumPy arrays through tolist()) as TOML text.
+std::string toml_text_from_dict(const py::dict& d);
+
+/// The folder of the compiled extension (_lgi*.so), found through dladdr.
+std::string extension_path();
+
+/// A NumPy array that takes over a vector's buffer (no copy): the vector
+/// lives on the heap, owned by a capsule that the array keeps alive.
+template <class T>
+py::array_t<T> to_numpy(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owned->data(), owner);
+}
+
+}  // namespace lgi::python
