@@ -20,8 +20,10 @@ install(FILES ${CMAKE_BINARY_DIR}/generated/lgi/build_info.hpp DESTINATION ${CMA
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/experiments/scenes DESTINATION ${CMAKE_INSTALL_DATADIR}/lgi
         FILES_MATCHING PATTERN "*.toml")
 install(EXPORT lgiTargets NAMESPACE lgi:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/lgi)
+set(LGI_INSTALL_SCENES_DIR ${CMAKE_INSTALL_DATADIR}/lgi/scenes)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/lgiConfig.cmake.in
-  ${CMAKE_BINARY_DIR}/lgiConfig.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/lgi)
+  ${CMAKE_BINARY_DIR}/lgiConfig.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/lgi
+  PATH_VARS LGI_INSTALL_SCENES_DIR)
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/lgiConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/lgiConfig.cmake ${CMAKE_BINARY_DIR}/lgiConfigVersion.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/lgi)

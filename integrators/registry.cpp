@@ -1,5 +1,6 @@
 #include "integrators/registry.hpp"
 
+#include <stdexcept>
 #include <variant>
 
 namespace lgi::integrators {
@@ -13,14 +14,25 @@ std::vector<SchemeInfo> build_registry() {
   add_splitting_schemes(r);
   add_implicit_schemes(r);
   add_baseline_schemes(r);
+  r.reserve(r.size() + 64);  // out-of-tree registrations keep pointers into the table valid
   return r;
+}
+
+std::vector<SchemeInfo>& mutable_registry() {
+  static std::vector<SchemeInfo> registry = build_registry();
+  return registry;
 }
 
 }  // namespace
 
-const std::vector<SchemeInfo>& scheme_registry() {
-  static const std::vector<SchemeInfo> registry = build_registry();
-  return registry;
+const std::vector<SchemeInfo>& scheme_registry() { return mutable_registry(); }
+
+void register_scheme(SchemeInfo scheme) {
+  if (scheme.name.empty()) throw std::invalid_argument("register_scheme: the scheme has no name");
+  if (!scheme.run) throw std::invalid_argument("register_scheme: scheme '" + scheme.name + "' has no run function");
+  if (find_scheme(scheme.name))
+    throw std::invalid_argument("register_scheme: a scheme named '" + scheme.name + "' is already registered");
+  mutable_registry().push_back(std::move(scheme));
 }
 
 const SchemeInfo* find_scheme(std::string_view name) {

@@ -34,6 +34,15 @@ struct SchemeInfo {
 
 const std::vector<SchemeInfo>& scheme_registry();
 
+/// Adds a scheme defined outside lgi (docs/extending.md, register_scheme.hpp
+/// for a scheme type that carries its facts): from then on find_scheme(),
+/// scheme_registry() and everything built on them (the simulate driver,
+/// the verification kit) see it. Throws std::invalid_argument for an empty
+/// or taken name or a null run function. Register before looking schemes up:
+/// the first 64 registrations keep earlier SchemeInfo pointers valid, later
+/// ones may move the table. Not safe against concurrent lookups.
+void register_scheme(SchemeInfo scheme);
+
 /// Registration, one function per family, each in its own registry_<family>.cpp.
 void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& registry);
 void add_variational_schemes(std::vector<SchemeInfo>& registry);        // dmv, lgvi, dmv-pre*

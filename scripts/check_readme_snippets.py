@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Checks that every README code block marked <!-- verbatim: PATH --> appears
-word for word in PATH (after removing the block's common indentation and each
-line's leading whitespace), so the "Adding a scheme" and "Adding a potential"
-steps quote code that the build compiles.
+"""Checks that every code block marked <!-- verbatim: PATH --> in README.md and
+docs/extending.md appears word for word in PATH (after removing the block's
+common indentation and each line's leading whitespace), so the "Adding a
+scheme" and "Adding a potential" steps and the out-of-tree walkthrough quote
+code that the build compiles.
 
 Usage: check_readme_snippets.py [REPO_ROOT]   (default: the parent of scripts/)
 Prints one line per problem and exits 1 if there is any, else prints a summary.
@@ -44,26 +45,27 @@ def main(argv):
         print(__doc__)
         return 0
     root = pathlib.Path(argv[1]) if len(argv) > 1 else pathlib.Path(__file__).resolve().parent.parent
-    readme = (root / "README.md").read_text(encoding="utf-8").splitlines()
     problems, checked = [], 0
-    for line, path, code in blocks(readme):
-        if code is None:
-            problems.append(f"README.md:{line}: a verbatim mark must be followed by a code block")
-            continue
-        target = root / path
-        if not target.is_file():
-            problems.append(f"README.md:{line}: {path} does not exist")
-            continue
-        want = normalise(code)
-        have = normalise(target.read_text(encoding="utf-8").splitlines())
-        found = any(have[s:s + len(want)] == want for s in range(len(have) - len(want) + 1))
-        if not want or not found:
-            problems.append(f"README.md:{line}: the block is not in {path} word for word")
-        checked += 1
+    for doc in ("README.md", "docs/extending.md"):
+        lines = (root / doc).read_text(encoding="utf-8").splitlines()
+        for line, path, code in blocks(lines):
+            if code is None:
+                problems.append(f"{doc}:{line}: a verbatim mark must be followed by a code block")
+                continue
+            target = root / path
+            if not target.is_file():
+                problems.append(f"{doc}:{line}: {path} does not exist")
+                continue
+            want = normalise(code)
+            have = normalise(target.read_text(encoding="utf-8").splitlines())
+            found = any(have[s:s + len(want)] == want for s in range(len(have) - len(want) + 1))
+            if not want or not found:
+                problems.append(f"{doc}:{line}: the block is not in {path} word for word")
+            checked += 1
     for p in problems:
         print(p)
     if not problems:
-        print(f"{checked} README snippets found word for word in the files they quote")
+        print(f"{checked} snippets of README.md and docs/extending.md found word for word in the files they quote")
     return 1 if problems else 0
 
 

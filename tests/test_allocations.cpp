@@ -1,43 +1,12 @@
 // Steps allocate nothing: for every registered scheme, the number of heap
 // allocations of a run does not depend on its number of steps (per-run
 // set-up may allocate, a step may not). Counted by replacing the global
-// operator new in this test executable.
-#include <atomic>
+// operator new in this test executable (the verification kit's counter).
 #include <catch2/catch.hpp>
-#include <cstdlib>
-#include <new>
 
+#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
-
-namespace {
-std::atomic<long> allocations{0};
-}
-
-// Every replaceable form of new and delete (scalar, array, nothrow, sized)
-// that is not over-aligned, so that allocation and release always pair
-// malloc with free (AddressSanitizer checks the pairing).
-namespace {
-void* counted_malloc(std::size_t n) noexcept {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(n ? n : 1);
-}
-void* counted_or_throw(std::size_t n) {
-  if (void* p = counted_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t n) { return counted_or_throw(n); }
-void* operator new[](std::size_t n) { return counted_or_throw(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace lgi;
 
@@ -47,9 +16,9 @@ long allocations_of_run(const integrators::SchemeInfo& scheme, const system::Any
   system::State x = scene.initial;
   integrators::NullObserver none;
   integrators::RunConfig cfg{0.0, static_cast<double>(steps) * h, h, 1e-8, 1};
-  const long before = allocations.load();
+  const long before = experiments::verification::counted_allocations();
   const auto stats = scheme.run(model, x, cfg, none);
-  const long after = allocations.load();
+  const long after = experiments::verification::counted_allocations();
   INFO(scheme.name << ": " << stats.status);
   REQUIRE(stats.ok);
   return after - before;

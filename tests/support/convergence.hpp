@@ -2,40 +2,24 @@
 // Observed order of convergence: least-squares slope of log(error) against
 // log(h), after dropping the round-off plateau (errors below `floor`) and
 // the pre-asymptotic regime (errors above `ceiling`), as in JuliaGNI's
-// verification tests.
+// verification tests; the fit is the verification kit's.
 #include <cmath>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "experiments/analysis/scheme_verification.hpp"
 #include "lie/so3.hpp"
 #include "integrators/system/rigid_body.hpp"
 
 namespace lgi::testing {
 
-struct ConvergencePoint {
-  double h;
-  double error;
-};
+using experiments::verification::ConvergencePoint;
+using experiments::verification::SlopeFit;
 
-struct SlopeFit {
-  double slope = 0.0;
-  int points = 0;
-};
-
+/// The verification kit's fit (experiments/analysis/scheme_verification.hpp), with the tests' default band.
 inline SlopeFit fitted_slope(const std::vector<ConvergencePoint>& pts, double floor = 1e-11, double ceiling = 1e-2) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int n = 0;
-  for (const auto& p : pts) {
-    if (!(p.error > floor && p.error < ceiling)) continue;
-    const double x = std::log(p.h), y = std::log(p.error);
-    sx += x; sy += y; sxx += x * x; sxy += x * y;
-    ++n;
-  }
-  SlopeFit f;
-  f.points = n;
-  if (n >= 2) f.slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  return f;
+  return experiments::verification::fitted_slope(pts, floor, ceiling);
 }
 
 /// One line on stdout with the fitted slope and every (h, error) point, so a

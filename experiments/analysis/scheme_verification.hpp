@@ -1,0 +1,82 @@
+#pragma once
+// The verification kit: lgi's generic checks of a scheme's stated facts, run
+// on any registered scheme, an out-of-tree one included (docs/extending.md,
+// examples/custom_scheme/). What it checks, from the scheme's SchemeInfo:
+//  - order: fixed-step schemes, the slope of the global error
+//    (docs/conventions.md §7) against h on problems whose stage fields do not
+//    commute (a constant field would prove nothing): free_body_hlw against
+//    the exact flow (t = 10), the Kovalevskaya top (a conservative torque)
+//    and Richter's general top with a harmonic body-fixed drive (a
+//    time-dependent torque: the stage times matter) against converged
+//    references (analysis/reference_solution.hpp), t = 5. Steps
+//    h_k = h0 r^k, r = max(10^(-1/(2p)), 1/2), h0 = 1 for p ≥ 4 else 0.2,
+//    down to the 1e-10 floor or h_min (5e-5 for p = 1, else 1e-3); the slope
+//    through the five finest points between 1e-10 and 1e-2 must be within
+//    max(0.25, 0.05 p) of the stated p (order_with_torque where stated, on
+//    the tops). Adaptive schemes: the slope against the mean step T/steps as
+//    tol falls by √10 from 1e-3 to 1e-13 (HNW I §II.4), at least
+//    p − max(0.5, 0.15 p) and, for p ≤ 5, at most p + max(0.5, 0.25 p).
+//  - symmetry, if claimed: Φ₋ₕ ∘ Φₕ = id to 1e-13 (attitude and relative
+//    momentum) on a free body, a heavy top and the Kovalevskaya top.
+//  - each claimed conservation (energy, |Π|, spatial momentum, Π·Γ):
+//    relative drift ≤ 1e-12 over Options::conservation_steps steps on
+//    free_body_hlw (h = 0.01) and heavy_top_trindade_1 (h = 1e-3).
+//  - zero allocations per step: a run of 1000 steps allocates as often as
+//    one of 10, on the same two scenes. Needs a counter of the program's
+//    allocations (allocation_counter.hpp); without one it is not run.
+// Every claim must be checked on at least one problem the scheme supports;
+// a claim that none supports is a failed check, not a silent pass.
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "integrators/registry.hpp"
+
+namespace lgi::experiments::verification {
+
+struct Options {
+  /// The shipped scenes (an installed lgi: <prefix>/share/lgi/scenes; the
+  /// CMake package sets lgi_SCENES_DIR to it).
+  std::string scenes_dir;
+  /// The program's allocation count (allocation_counter.hpp's
+  /// counted_allocations), or null: the allocation check is not run.
+  long (*allocation_count)() = nullptr;
+  std::int64_t conservation_steps = 20000;
+};
+
+struct Check {
+  std::string name;     // "order", "symmetry", "conserves energy", ...
+  std::string problem;  // the scene it ran on
+  bool passed = false;
+  std::string detail;   // what was measured against what was stated
+};
+
+struct Report {
+  std::string scheme;
+  std::vector<Check> checks;
+  /// Every check passed, and there was at least one.
+  bool passed() const;
+};
+
+Report verify_scheme(const integrators::SchemeInfo& scheme, const Options& options);
+
+/// One line per check and a verdict.
+void print_report(std::ostream& out, const Report& report);
+
+// ---- building blocks, shared with lgi's own generic tests ------------------
+
+struct ConvergencePoint {
+  double h;
+  double error;
+};
+struct SlopeFit {
+  double slope = 0.0;
+  int points = 0;
+};
+/// Least-squares slope of log(error) against log(h) over the points with
+/// floor < error < ceiling (the round-off plateau and the pre-asymptotic
+/// regime dropped).
+SlopeFit fitted_slope(const std::vector<ConvergencePoint>& points, double floor, double ceiling);
+
+}  // namespace lgi::experiments::verification
