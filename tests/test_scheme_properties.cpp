@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 
+#include "experiments/analysis/scheme_verification.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/invariants.hpp"
@@ -34,31 +35,7 @@ bool runs_on(const integrators::SchemeInfo& s, const system::AnyModel& m) {
   return integrators::unsupported_reason(s, m).empty();
 }
 
-/// Records the largest relative deviation of each invariant from its initial value.
-class DriftObserver final : public integrators::Observer {
- public:
-  explicit DriftObserver(const system::SceneInvariants& inv) : inv_(inv) {}
-  void observe(std::int64_t, double, const system::State& s) override {
-    const auto v = inv_.evaluate(s);
-    if (!started_) {
-      first_ = v;
-      started_ = true;
-      return;
-    }
-    energy = std::max(energy, system::relative_error(v.energy, first_.energy));
-    for (std::size_t k = 0; k < inv_.scalar_names().size(); ++k)
-      scalars[k] = std::max(scalars[k], system::relative_error(v.scalars[k], first_.scalars[k]));
-    const double m0 = first_.space_momentum.norm();
-    if (m0 > 0) space_momentum = std::max(space_momentum, (v.space_momentum - first_.space_momentum).norm() / m0);
-  }
-  double energy = 0.0, space_momentum = 0.0;
-  std::array<double, system::InvariantValues::capacity> scalars{};
-
- private:
-  const system::SceneInvariants& inv_;
-  system::InvariantValues first_{};
-  bool started_ = false;
-};
+using DriftObserver = experiments::verification::InvariantDrift;  // the verification kit's
 
 bool is_composition(const integrators::SchemeInfo& s) { return s.name.find('@') != std::string::npos; }
 

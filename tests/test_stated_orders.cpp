@@ -24,6 +24,7 @@
 #include <map>
 #include <string>
 
+#include "experiments/analysis/scheme_verification.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
@@ -36,9 +37,7 @@ using testing::ConvergencePoint;
 
 namespace {
 
-constexpr double floor_error = 1e-10;  // compositions of 17 substeps reach round-off near 1e-12
-constexpr double ceiling_error = 1e-2;
-constexpr int fitted_points = 5;
+constexpr double floor_error = 1e-10;  // the kit's floor: compositions of 17 substeps reach round-off near 1e-12
 
 struct Problem {
   std::string name;
@@ -90,34 +89,13 @@ struct Measured {
   bool exact = false;  // every error at round-off: no slope to fit
 };
 
-/// The slope through the finest `fitted_points` points between the floor and the ceiling.
-Measured fit_finest(std::vector<ConvergencePoint> all) {
-  Measured m;
-  m.points = std::move(all);
-  std::vector<ConvergencePoint> usable;
-  for (const auto& pt : m.points)
-    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
-  if (usable.size() > static_cast<std::size_t>(fitted_points))
-    usable.erase(usable.begin(), usable.end() - fitted_points);
-  m.fit = testing::fitted_slope(usable, floor_error, ceiling_error);
-  return m;
-}
-
+/// The verification kit's measurement (experiments/analysis/scheme_verification.hpp), the same steps and fit.
 Measured measure(const integrators::SchemeInfo& s, const Problem& p, int order) {
-  const double ratio = std::max(std::pow(10.0, -1.0 / (2.0 * order)), 0.5);
-  const double h0 = order >= 4 ? 1.0 : 0.2;
-  const double h_min = order == 1 ? 5e-5 : 1e-3;
-  std::vector<ConvergencePoint> all;
-  for (double h = h0; h >= h_min; h *= ratio) {
-    const testing::RegisteredRun run = testing::run_registered(s, p.model, p.scene.initial, p.t_end, h);
-    if (!run.stats.ok) continue;  // refused or failed at a coarse step
-    const double e = testing::global_error(run.state, p.reference);
-    all.push_back({h, e});
-    if (e < floor_error) break;
-  }
-  Measured m = fit_finest(all);
-  m.exact = !all.empty() && m.fit.points == 0 &&
-            std::all_of(all.begin(), all.end(), [](const auto& pt) { return pt.error < floor_error; });
+  Measured m;
+  m.points = experiments::verification::fixed_step_errors(s, p.model, p.scene.initial, p.reference, p.t_end, order);
+  m.fit = experiments::verification::fit_finest(m.points);
+  m.exact = !m.points.empty() && m.fit.points == 0 &&
+            std::all_of(m.points.begin(), m.points.end(), [](const auto& pt) { return pt.error < floor_error; });
   return m;
 }
 
@@ -191,7 +169,10 @@ Measured measure_adaptive(const integrators::SchemeInfo& s, const Problem& p) {
     if (!stats.ok || stats.steps == 0) continue;
     all.push_back({p.t_end / static_cast<double>(stats.steps), testing::global_error(x, p.reference)});
   }
-  return fit_finest(std::move(all));
+  Measured m;
+  m.fit = experiments::verification::fit_finest(all);
+  m.points = std::move(all);
+  return m;
 }
 
 }  // namespace

@@ -66,28 +66,8 @@ std::string format_points(const std::vector<ConvergencePoint>& pts) {
   return o.str();
 }
 
-/// The slope through the finest `fitted_points` points between the floor and the ceiling.
-SlopeFit fit_finest(const std::vector<ConvergencePoint>& all) {
-  std::vector<ConvergencePoint> usable;
-  for (const auto& pt : all)
-    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
-  if (usable.size() > fitted_points)
-    usable.erase(usable.begin(), usable.end() - static_cast<std::ptrdiff_t>(fitted_points));
-  return fitted_slope(usable, floor_error, ceiling_error);
-}
-
 Check order_check_fixed(const integrators::SchemeInfo& s, const Problem& p, int order) {
-  const double ratio = std::max(std::pow(10.0, -1.0 / (2.0 * order)), 0.5);
-  const double h0 = order >= 4 ? 1.0 : 0.2;
-  const double h_min = order == 1 ? 5e-5 : 1e-3;
-  std::vector<ConvergencePoint> all;
-  for (double h = h0; h >= h_min; h *= ratio) {
-    const RunResult r = run_once(s, p.model, p.scene.initial, make_config(p.t_end, h, std::nullopt));
-    if (!r.stats.ok) continue;  // refused or failed at a coarse step
-    const double e = error_of(r.final, p.reference);
-    all.push_back({h, e});
-    if (e < floor_error) break;
-  }
+  const std::vector<ConvergencePoint> all = fixed_step_errors(s, p.model, p.scene.initial, p.reference, p.t_end, order);
   const SlopeFit fit = fit_finest(all);
   Check c{"order " + std::to_string(order), p.name, false, {}};
   const bool exact = !all.empty() && fit.points == 0 &&
@@ -151,30 +131,6 @@ void symmetry_checks(const integrators::SchemeInfo& s, const Options& o, Report&
   }
 }
 
-/// The largest relative drift of each invariant from its initial value.
-class DriftObserver final : public integrators::Observer {
- public:
-  explicit DriftObserver(const system::SceneInvariants& inv) : inv_(inv) {}
-  void observe(std::int64_t, double, const system::State& s) override {
-    const auto v = inv_.evaluate(s);
-    if (!started_) {
-      first_ = v;
-      started_ = true;
-      return;
-    }
-    energy = std::max(energy, system::relative_error(v.energy, first_.energy));
-    scalar = std::max(scalar, system::relative_error(v.scalars[0], first_.scalars[0]));
-    const double m0 = first_.space_momentum.norm();
-    if (m0 > 0) space_momentum = std::max(space_momentum, (v.space_momentum - first_.space_momentum).norm() / m0);
-  }
-  double energy = 0.0, space_momentum = 0.0, scalar = 0.0;  // scalar: |Π| (free body) or Π·Γ (heavy top)
-
- private:
-  const system::SceneInvariants& inv_;
-  system::InvariantValues first_{};
-  bool started_ = false;
-};
-
 void conservation_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
   const auto& p = s.properties;
   const std::pair<const char*, double> cases[] = {{"free_body_hlw", 0.01}, {"heavy_top_trindade_1", 1e-3}};
@@ -184,12 +140,12 @@ void conservation_checks(const integrators::SchemeInfo& s, const Options& o, Rep
     if (!runs_on(s, model)) continue;
     const system::SceneInvariants inv(scene, model);
     std::vector<std::pair<std::string, const double*>> claims;
-    DriftObserver drift(inv);
+    InvariantDrift drift(inv);
     if (p.conserves_energy) claims.emplace_back("conserves energy", &drift.energy);
-    if (inv.free_body() && p.conserves_momentum_norm) claims.emplace_back("conserves |Pi|", &drift.scalar);
+    if (inv.free_body() && p.conserves_momentum_norm) claims.emplace_back("conserves |Pi|", &drift.scalars[0]);
     if (inv.free_body() && p.conserves_spatial_momentum)
       claims.emplace_back("conserves spatial momentum", &drift.space_momentum);
-    if (inv.heavy_top() && p.conserves_vertical_momentum) claims.emplace_back("conserves Pi.Gamma", &drift.scalar);
+    if (inv.heavy_top() && p.conserves_vertical_momentum) claims.emplace_back("conserves Pi.Gamma", &drift.scalars[0]);
     if (claims.empty()) continue;
     integrators::RunConfig cfg = make_config(static_cast<double>(o.conservation_steps) * h, h, std::nullopt);
     cfg.save_every = 1;
@@ -247,6 +203,46 @@ void unchecked_claims(const integrators::SchemeInfo& s, Report& report) {
 }
 
 }  // namespace
+
+std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
+                                                const system::State& initial, const system::State& reference,
+                                                double t_end, int order) {
+  const double ratio = std::max(std::pow(10.0, -1.0 / (2.0 * order)), 0.5);
+  const double h0 = order >= 4 ? 1.0 : 0.2;
+  const double h_min = order == 1 ? 5e-5 : 1e-3;
+  std::vector<ConvergencePoint> all;
+  for (double h = h0; h >= h_min; h *= ratio) {
+    const RunResult r = run_once(scheme, model, initial, make_config(t_end, h, std::nullopt));
+    if (!r.stats.ok) continue;  // refused or failed at a coarse step
+    const double e = error_of(r.final, reference);
+    all.push_back({h, e});
+    if (e < floor_error) break;
+  }
+  return all;
+}
+
+SlopeFit fit_finest(const std::vector<ConvergencePoint>& points) {
+  std::vector<ConvergencePoint> usable;
+  for (const auto& pt : points)
+    if (pt.error > floor_error && pt.error < ceiling_error) usable.push_back(pt);
+  if (usable.size() > fitted_points)
+    usable.erase(usable.begin(), usable.end() - static_cast<std::ptrdiff_t>(fitted_points));
+  return fitted_slope(usable, floor_error, ceiling_error);
+}
+
+void InvariantDrift::observe(std::int64_t, double, const system::State& s) {
+  const auto v = invariants_.evaluate(s);
+  if (!started_) {
+    first_ = v;
+    started_ = true;
+    return;
+  }
+  energy = std::max(energy, system::relative_error(v.energy, first_.energy));
+  for (std::size_t k = 0; k < invariants_.scalar_names().size(); ++k)
+    scalars[k] = std::max(scalars[k], system::relative_error(v.scalars[k], first_.scalars[k]));
+  const double m0 = first_.space_momentum.norm();
+  if (m0 > 0) space_momentum = std::max(space_momentum, (v.space_momentum - first_.space_momentum).norm() / m0);
+}
 
 SlopeFit fitted_slope(const std::vector<ConvergencePoint>& points, double floor, double ceiling) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -26,12 +26,14 @@
 //    allocations (allocation_counter.hpp); without one it is not run.
 // Every claim must be checked on at least one problem the scheme supports;
 // a claim that none supports is a failed check, not a silent pass.
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
 #include "integrators/registry.hpp"
+#include "integrators/system/invariants.hpp"
 
 namespace lgi::experiments::verification {
 
@@ -78,5 +80,33 @@ struct SlopeFit {
 /// floor < error < ceiling (the round-off plateau and the pre-asymptotic
 /// regime dropped).
 SlopeFit fitted_slope(const std::vector<ConvergencePoint>& points, double floor, double ceiling);
+
+/// The global errors at t_end of fixed-step runs of a scheme stating order p
+/// at the steps of the order check (top of this file), coarsest first,
+/// stopping below the 1e-10 floor; runs that fail (a refused coarse step)
+/// are left out.
+std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
+                                                const system::State& initial, const system::State& reference,
+                                                double t_end, int order);
+/// The slope through the five finest points between the 1e-10 floor and 1e-2.
+SlopeFit fit_finest(const std::vector<ConvergencePoint>& points);
+
+/// The largest relative drift of each invariant of a scene from its value at
+/// the first sample: the energy, the spatial momentum (|m − m0|/|m0|) and
+/// the scalar invariants in SceneInvariants::scalar_names() order (|Π| for
+/// a free body, Π·Γ for a heavy top, ...).
+class InvariantDrift final : public integrators::Observer {
+ public:
+  explicit InvariantDrift(const system::SceneInvariants& invariants) : invariants_(invariants) {}
+  void observe(std::int64_t step, double t, const system::State& s) override;
+  double energy = 0.0;
+  double space_momentum = 0.0;
+  std::array<double, system::InvariantValues::capacity> scalars{};
+
+ private:
+  const system::SceneInvariants& invariants_;
+  system::InvariantValues first_{};
+  bool started_ = false;
+};
 
 }  // namespace lgi::experiments::verification
