@@ -2,7 +2,7 @@
 // integrators/moser_veselov.hpp): dmv on the book of seed 000 at dt = 0.01
 // (dzhanibekov_book_axis2), the energy error after 10⁶ steps (default suite)
 // and 10⁸ steps ([slow]). Without compensated updates and the final Newton
-// correction the errors were 1.9e-13 and 7.0e-12 (the n^0.84
+// correction the errors were 1.9e-13 and 7.0e-12 (an n^0.84
 // drift); with them 7.2e-15 and 5.5e-13, below the bars here. |Π| and the
 // spatial momentum, which the Cayley step conserves exactly, stay at the
 // 1e-14 level.
