@@ -116,7 +116,7 @@ TEST_CASE("long-time: lgvi's energy error stays bounded where rkmk4 drifts", "[l
   CHECK(max_over(casimir, step, 0, 1e5) < 1e-10);
 }
 
-TEST_CASE("long-time: Ctrl-C keeps a readable .partial and exits 1", "[long-time]") {
+TEST_CASE("long-time: Ctrl-C keeps a readable .partial and exits 130", "[long-time]") {
   const std::string dir = scratch_dir("lt_sigint");
   const std::string out = dir + "/int.h5";
   const std::string err_file = dir + "/stderr.txt";
@@ -145,7 +145,7 @@ TEST_CASE("long-time: Ctrl-C keeps a readable .partial and exits 1", "[long-time
   const std::string err = read_text(err_file);
   INFO(err);
   REQUIRE(WIFEXITED(raw));
-  CHECK(WEXITSTATUS(raw) == 1);
+  CHECK(WEXITSTATUS(raw) == 130);  // 128 + SIGINT (exit_status.hpp)
   CHECK_FALSE(fs::exists(out));
   REQUIRE(fs::exists(out + ".partial"));
   CHECK(fs::exists(dir + "/int.csv.partial"));

@@ -10,7 +10,8 @@
 //
 // Ctrl-C (SIGINT, also SIGTERM) stops the run at the next step boundary: a
 // row for that step is written, /diagnostics status "interrupted by signal",
-// the files are kept as <out>.partial (said on stderr), exit status 1.
+// the files are kept as <out>.partial (said on stderr), exit status 130
+// (SIGINT) or 143 (SIGTERM).
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,6 +30,7 @@
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/step_settings.hpp"
+#include "experiments/cli/write_failures.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/output_timing.hpp"
@@ -229,6 +231,23 @@ void print_summary(const std::string& scheme, const Diagnostics& diag, double t_
   std::cout << "wrote " << file.path() << " and " << file.csv_path() << '\n';
 }
 
+/// /diagnostics of a run (RESULTS.md, "long-time").
+ResultAttributes long_time_diagnostics(const integrators::RunStats& stats, double output_seconds,
+                                       std::int64_t rows, Diagnostics& diag) {
+  diag.steps = stats.steps;
+  diag.rejected_steps = stats.work.rejected_steps;
+  diag.rhs_evaluations = stats.work.rhs_evaluations;
+  diag.newton_iterations_max = stats.work.newton_iterations_max;
+  diag.newton_failures = stats.work.newton_failures;
+  diag.output_seconds = output_seconds;
+  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
+  diag.status = stats.status;
+  ResultAttributes a = diagnostics_attributes(diag);
+  a.integer["samples"] = rows;
+  a.number["t_final"] = stats.t_final;
+  return a;
+}
+
 int long_time(const LongTimeOptions& o) {
   const system::Scene scene = read_scene(o.scene);
   const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
@@ -279,23 +298,13 @@ int long_time(const LongTimeOptions& o) {
   observer.finish();
 
   Diagnostics diag;
-  diag.steps = stats.steps;
-  diag.rejected_steps = stats.work.rejected_steps;
-  diag.rhs_evaluations = stats.work.rhs_evaluations;
-  diag.newton_iterations_max = stats.work.newton_iterations_max;
-  diag.newton_failures = stats.work.newton_failures;
-  diag.output_seconds = timed.output_seconds();
-  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
-  diag.status = stats.status;
-  ResultAttributes diag_attributes = diagnostics_attributes(diag);
-  diag_attributes.integer["samples"] = file.rows();
-  diag_attributes.number["t_final"] = stats.t_final;
+  const ResultAttributes diag_attributes = long_time_diagnostics(stats, timed.output_seconds(), file.rows(), diag);
   if (!stats.ok) {
     file.abandon(diag_attributes);
     std::cerr << "lgi: " << scheme->name << " on " << scene.file << ": " << stats.status
               << (interrupted ? " at step " + std::to_string(stats.steps) : std::string())
               << "; results so far kept in " << file.partial_path() << " and " << file.csv_partial_path() << '\n';
-    return exit_run_failed;
+    return interrupted ? interrupted_exit_status() : exit_run_failed;
   }
   file.finish(diag_attributes);
   if (!o.quiet) print_summary(scheme->name, diag, stats.t_final, names, observer, file);
@@ -315,9 +324,10 @@ Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context
       ->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
+  sub->footer(exit_status_help);
   return {sub, [o, context] {
             o->command_line = context.command_line;
-            return long_time(*o);
+            return run_with_write_failures_as_run_errors([&] { return long_time(*o); });
           }};
 }
 

@@ -11,6 +11,7 @@
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/simulation.hpp"
+#include "experiments/cli/write_failures.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
@@ -47,7 +48,7 @@ int simulate(const SimulateOptions& o) {
   }
   if (!outcome.stats.ok) {
     std::cerr << "lgi: " << outcome.failure_message << '\n';
-    return exit_run_failed;
+    return outcome.stats.interrupted ? interrupted_exit_status() : exit_run_failed;
   }
   if (!o.quiet) {
     const integrators::RunStats& stats = outcome.stats;
@@ -76,9 +77,10 @@ Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context)
       ->capture_default_str();
   sub->add_option("--out", o->out, "Output trajectory file (HDF5, H5MD layout)")->required();
   add_force_quiet_flags(*sub, *o, "Overwrite an existing output file");
+  sub->footer(exit_status_help);
   return {sub, [o, context] {
             o->command_line = context.command_line;
-            return simulate(*o);
+            return run_with_write_failures_as_run_errors([&] { return simulate(*o); });
           }};
 }
 

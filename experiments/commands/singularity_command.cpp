@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/step_settings.hpp"
 #include "experiments/commands/singularity/singularity_output.hpp"
 #include "experiments/commands/singularity/singularity_runs.hpp"
@@ -28,6 +29,7 @@
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scenes_location.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 
 namespace lgi::experiments {
 namespace {
@@ -74,8 +76,9 @@ void print_run(const std::string& key, const RunRecord& r) {
 }
 
 void write_parameters(H5& h5, const SingularityOptions& o, double tol, double dt, const std::string& csv,
-                      const std::string& utc) {
+                      const std::string& utc, const std::string& status) {
   const hdf5::Handle pg = h5.group("/parameters");
+  h5.text(pg.get(), "status", status);
   h5.text(pg.get(), "command", "singularity");
   h5.text(pg.get(), "command_line", o.command_line);
   h5.number(pg.get(), "tol", tol);
@@ -115,13 +118,18 @@ int singularity_command(const SingularityOptions& o) {
   std::vector<std::vector<RunRecord>> all(cases.size());
   std::vector<SummaryRow> rows;
   double tol_used = 0.0, dt_used = 0.0;
-  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+  // Ctrl-C / SIGTERM: the run in progress finishes, the study stops after it and keeps what is done.
+  const InterruptGuard interrupt_guard;
+  bool stopped = false;  // a signal came before every run was done
+  const auto interrupted = [&stopped] { return stopped = stopped || interrupt_requested.load(); };
+  for (std::size_t ci = 0; ci < cases.size() && !interrupted(); ++ci) {
     const system::Scene scene = read_scene(cases[ci].file);
     const StudyScene sc = study_scene(scene, cases[ci], o);
     tol_used = sc.tol;
     dt_used = sc.dt;
     const std::vector<double> reference = reference_center_of_mass(sc);
     for (const Method& m : study_methods(o.quick, sc.model)) {
+      if (interrupted()) break;
       all[ci].push_back(run_study_method(m, sc, reference));
       if (!o.quiet) print_run(cases[ci].key, all[ci].back());
     }
@@ -130,8 +138,13 @@ int singularity_command(const SingularityOptions& o) {
     h5.flush();
   }
   write_results_table(h5, rows);
-  write_parameters(h5, o, tol_used, dt_used, csv, utc);
+  write_parameters(h5, o, tol_used, dt_used, csv, utc, stopped ? integrators::interrupted_status : "ok");
   h5.close();
+  if (stopped) {
+    std::cerr << "lgi: singularity " << integrators::interrupted_status << " after " << rows.size()
+              << " runs; they are kept in " << partial << '\n';
+    return interrupted_exit_status();
+  }
   write_results_csv(csv, rows, o.force);
   hdf5::publish(partial, o.out, o.force, "the study is");
   if (!o.quiet) std::cout << "wrote " << o.out << " and " << csv << '\n';
@@ -157,6 +170,7 @@ Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& conte
                   "Folder of the shipped scenes. Default: LGI_SCENES_DIR, else found beside the lgi executable");
   sub->add_flag("--force", o->force, "Overwrite existing output files");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  sub->footer(exit_status_help);
   return {sub, [o, context] {
             o->command_line = context.command_line;
             return singularity_command(*o);

@@ -23,6 +23,7 @@
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
+#include "experiments/cli/write_failures.hpp"
 #include "experiments/commands/stress/stress_report.hpp"
 #include "experiments/commands/stress/stress_runner.hpp"
 #include "experiments/commands/stress/stress_suite.hpp"
@@ -143,7 +144,7 @@ int stress_command(const StressOptions& o) {
     file.abandon(diag);
     std::cerr << "lgi: stress " << stopped << " after " << rows.size() << " rows; partial results kept in "
               << file.partial_path() << " and " << file.csv_partial_path() << '\n';
-    return exit_run_failed;
+    return interrupted_exit_status();
   }
   file.finish(diag);
 
@@ -180,9 +181,10 @@ Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context) {
   sub->add_option("--budget", o->budget,
                   "CPU seconds allowed per run before it is stopped and counted as failed (default: 10, --quick: 2)");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
+  sub->footer(exit_status_help);
   return {sub, [o, context] {
             o->command_line = context.command_line;
-            return stress_command(*o);
+            return run_with_write_failures_as_run_errors([&] { return stress_command(*o); });
           }};
 }
 

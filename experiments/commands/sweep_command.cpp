@@ -155,13 +155,13 @@ int run_sweep(const SweepOptions& o) {
     run = run_chunks(spec, plan, scheme, cfg, layout, std::move(done), file.get(), threads, o.quiet,
                      interrupt_requested, ranks);
   }
-  if (!ranks.root()) return run.interrupted ? exit_run_failed : exit_ok;
+  if (!ranks.root()) return run.interrupted ? interrupted_exit_status() : exit_ok;
   const auto completed = std::count(file->done().begin(), file->done().end(), char{1});
   if (run.interrupted || completed < layout.count) {
     std::cerr << "lgi: sweep " << (run.interrupted ? "interrupted by signal" : "incomplete (a rank stopped)") << "; "
               << completed << " of " << layout.count << " trajectories kept in " << partial
               << " (finish with --resume)\n";
-    return exit_run_failed;
+    return run.interrupted ? interrupted_exit_status() : exit_run_failed;
   }
   std::remove(writing.c_str());
   file->write_final(writing, final_attributes(spec, scene, cfg, scheme, o, run));
@@ -203,6 +203,7 @@ Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
   sub->add_flag("--resume", o->resume, "Finish an interrupted sweep from <out>.partial (same spec and arguments)");
   sub->add_flag("--force", o->force, "Replace an existing output file");
   sub->add_flag("--quiet", o->quiet, "No progress line and no summary");
+  sub->footer(exit_status_help);
   return {sub, [o, context] {
             o->command_line = context.command_line;
             SweepRanks& ranks = SweepRanks::world();

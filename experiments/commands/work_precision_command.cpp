@@ -23,14 +23,17 @@
 
 #include "experiments/analysis/reference_solution.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/step_settings.hpp"
+#include "experiments/cli/write_failures.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scene_reader.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
@@ -181,15 +184,17 @@ void set_errors(const Study& st, const RunResult& run, ResultRow& row, Printed& 
 }
 
 /// Timed runs: the same run again `repeat` times, nothing observed but the final state.
-void set_timing(const Study& st, const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
+/// False if a signal cut one short.
+bool set_timing(const Study& st, const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
                 ResultRow& row, Printed& p) {
   std::vector<double> times;
   for (int r = 0; r < st.repeat; ++r) {
     const RunResult again = run_once(scheme, st.model, st.scene.initial, cfg);
+    if (again.stats.interrupted) return false;
     if (!again.stats.ok) {
       row.set("status", "failed in a timed repeat: " + again.stats.status);
       p.status = "failed in a timed repeat";
-      return;
+      return true;
     }
     times.push_back(again.stats.cpu_seconds);
   }
@@ -203,10 +208,12 @@ void set_timing(const Study& st, const integrators::SchemeInfo& scheme, const in
   p.cpu_min = format_sci(times.front());
   p.cpu_median = format_sci(median);
   p.status = "ok";
+  return true;
 }
 
-/// One row: refused, failed, or measured (errors, then timing).
-Printed measure(const Study& st, const Job& job, const std::string& step_text, ResultsFile& file) {
+/// One row: refused, failed, or measured (errors, then timing). Nothing if a
+/// signal cut one of its runs short (the row is not a result, and not written).
+std::optional<Printed> measure(const Study& st, const Job& job, const std::string& step_text, ResultsFile& file) {
   const integrators::SchemeInfo& scheme = *job.scheme;
   ResultRow row = file.row();
   row.set("scheme", scheme.name);
@@ -215,11 +222,13 @@ Printed measure(const Study& st, const Job& job, const std::string& step_text, R
   row.set("repeats", 0);
   row.set("below_reference_floor", 0);
   Printed p{scheme.name, step_text, "-", "-", "-", "-", "-", ""};
-  const integrators::RunConfig cfg = make_config(st.t_end, job.dt, job.tol);
+  integrators::RunConfig cfg = make_config(st.t_end, job.dt, job.tol);
+  cfg.stop = &interrupt_requested;  // Ctrl-C ends a long run after its current step
   if (const std::string why = integrators::unsupported_reason(scheme, st.model); !why.empty()) {
     row.set("status", "refused: " + why);
     p.status = "refused: " + why;
   } else if (const RunResult first = run_once(scheme, st.model, st.scene.initial, cfg); !first.stats.ok) {
+    if (first.stats.interrupted) return std::nullopt;
     if (!first.threw) {
       row.set("steps", first.stats.steps);
       row.set("rejected_steps", first.stats.work.rejected_steps);
@@ -236,10 +245,39 @@ Printed measure(const Study& st, const Job& job, const std::string& step_text, R
     p.steps = std::to_string(first.stats.steps);
     p.rhs = std::to_string(first.stats.work.rhs_evaluations);
     set_errors(st, first, row, p);
-    set_timing(st, scheme, cfg, row, p);
+    if (!set_timing(st, scheme, cfg, row, p)) return std::nullopt;
   }
   file.append(row);
   return p;
+}
+
+/// Every row, each written as it is made; false if a signal stopped them
+/// (the rows before are in the file).
+bool measure_rows(const Study& st, const std::vector<Job>& jobs, bool progress, ResultsFile& file,
+                  std::vector<Printed>& printed) {
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    const Job& job = jobs[j];
+    const std::string step_text = job.dt ? "dt=" + format_general(*job.dt, 3) : "tol=" + format_general(*job.tol, 3);
+    if (progress)
+      std::cerr << "\r\033[Kwork-precision: " << j + 1 << '/' << jobs.size() << ' ' << job.scheme->name << ' '
+                << step_text << std::flush;
+    std::optional<Printed> p = measure(st, job, step_text, file);
+    if (!p) return false;
+    printed.push_back(std::move(*p));
+  }
+  return true;
+}
+
+/// A signal ended the command: the rows so far stay in the .partial files.
+int abandon_interrupted(ResultsFile& file, std::size_t rows, double cpu_seconds) {
+  ResultAttributes diag;
+  diag.text["status"] = integrators::interrupted_status;
+  diag.integer["rows"] = static_cast<std::int64_t>(rows);
+  diag.number["cpu_seconds"] = cpu_seconds;
+  file.abandon(diag);
+  std::cerr << "lgi: work-precision " << integrators::interrupted_status << " after " << rows
+            << " rows; partial results kept in " << file.partial_path() << " and " << file.csv_partial_path() << '\n';
+  return interrupted_exit_status();
 }
 
 void print_table(const Reference& ref, double t_end, const std::vector<Printed>& printed) {
@@ -303,6 +341,7 @@ int work_precision(const WorkPrecisionOptions& o) {
   file.write_parameters(params);
 
   const double cpu0 = integrators::detail::cpu_now();
+  const InterruptGuard interrupt_guard;  // the reference's runs finish; the rows' stop (measure)
   if (progress) std::cerr << "\rwork-precision: reference..." << std::flush;
   try {
     st.reference = compute_reference(scene, model, t_end);
@@ -317,15 +356,9 @@ int work_precision(const WorkPrecisionOptions& o) {
   write_reference_group(file, st.reference, t_end);
 
   std::vector<Printed> printed;
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    const Job& job = jobs[j];
-    const std::string step_text = job.dt ? "dt=" + format_general(*job.dt, 3) : "tol=" + format_general(*job.tol, 3);
-    if (progress)
-      std::cerr << "\r\033[Kwork-precision: " << j + 1 << '/' << jobs.size() << ' ' << job.scheme->name << ' '
-                << step_text << std::flush;
-    printed.push_back(measure(st, job, step_text, file));
-  }
+  const bool complete = measure_rows(st, jobs, progress, file, printed);
   if (progress) std::cerr << "\r\033[K" << std::flush;
+  if (!complete) return abandon_interrupted(file, printed.size(), integrators::detail::cpu_now() - cpu0);
 
   ResultAttributes diag;
   diag.text["status"] = "ok";
@@ -370,9 +403,10 @@ Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& co
   sub->add_option("--repeat", o->repeat, "Timed runs per row (CPU time: min and median)")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
+  sub->footer(exit_status_help);
   return {sub, [o, context] {
             o->command_line = context.command_line;
-            return work_precision(*o);
+            return run_with_write_failures_as_run_errors([&] { return work_precision(*o); });
           }};
 }
 

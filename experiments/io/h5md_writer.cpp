@@ -63,6 +63,7 @@ void TrajectoryWriter::fail(const std::string& what) const {
   std::string msg = "cannot write trajectory '" + partial_path_ + "': " + what;
   const std::string detail = hdf5_error_detail();
   if (!detail.empty()) msg += " (HDF5: " + detail + ")";
+  if (created_) throw OutputWriteError(msg);
   throw OutputFileError(msg);
 }
 
@@ -209,7 +210,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, bool force, const Tr
     ::unlink(partial_path_.c_str());
     throw;
   }
-  open_ = true;
+  open_ = created_ = true;
   last_flush_ = std::chrono::steady_clock::now();
 }
 
@@ -280,7 +281,7 @@ void TrajectoryWriter::write_running_diagnostics() {
 TrajectoryWriter::~TrajectoryWriter() {
   if (!open_) return;
   try {
-    abandon_impl(nullptr, "interrupted");
+    abandon_impl(nullptr, write_failed_ ? "failed: " + write_error_ : std::string("interrupted"));
   } catch (...) {  // a destructor must not throw; the .partial stays as it is
   }
 }
@@ -345,9 +346,10 @@ void TrajectoryWriter::write_block() {
     for (std::size_t k = 0; k < m.invariants.size(); ++k)
       write_rows(m.invariants[k], at, n, &invariants_[k * block_size_], fail_fn);
     write_rows(m.orthogonality, at, n, ortho_.data(), fail_fn);
-  } catch (...) {
+  } catch (const std::exception& e) {
     // Datasets may now differ in length; write nothing more but diagnostics.
     write_failed_ = true;
+    write_error_ = e.what();
     buffered_ = 0;
     throw;
   }
@@ -360,7 +362,11 @@ void TrajectoryWriter::flush() {
   if (write_failed_) fail("an earlier block write failed");
   QuietHdf5Errors quiet;
   write_block();
-  if (H5Fflush(impl_->file.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+  if (H5Fflush(impl_->file.get(), H5F_SCOPE_LOCAL) < 0) {
+    write_failed_ = true;  // what reached the disk is unknown: write nothing more but diagnostics
+    write_error_ = "cannot flush";
+    fail("cannot flush");
+  }
   last_flush_ = std::chrono::steady_clock::now();
 }
 

@@ -11,7 +11,7 @@
 // or, when the run fails, w.abandon(diagnostics with status = the reason):
 // the .partial file stays, readable, with every sample appended. A writer
 // destroyed without either (an exception unwinding) abandons with status
-// "interrupted". A process killed outright leaves a .partial readable up to
+// "interrupted", or "failed: <why>" after a write that failed. A process killed outright leaves a .partial readable up to
 // its last flush, /diagnostics status "running".
 //
 // Samples are kept in a block buffer (structure of arrays, preallocated) and
@@ -37,6 +37,16 @@ namespace lgi::experiments {
 class OutputFileError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// A write to an output file that was already created failed (disk full, the
+/// file-size limit, an I/O error): the run cannot keep its results. Thrown by
+/// the writers once their file exists; the commands exit 1 on it
+/// (cli/write_failures.hpp), where a refusal to create the file exits 2.
+/// The .partial file keeps what was written before; its status is not "ok".
+class OutputWriteError : public OutputFileError {
+ public:
+  using OutputFileError::OutputFileError;
 };
 
 /// One scalar time series under /observables/<name>. `unit` in the H5MD units
@@ -121,7 +131,7 @@ class TrajectoryWriter {
 
   /// Buffers one sample. Throws std::invalid_argument if the invariant count
   /// does not match the layout or step/time go backwards, std::logic_error
-  /// after finish/abandon, OutputFileError if a flush it triggers fails.
+  /// after finish/abandon, OutputWriteError if a flush it triggers fails.
   void append(const TrajectorySample& sample);
   /// Writes the buffered samples (one H5Dwrite per dataset) and H5Fflush.
   /// std::logic_error after finish/abandon.
@@ -167,7 +177,9 @@ class TrajectoryWriter {
   std::chrono::steady_clock::time_point last_flush_{};
   std::unique_ptr<Impl> impl_;
   bool open_ = false;
-  bool write_failed_ = false;  // a block write failed: the file keeps what was written before
+  bool created_ = false;       // the file exists: failures are OutputWriteError
+  bool write_failed_ = false;  // a block write or flush failed: the file keeps what was written before
+  std::string write_error_;    // why (the destructor's status)
 
   // The block buffer, structure of arrays, sized once (block_size_ rows).
   std::size_t buffered_ = 0;

@@ -150,7 +150,12 @@ void ResultsFile::fail(const std::string& what) const {
   std::string msg = "cannot write results '" + partial_path_ + "': " + what;
   const std::string detail = hdf5_error_detail();
   if (!detail.empty()) msg += " (HDF5: " + detail + ")";
+  if (created_) throw OutputWriteError(msg);
   throw OutputFileError(msg);
+}
+
+void ResultsFile::fail_csv() const {
+  throw OutputWriteError("cannot write results '" + csv_partial_path() + "': " + std::strerror(errno));
 }
 
 ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column> columns, ResultsFileOptions options)
@@ -183,7 +188,7 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
     ::unlink(csv_partial.c_str());
     throw;
   }
-  open_ = true;
+  open_ = created_ = true;
   buffer_.reserve(options_.block_rows);
   last_flush_ = std::chrono::steady_clock::now();
 }
@@ -228,7 +233,7 @@ ResultsFile::~ResultsFile() {
   if (!open_) return;
   try {
     ResultAttributes a;
-    a.text["status"] = "interrupted";
+    a.text["status"] = write_failed_ ? "failed: " + write_error_ : std::string("interrupted");
     abandon(a);
   } catch (...) {  // a destructor must not throw
   }
@@ -345,10 +350,10 @@ void ResultsFile::write_block() {
       }
       text += '\n';
     }
-    if (std::fputs(text.c_str(), impl_->csv) < 0)
-      throw OutputFileError("cannot write results '" + csv_partial_path() + "': " + std::strerror(errno));
-  } catch (...) {
+    if (std::fputs(text.c_str(), impl_->csv) < 0) fail_csv();
+  } catch (const std::exception& e) {
     write_failed_ = true;
+    write_error_ = e.what();
     buffer_.clear();
     throw;
   }
@@ -361,9 +366,14 @@ void ResultsFile::flush() {
   if (write_failed_) fail("an earlier block write failed");
   QuietHdf5Errors quiet;
   write_block();
-  if (H5Fflush(impl_->file.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
-  if (std::fflush(impl_->csv) != 0)
-    throw OutputFileError("cannot write results '" + csv_partial_path() + "': " + std::strerror(errno));
+  try {
+    if (H5Fflush(impl_->file.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+    if (std::fflush(impl_->csv) != 0) fail_csv();
+  } catch (const std::exception& e) {  // what reached the disk is unknown: write nothing more but diagnostics
+    write_failed_ = true;
+    write_error_ = e.what();
+    throw;
+  }
   last_flush_ = std::chrono::steady_clock::now();
 }
 
@@ -376,7 +386,7 @@ void ResultsFile::close_files() {
   const int csv = impl_->csv ? std::fclose(impl_->csv) : 0;
   impl_->csv = nullptr;
   if (h5 < 0) fail("cannot close the HDF5 file");
-  if (csv != 0) throw OutputFileError("cannot write results '" + csv_partial_path() + "': " + std::strerror(errno));
+  if (csv != 0) fail_csv();
 }
 
 void ResultsFile::close_after_failure() noexcept {

@@ -24,7 +24,9 @@
 // "running".
 //
 // Every failure to create, write or publish throws OutputFileError (declared
-// in h5md_writer.hpp) with one line naming the file.
+// in h5md_writer.hpp) with one line naming the file; a write that fails once
+// the files exist throws OutputWriteError (the commands exit 1 on it). A
+// ResultsFile destroyed after such a failure abandons with status "failed: <why>".
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -137,6 +139,7 @@ class ResultsFile {
   /// errors (the caller rethrows the first one).
   void close_after_failure() noexcept;
   [[noreturn]] void fail(const std::string& what) const;
+  [[noreturn]] void fail_csv() const;  // the CSV twin could not be written (errno)
 
   std::string path_, partial_path_, csv_path_;
   bool force_ = false;
@@ -145,7 +148,9 @@ class ResultsFile {
   ResultsFileOptions options_;
   std::unique_ptr<Impl> impl_;
   bool open_ = false;
+  bool created_ = false;  // the files exist: failures are OutputWriteError
   bool write_failed_ = false;
+  std::string write_error_;  // why (the destructor's status)
   std::vector<ResultRow> buffer_;
   std::int64_t written_ = 0;
   std::chrono::steady_clock::time_point last_flush_{};

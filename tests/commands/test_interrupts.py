@@ -1,6 +1,8 @@
-"""Ctrl-C (SIGINT) in the long commands: every loop reads the flag as
-RunConfig::stop and ends after its current step with its statistics (no
-observer throws), the command keeps what it computed and exits with status 1
+"""Ctrl-C (SIGINT) and SIGTERM in the long commands: every loop reads the flag
+as RunConfig::stop and ends after its current step with its statistics (no
+observer throws); the command closes its file with status "interrupted by
+signal", keeps what it computed in <out>.partial, says so in one line on
+stderr and exits with 128 + the signal: 130 after SIGINT, 143 after SIGTERM
 (README "Using lgi"). lgi sweep's case is in test_sweep.py."""
 import os
 import signal
@@ -8,19 +10,69 @@ import subprocess
 import time
 
 import h5py
+import numpy as np
+import pytest
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENE = os.path.join(ROOT, "experiments", "scenes", "free_body_hlw.toml")
+SCENES = os.path.join(ROOT, "experiments", "scenes")
+SCENE = os.path.join(SCENES, "free_body_hlw.toml")
+EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}
+
+# Runs far longer than the moment of the signal.
+COMMANDS = {
+    "simulate": ["simulate", "--scene", SCENE, "--scheme", "rkmk4", "--dt", "1e-4", "--t-end", "1e4",
+                 "--save-every", "1000"],
+    "long-time": ["long-time", "--scene", SCENE, "--scheme", "rkmk4", "--dt", "1e-4", "--t-end", "1e5"],
+    "work-precision": ["work-precision", "--scene", SCENE, "--schemes", "rkmk4,cf4,lgvi", "--dt", "1e-3,1e-5",
+                       "--t-end", "1000", "--repeat", "3"],
+    "stress": ["stress", "--scenes-dir", SCENES],
+}
 
 
-def interrupt(args, after=1.0):
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def interrupt(args, after=1.0, sig=signal.SIGINT):
     p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     time.sleep(after)
     assert p.poll() is None, "the command ended before it could be interrupted"
-    p.send_signal(signal.SIGINT)
-    _, err = p.communicate(timeout=60)
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=120)
     return p.returncode, err
+
+
+def assert_interrupted(partial):
+    with h5py.File(partial, "r") as f:
+        assert text(f["diagnostics"].attrs["status"]).startswith("interrupted")
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("command", list(COMMANDS))
+def test_signal_ends_the_run_cleanly(tmp_path, command, sig):
+    out = str(tmp_path / "o.h5")
+    # Late enough for a first row (work-precision, stress) even on a loaded machine.
+    after = {"stress": 2.0, "work-precision": 3.0}.get(command, 1.5)
+    code, err = interrupt([*COMMANDS[command], "--out", out], after=after, sig=sig)
+    assert code == EXIT[sig], err
+    assert "interrupted by signal" in err and err.strip().count("\n") == 0, err
+    assert not os.path.exists(out), "an interrupted run must not publish its file"
+    assert_interrupted(out + ".partial")
+    with h5py.File(out + ".partial", "r") as f:
+        if command == "simulate":
+            steps = f["particles/body/orientation/step"][()]
+            assert int(f["diagnostics"].attrs["steps"]) > 0 and steps[-1] == f["diagnostics"].attrs["steps"]
+            assert np.isfinite(f["particles/body/angular_momentum_body/value"][()]).all()
+        elif command == "long-time":
+            assert len(f["series/step"]) > 1  # the rows so far and one for the step it stopped at
+            assert f["series/step"][-1] == f["diagnostics"].attrs["steps"]
+        elif command == "work-precision":
+            assert len(f["results/scheme"]) == f["diagnostics"].attrs["rows"] >= 1
+        else:
+            assert len(f["results/scheme"]) == f["diagnostics"].attrs["rows"] > 0
+    if command != "simulate":
+        assert os.path.exists(str(tmp_path / "o.csv.partial"))
 
 
 def test_simulate_with_a_baseline_ends_cleanly(tmp_path):
@@ -28,18 +80,20 @@ def test_simulate_with_a_baseline_ends_cleanly(tmp_path):
     out = str(tmp_path / "b.h5")
     code, err = interrupt(["simulate", "--scene", SCENE, "--scheme", "quat/rk4", "--dt", "1e-4", "--t-end", "1e6",
                            "--save-every", "100000", "--out", out])
-    assert code == 1, err
+    assert code == 130, err
     assert "interrupted by signal" in err
+    assert_interrupted(out + ".partial")
     with h5py.File(out + ".partial", "r") as f:
-        status = f["diagnostics"].attrs["status"]
-        assert (status.decode() if isinstance(status, bytes) else status).startswith("interrupted")
         assert int(f["diagnostics"].attrs["steps"]) > 0
 
 
-def test_stress_stops_between_runs(tmp_path):
+def test_singularity_stops_after_the_run_in_progress(tmp_path):
     out = str(tmp_path / "s.h5")
-    code, err = interrupt(["stress", "--out", out], after=2.0)
-    assert code == 1, err
-    assert "interrupted by signal" in err and err.strip().count("\n") == 0
+    code, err = interrupt(["singularity", "--scenes-dir", SCENES, "--dt", "1e-4", "--quiet", "--out", out], after=2.5,
+                          sig=signal.SIGTERM)
+    assert code == 143, err
+    assert "interrupted by signal" in err and err.strip().count("\n") == 0, err
+    assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "s.csv"))
     with h5py.File(out + ".partial", "r") as f:
-        assert len(f["results/scheme"]) > 0
+        assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
+        assert len(f["results/method"]) > 0

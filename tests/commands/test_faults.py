@@ -1,0 +1,195 @@
+"""Injected faults (issue 15): a full disk (a file-size limit, RLIMIT_FSIZE,
+with SIGXFSZ ignored so that the write fails with EFBIG), an output directory
+that cannot be written, an output path that exists, a run that blows up
+to non-finite values, and a sweep's resume file removed while it runs. Each ends with one line on stderr naming the file or
+the time, the exit status of the README (1: the run failed; 2: the output was
+refused before anything was written), a previous output left as it was, and
+no file that claims to be complete."""
+import os
+import resource
+import signal
+import subprocess
+import time
+
+import h5py
+import numpy as np
+import pytest
+
+LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "experiments", "scenes")
+FREE = os.path.join(SCENES, "free_body_hlw.toml")
+LIMIT = 256 * 1024  # bytes: above a new file's metadata, far below a finished run's file
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def lgi(*args, limit=None):
+    def preexec():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # EFBIG instead of death by SIGXFSZ
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    return subprocess.run([LGI, *args], capture_output=True, text=True, timeout=300,
+                          preexec_fn=preexec if limit else None)
+
+
+def one_line(err):
+    assert err.endswith("\n") and err.count("\n") == 1, repr(err)
+    return err
+
+
+def not_complete(path):
+    """A file left by a failed run: absent, or not openable, or with a status other than "ok"."""
+    if not os.path.exists(path):
+        return True
+    try:
+        with h5py.File(path, "r") as f:
+            return text(f["diagnostics"].attrs.get("status", "")) != "ok"
+    except OSError:
+        return True
+
+
+# Runs that would write tens of MB: (arguments, the HDF5 file, the CSV twin if any).
+BIG = {
+    "simulate": ["simulate", "--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-3", "--t-end", "200", "--save-every", "1"],
+    "long-time": ["long-time", "--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-3", "--t-end", "100", "--samples",
+                  "50000"],
+}
+SMALL = {
+    "simulate": ["simulate", "--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-2", "--t-end", "1"],
+    "long-time": ["long-time", "--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-2", "--t-end", "1"],
+}
+
+
+@pytest.mark.parametrize("command", list(BIG))
+def test_disk_full_fails_cleanly_and_keeps_the_previous_output(tmp_path, command):
+    out = str(tmp_path / "o.h5")
+    r = lgi(*SMALL[command], "--out", out, "--quiet")
+    assert r.returncode == 0, r.stderr
+    before = open(out, "rb").read()
+    r = lgi(*BIG[command], "--out", out, "--force", "--quiet", limit=LIMIT)
+    assert r.returncode == 1, r.stderr
+    line = one_line(r.stderr)
+    assert ("o.h5" in line or "o.csv" in line) and "cannot write" in line, line
+    assert open(out, "rb").read() == before, "the previous output was changed"
+    assert not_complete(out + ".partial")
+    if command == "long-time":
+        assert open(str(tmp_path / "o.csv"), "rb").read().count(b"\n") > 1  # the previous CSV too
+
+
+def test_disk_full_at_the_start_refuses_without_a_trace(tmp_path):
+    # So small that not even the metadata fits: the file cannot be created.
+    out = str(tmp_path / "o.h5")
+    r = lgi(*SMALL["simulate"], "--out", out, limit=1024)
+    assert r.returncode in (1, 2), r.stderr
+    assert "o.h5" in one_line(r.stderr)
+    assert not os.path.exists(out) and not_complete(out + ".partial")
+
+
+@pytest.mark.parametrize("where", ["missing", "file", "read-only"])
+def test_unwritable_output_directory_is_refused(tmp_path, where):
+    if where == "missing":
+        d = str(tmp_path / "no" / "such")
+    elif where == "file":
+        d = str(tmp_path / "plain")
+        open(d, "w").close()
+    else:
+        d = str(tmp_path / "ro")
+        os.mkdir(d, 0o555)
+        if os.access(d, os.W_OK):  # root ignores the mode: sysfs refuses even root
+            d = "/sys"
+            try:
+                open(os.path.join(d, "lgi_probe.h5"), "w").close()
+                os.unlink(os.path.join(d, "lgi_probe.h5"))
+                pytest.skip("no directory this user cannot write")
+            except OSError:
+                pass
+    out = os.path.join(d, "o.h5")
+    for args in (SMALL["simulate"], SMALL["long-time"]):
+        r = lgi(*args, "--out", out)
+        assert r.returncode == 2, r.stderr
+        assert "o.h5" in one_line(r.stderr)
+        assert not os.path.exists(out) and not os.path.exists(out + ".partial")
+
+
+@pytest.mark.parametrize("command", list(SMALL))
+def test_existing_output_is_refused_unless_force(tmp_path, command):
+    out = str(tmp_path / "o.h5")
+    r = lgi(*SMALL[command], "--out", out)
+    assert r.returncode == 0, r.stderr
+    before = open(out, "rb").read()
+    r = lgi(*SMALL[command], "--out", out)
+    assert r.returncode == 2 and "--force" in one_line(r.stderr) and "o.h5" in r.stderr
+    assert open(out, "rb").read() == before and not os.path.exists(out + ".partial")
+    r = lgi(*SMALL[command], "--out", out, "--force")
+    assert r.returncode == 0, r.stderr
+    with h5py.File(out, "r") as f:
+        assert text(f["diagnostics"].attrs["status"]) == "ok"
+
+
+def test_blow_up_stops_with_the_time_and_keeps_the_good_steps(tmp_path):
+    # Explicit rkmk4 at dt = 0.01 is unstable for the damping c/J = 1000 s^-1 of this scene.
+    out = str(tmp_path / "b.h5")
+    r = lgi("simulate", "--scene", os.path.join(SCENES, "stiff_damped_spring.toml"), "--scheme", "rkmk4",
+            "--dt", "0.01", "--t-end", "5", "--out", out)
+    assert r.returncode == 1, r.stderr
+    line = one_line(r.stderr)
+    assert "non-finite" in line and "state" in line and "t = " in line and "b.h5.partial" in line, line
+    assert not os.path.exists(out)
+    with h5py.File(out + ".partial", "r") as f:
+        status = text(f["diagnostics"].attrs["status"])
+        assert status.startswith("state became non-finite")
+        t = f["particles/body/orientation/time"][()]
+        steps = int(f["diagnostics"].attrs["steps"])
+        assert len(t) == steps and t[0] == 0.0  # every good step, not the one that blew up
+        for name in ("orientation", "angular_momentum_body", "angular_velocity_body"):
+            assert np.isfinite(f["particles/body"][name]["value"][()]).all(), name
+        # The failing step is the next one, at the time the message names.
+        assert f"t = {float(status.split('t = ')[1]):.6g}" == f"t = {t[-1] + 0.01:.6g}"
+
+
+SWEEP = """
+scene = "SCENES/kovalevskaya.toml"
+scheme = "rkmk4"
+dt = 0.01
+t_end = 50.0
+seed = 3
+samples = 2000
+chunk = 20
+[level_set]
+h = 2.0
+l = 1.0
+"""
+
+
+def test_resume_file_removed_mid_run(tmp_path):
+    # lgi long-time has no --resume; lgi sweep has. Its resumed run keeps the .partial open: a
+    # file removed under it lives on until it is closed (POSIX), so the sweep completes as it would have.
+    spec = tmp_path / "spec.toml"
+    spec.write_text(SWEEP.replace("SCENES", SCENES))
+    out = str(tmp_path / "s.h5")
+    args = [LGI, "sweep", "--spec", str(spec), "--out", out, "--threads", "1", "--quiet"]
+    p = subprocess.Popen(args)
+    try:
+        while not os.path.exists(out + ".partial"):
+            assert p.poll() is None
+            time.sleep(0.01)
+        time.sleep(0.8)
+        assert p.poll() is None, "the sweep ended before it could be killed"
+    finally:
+        p.kill()
+        p.wait()
+    with h5py.File(out + ".partial", "r") as f:
+        assert (f["sweep/status"][()] < 0).any()
+    p = subprocess.Popen([*args, "--resume"], stderr=subprocess.PIPE, text=True)
+    time.sleep(0.3)
+    if p.poll() is not None:
+        pytest.skip("the resumed sweep ended before its file could be removed")
+    os.unlink(out + ".partial")
+    _, err = p.communicate(timeout=300)
+    assert p.returncode == 0, err
+    with h5py.File(out, "r") as f:
+        assert (f["sweep/status"][()] >= 0).all() and len(f["sweep/status"]) == 2000
+    assert not os.path.exists(out + ".partial")
