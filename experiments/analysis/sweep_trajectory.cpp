@@ -27,6 +27,10 @@ class SpecEvents final : public integrators::EventFunctions {
       case EventSpec::Quantity::angular_momentum: return x.Pi(k) - e.value;
       case EventSpec::Quantity::angular_velocity: return (J_inv_ * x.Pi)(k) - e.value;
       case EventSpec::Quantity::gamma: return x.R(2, k) - e.value;  // Γ_k = (Rᵀe3)_k = R(2, k)
+      case EventSpec::Quantity::gamma_rate: {  // d(Γ·e)/dt = (Γ × Ω)·e (docs/atlas.md §6)
+        const lie::Vec3 g = gamma_of(x), w = J_inv_ * x.Pi;
+        return g.cross(w).dot(lie::Vec3(e.axis[0], e.axis[1], e.axis[2])) - e.value;
+      }
     }
     return 0.0;
   }

@@ -50,6 +50,7 @@ int run_cli(int argc, char** argv) {
       add_sweep_subcommand(app, context),
       add_equilibria_subcommand(app, context),
       add_bifurcation_subcommand(app, context),
+      add_poincare_subcommand(app, context),
   };
 
   try {

@@ -41,5 +41,6 @@ int run_sweep_request(const SweepRequest& request);  // commands/sweep_command.c
 
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
+Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context);  // commands/poincare_command.cpp
 
 }  // namespace lgi::experiments

@@ -147,16 +147,18 @@ EventSpec read_event(const Reader& rd, const toml::table& tbl) {
   t.check_keys(event_keys);
   EventSpec e;
   const toml::node* q = t.get("quantity");
-  if (!q) t.fail_here("quantity", "missing (angular_momentum, angular_velocity or gamma)");
+  if (!q) t.fail_here("quantity", "missing (angular_momentum, angular_velocity, gamma or gamma_rate)");
   const std::string quantity = t.string("quantity", *q);
   if (quantity == "angular_momentum") e.quantity = EventSpec::Quantity::angular_momentum;
   else if (quantity == "angular_velocity") e.quantity = EventSpec::Quantity::angular_velocity;
   else if (quantity == "gamma") e.quantity = EventSpec::Quantity::gamma;
-  else t.fail(*q, "quantity", "\"" + quantity + "\": expected angular_momentum, angular_velocity or gamma");
+  else if (quantity == "gamma_rate") e.quantity = EventSpec::Quantity::gamma_rate;
+  else t.fail(*q, "quantity", "\"" + quantity + "\": expected angular_momentum, angular_velocity, gamma or gamma_rate");
   const toml::node* c = t.get("component");
   if (!c) t.fail_here("component", "missing (1, 2 or 3)");
   e.component = static_cast<int>(integer(t, "component", *c, 1));
   if (e.component > 3) t.fail(*c, "component", "must be 1, 2 or 3");
+  e.axis[static_cast<std::size_t>(e.component - 1)] = 1.0;
   e.value = t.optional_number("value").value_or(0.0);
   std::string dir = "both";
   if (const toml::node* d = t.get("direction")) {
@@ -165,7 +167,8 @@ EventSpec read_event(const Reader& rd, const toml::table& tbl) {
       t.fail(*d, "direction", "\"" + dir + "\": expected rising, falling or both");
   }
   e.direction = dir == "rising" ? 1 : dir == "falling" ? -1 : 0;
-  const char* symbol = e.quantity == EventSpec::Quantity::gamma ? "gamma"
+  const char* symbol = e.quantity == EventSpec::Quantity::gamma        ? "gamma"
+                       : e.quantity == EventSpec::Quantity::gamma_rate ? "gamma_rate"
                        : e.quantity == EventSpec::Quantity::angular_momentum ? "Pi" : "Omega";
   e.name = std::string(symbol) + std::to_string(e.component) + "_" + dir;
   if (const toml::node* n = t.get("name")) e.name = t.string("name", *n);

@@ -9,6 +9,7 @@
 // Every problem throws InputError with one line
 //   <spec>:<line>: [table] key: what is wrong
 // as the scene reader does (io/scene_reader.hpp).
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -41,12 +42,15 @@ struct VaryEntry {
 
 /// A surface g = 0 whose crossings are recorded (integrators/events.hpp).
 struct EventSpec {
-  enum class Quantity { angular_momentum, angular_velocity, gamma };
+  /// gamma_rate: d(Γ·e)/dt = (Γ × Ω)·e for the body axis e = `axis`, Richter's
+  /// Poincaré section (docs/atlas.md §6); from a spec, e is the body axis `component`.
+  enum class Quantity { angular_momentum, angular_velocity, gamma, gamma_rate };
   std::string name;     // e.g. "gamma3_rising"
   Quantity quantity = Quantity::gamma;
   int component = 1;    // 1..3
   double value = 0.0;   // g = quantity[component] − value
   int direction = 0;    // +1 rising, −1 falling, 0 both
+  std::array<double, 3> axis{};  // gamma_rate: the unit body axis e (a spec sets e_component)
 };
 
 /// Initial conditions drawn on {H = h, Π·Γ = l} (SWEEPS.md says how).

@@ -1,0 +1,269 @@
+// lgi poincare --scene FILE --l L --h H --ics N --t-end T [--axis ...] [--section richter|gamma]
+//   [--scheme NAME] [--dt H] [--seed S] [--lyapunov] [--megno] [--threads N] [--out FILE.h5] [--force] [--quiet]
+// Poincaré sections of a heavy top on one level set (ℓ, h) (experiments/POINCARE.md):
+// a sweep (experiments/SWEEPS.md) with N initial states drawn on the level
+// set and one event, the section surface, run by the sweep engine
+// (commands/sweep/sweep_chunks.hpp); the section coordinates of every
+// crossing and, on request, the chaos indicators of every orbit are then
+// added to the result file (analysis/poincare_section.hpp) before it is published.
+#include <omp.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "experiments/analysis/poincare_section.hpp"
+#include "experiments/analysis/sweep_trajectory.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/scheme_lookup.hpp"
+#include "experiments/cli/write_failures.hpp"
+#include "experiments/commands/sweep/sweep_chunks.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/sweep_extra_columns.hpp"
+#include "experiments/io/trajectory_observer.hpp"
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+struct PoincareOptions {
+  std::string scene, out = "poincare.h5", axis, section = "richter", scheme = "split-exact@yoshida4";
+  double l = 0.0, h = 0.0, t_end = 0.0;
+  std::optional<double> dt;
+  std::int64_t ics = 0, max_events = 100000;
+  std::uint64_t seed = 0;
+  int threads = 0;
+  bool lyapunov = false, megno = false, force = false, quiet = false;
+  std::string command_line;
+};
+
+std::string number(double x) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", x);
+  return b;
+}
+
+/// The equivalent `lgi sweep` spec (kept in /parameters spec_toml; the axis
+/// of a non-coordinate section axis is set on the parsed spec).
+std::string spec_text(const PoincareOptions& o, const std::string& scene_path, double dt, SectionKind kind,
+                      const Vec3& e) {
+  int component = 1;
+  for (int k = 0; k < 3; ++k)
+    if (e(k) == 1.0) component = k + 1;
+  std::string t = "name = \"lgi poincare\"\nscene = \"" + scene_path + "\"\nscheme = \"" + o.scheme +
+                  "\"\ndt = " + number(dt) + "\nt_end = " + number(o.t_end) + "\nseed = " + std::to_string(o.seed) +
+                  "\nsamples = " + std::to_string(o.ics) + "\nmax_events = " + std::to_string(o.max_events) +
+                  "\n\n[level_set]\nh = " + number(o.h) + "\nl = " + number(o.l) + "\n\n[[event]]\n";
+  t += kind == SectionKind::richter ? "quantity = \"gamma_rate\"\n" : "quantity = \"gamma\"\n";
+  t += "component = " + std::to_string(component) + "\nname = \"" + (kind == SectionKind::richter ? "richter" : "gamma") +
+       "_section\"\n# section axis e = (" + number(e.x()) + ", " + number(e.y()) + ", " + number(e.z()) + ")\n";
+  return t;
+}
+
+HeavyTopBody heavy_top(const system::Scene& scene) {
+  if (!scene.is_free_body() && !scene.declares_only<system::GravityTerm>())
+    throw InputError(scene.file + ": lgi poincare needs a heavy top (gravity and no other torque term; a spring, "
+                                  "drive or dipole has no level set (l, h))");
+  HeavyTopBody body;
+  body.J = scene.inertia;
+  if (const auto& g = scene.declared<system::GravityTerm>())
+    body.weight = scene.mass.value_or(0.0) * g->g * scene.center_of_mass.value_or(Vec3::Zero());
+  return body;
+}
+
+void check_options(const PoincareOptions& o, const system::Scene& scene, const integrators::SchemeInfo& scheme) {
+  if (!std::isfinite(o.l)) throw UsageError("--l: must be a finite number");
+  if (!std::isfinite(o.h)) throw UsageError("--h: must be a finite number");
+  if (!(o.t_end > 0.0) || !std::isfinite(o.t_end)) throw UsageError("--t-end: must be a positive number");
+  if (o.ics < 1) throw UsageError("--ics: must be at least 1");
+  if (o.max_events < 1) throw UsageError("--max-events: must be at least 1");
+  if (o.seed > static_cast<std::uint64_t>(INT64_MAX)) throw UsageError("--seed: at most 2^63 - 1 (a TOML integer)");
+  if (o.section != "richter" && o.section != "gamma" && o.section != "gamma1" && o.section != "gamma2" &&
+      o.section != "gamma3")
+    throw UsageError("--section: \"" + o.section + "\": expected richter, gamma, gamma1, gamma2 or gamma3");
+  if (o.section.size() == 6 && !o.axis.empty())
+    throw UsageError("--axis: --section " + o.section + " sets the axis e" + o.section.substr(5) + " already");
+  if (scheme.properties.adaptive || !scheme.locates_events)
+    throw UsageError("--scheme: " + scheme.name + ": lgi poincare takes a fixed-step Lie-group scheme that locates "
+                                                  "events (the tangent flow takes the same steps)");
+  const double lowest = minimum_energy(heavy_top(scene), o.l);
+  if (o.h < lowest - 1e-12 * std::max(1.0, std::abs(lowest)))
+    throw UsageError("--h: h is below the minimum energy at this l: h = " + number(o.h) + " < " + number(lowest) +
+                     " = min H at l = " + number(o.l) + " for " + scene.file + " (the level set is empty)");
+}
+
+/// phi, theta, sheet of every crossing, and the indicators of every orbit.
+void add_section_columns(const std::string& path, SectionKind kind, const Vec3& e, const system::Scene& scene) {
+  SweepExtraColumns file(path);
+  const std::vector<double> g = file.read_real("events", "gamma", 3), p = file.read_real("events", "angular_momentum", 3);
+  const std::size_t n = g.size() / 3;
+  std::vector<double> phi(n), theta(n);
+  std::vector<std::int64_t> sheet(n);
+  const Mat3 J_inv = scene.inertia.inverse();
+  for (std::size_t r = 0; r < n; ++r) {
+    const SectionPoint s =
+        section_point(kind, e, Vec3(g[3 * r], g[3 * r + 1], g[3 * r + 2]), Vec3(p[3 * r], p[3 * r + 1], p[3 * r + 2]), J_inv);
+    phi[r] = s.phi, theta[r] = s.theta, sheet[r] = s.sheet;
+  }
+  file.write_real("events", "phi", phi, 1);
+  file.write_real("events", "theta", theta, 1);
+  file.write_integer("events", "sheet", sheet);
+  file.close();
+}
+
+/// The chaos indicators of every orbit, on `threads` threads (each orbit a
+/// function of its index alone), written as /sweep columns.
+void add_indicator_columns(const std::string& path, const PoincareOptions& o, const SweepPlan& plan,
+                           const system::Scene& scene, double dt, int threads) {
+  std::vector<double> lyapunov(static_cast<std::size_t>(o.ics)), megno(static_cast<std::size_t>(o.ics));
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> flat;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < o.ics; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      try {
+        plan.inputs(i, flat);
+        const system::State x0 = plan.initial_state(i, scene, flat);
+        const OrbitIndicators r = orbit_indicators(scene, x0, o.t_end, dt, o.seed, i);
+        lyapunov[k] = r.lyapunov, megno[k] = r.megno;
+      } catch (const std::exception&) {  // no initial state: the row's status says why
+        lyapunov[k] = megno[k] = std::nan("");
+      }
+    }
+  }
+  SweepExtraColumns file(path);
+  if (o.lyapunov) file.write_real("sweep", "lyapunov", lyapunov, 1);
+  if (o.megno) file.write_real("sweep", "megno", megno, 1);
+  file.close();
+}
+
+SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, const system::Scene& scene,
+                           const integrators::RunConfig& cfg, const Vec3& e, const ChunkRunStats& run) {
+  SweepAttributes a;
+  a.parameters = {{"subcommand", "poincare"},     {"scheme", o.scheme},
+                  {"section", o.section},         {"spec_toml", spec.text},
+                  {"scene_file", scene.file},     {"scene_toml", scene.toml_text},
+                  {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
+                  {"cxx_flags", build_info::cxx_flags}, {"build_type", build_info::build_type}};
+  a.numbers = {{"t_end", cfg.t_end}, {"dt", cfg.dt}, {"l", o.l}, {"h", o.h}, {"trajectories", static_cast<double>(o.ics)},
+               {"seed", static_cast<double>(o.seed)}, {"axis_1", e.x()}, {"axis_2", e.y()}, {"axis_3", e.z()}};
+  a.provenance = {{"command_line", o.command_line},          {"threads", std::to_string(run.threads)},
+                  {"ranks", "1"},                            {"resumed", "no"},
+                  {"utc_start", run.utc_start},              {"utc_end", hdf5::utc_now_iso8601()},
+                  {"wall_seconds", format_general(run.wall_seconds, 6)},
+                  {"partial_write_seconds", format_general(run.write_seconds, 6)}};
+  return a;
+}
+
+std::unique_ptr<SweepPartialFile> fresh_partial_file(const PoincareOptions& o, const SweepLayout& layout,
+                                                     const std::string& print) {
+  const std::string partial = o.out + ".partial";
+  if (!o.force && hdf5::path_exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
+  if (hdf5::path_exists(partial)) {
+    if (!o.force) throw UsageError("--out: " + partial + " exists (an interrupted run; --force replaces it)");
+    std::remove(partial.c_str());
+  }
+  return std::make_unique<SweepPartialFile>(partial, layout, print);
+}
+
+int run_poincare(const PoincareOptions& o) {
+  if (SweepRanks::world().size() > 1) throw UsageError("lgi poincare runs on one MPI rank (use --threads)");
+  const system::Scene scene = read_scene(o.scene);
+  const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
+  check_options(o, scene, scheme);
+  const SectionKind kind = o.section.starts_with("gamma") ? SectionKind::gamma : SectionKind::richter;
+  // --section gammaK: Γ_K = 0, the axis e_K.
+  const std::string axis = o.section.size() == 6 ? "e" + o.section.substr(5) : o.axis;
+  const Vec3 e = axis.empty() ? default_section_axis(scene) : parse_section_axis(axis, scene);
+  const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
+  if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  const std::string scene_path = std::filesystem::absolute(o.scene).lexically_normal().string();
+  SweepSpec spec = parse_sweep_spec(spec_text(o, scene_path, dt, kind, e), "lgi-poincare.toml");
+  if (kind == SectionKind::richter) spec.events[0].axis = {e.x(), e.y(), e.z()};
+  else if (spec.events[0].axis != std::array<double, 3>{e.x(), e.y(), e.z()})
+    throw UsageError("--axis: the gamma section takes a body axis e1, e2 or e3");
+  const system::AnyModel model = system::make_model(scene);
+  if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
+    throw UsageError("--scheme: " + why);
+  const SweepPlan plan(spec, scene);
+  integrators::RunConfig cfg;
+  cfg.dt = dt, cfg.t_end = o.t_end;
+  SweepLayout layout;
+  layout.count = spec.count();
+  layout.inputs = plan.input_columns();
+  layout.error_names = system::SceneInvariants(scene, model).error_names();
+  layout.event_names = {spec.events[0].name};
+  auto file = fresh_partial_file(o, layout, "lgi poincare\n" + spec.text + scene.toml_text);
+  const int threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
+  ChunkRunStats run;
+  {
+    const InterruptGuard interrupt_guard;
+    run = run_chunks(spec, plan, scheme, cfg, layout, file->done(), file.get(), threads, o.quiet, interrupt_requested,
+                     SweepRanks::world());
+  }
+  const std::string partial = o.out + ".partial", writing = o.out + ".writing";
+  if (run.interrupted) {
+    std::cerr << "lgi: poincare interrupted by signal; the completed orbits are in " << partial << '\n';
+    return interrupted_exit_status();
+  }
+  std::remove(writing.c_str());
+  file->write_final(writing, attributes(o, spec, scene, cfg, e, run));
+  file->close();
+  add_section_columns(writing, kind, e, scene);
+  if (o.lyapunov || o.megno) add_indicator_columns(writing, o, plan, scene, dt, threads);
+  hdf5::publish(writing, o.out, o.force, "the section is");
+  std::remove(partial.c_str());
+  if (!o.quiet)
+    std::cout << "poincare: " << o.ics << " orbits of " << scheme.name << " on " << scene.file << " at l = " << number(o.l)
+              << ", h = " << number(o.h) << ", " << file->failures() << " failed, " << run.events << " crossings; "
+              << format_general(run.wall_seconds, 3) << " s wall on " << run.threads << " threads; wrote " << o.out
+              << '\n';
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<PoincareOptions>();
+  auto* sub = app.add_subcommand("poincare",
+                                 "Poincare sections of a heavy top on the level set (l, h): Richter's section "
+                                 "d(Gamma.e)/dt = 0, crossings located by the sweep engine, MEGNO and Lyapunov "
+                                 "exponents from the tangent flow (experiments/POINCARE.md)");
+  sub->add_option("--scene", o->scene, "Scene file (a heavy top: gravity alone, or a free body)")->required();
+  sub->add_option("--l", o->l, "l = Pi.Gamma, the vertical angular momentum")->required();
+  sub->add_option("--h", o->h, "h, the energy")->required();
+  sub->add_option("--ics", o->ics, "Initial conditions (orbits) drawn on the level set")->required();
+  sub->add_option("--t-end", o->t_end, "Time span of each orbit")->required();
+  sub->add_option("--axis", o->axis,
+                  "Section axis e: e1, e2, e3, com or x,y,z (default: e3 for a Lagrange top or the free body, "
+                  "chi/|chi| otherwise)");
+  sub->add_option("--section", o->section,
+                  "richter (d(Gamma.e)/dt = 0), gamma (Gamma.e = 0, e a body axis) or gamma1, gamma2, gamma3 "
+                  "(Gamma_k = 0)")->capture_default_str();
+  sub->add_option("--scheme", o->scheme, "Fixed-step scheme (lgi schemes)")->capture_default_str();
+  sub->add_option("--dt", o->dt, "Step (default: the scene's [run] dt)");
+  sub->add_option("--seed", o->seed, "Seed of the level-set draws and of the tangent vectors")->capture_default_str();
+  sub->add_option("--max-events", o->max_events, "Crossings kept per orbit")->capture_default_str();
+  sub->add_flag("--lyapunov", o->lyapunov, "Add /sweep/lyapunov: the maximal Lyapunov exponent (tangent flow)");
+  sub->add_flag("--megno", o->megno, "Add /sweep/megno: MEGNO <Y> at t_end (tangent flow)");
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  sub->add_flag("--force", o->force, "Replace an existing output file");
+  sub->add_flag("--quiet", o->quiet, "No progress line and no summary");
+  sub->footer(exit_status_help);
+  return {sub, [o, context] {
+            o->command_line = context.command_line;
+            return run_with_write_failures_as_run_errors([&] { return run_poincare(*o); });
+          }};
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,147 @@
+#pragma once
+// The tangent (variational) flow of the Euler–Poisson field on SO(3) × ℝ³,
+// and the chaos indicators built on it: the maximal Lyapunov exponent and
+// MEGNO (docs/atlas.md §7).
+//
+// Tangent vector. v = (ξ, δΠ) ∈ ℝ⁶ perturbs the state (R, Π) to
+// (R exp(ξ̂), Π + δΠ): the body-side trivialisation the schemes and the model
+// Jacobians use (docs/conventions.md §3, terms/torque_term.hpp). Linearising
+// Ṙ = R Ω̂ gives ξ̇ = ξ × Ω + J⁻¹δΠ, and linearising Π̇ = K(R, Π, t) = Π × Ω + τ
+// gives δΠ̇ = (∂K/∂η) ξ + (∂K/∂Π) δΠ, the model's momentum_rate_jacobian
+// (RigidBody, integrators/system/rigid_body.hpp). So
+//   v̇ = A(x(t)) v,  A = [[−Ω̂, J⁻¹], [∂τ/∂η, Π̂J⁻¹ − Ω̂ + ∂τ/∂Π]].
+//
+// Integration. One step integrates the product (x, v) with RKMK4 (H. Munthe-
+// Kaas, "High order Runge–Kutta methods on manifolds", Appl. Numer. Math. 29
+// (1999) 115–127; docs/math.md) on the group SO(3) × ℝ³ × ℝ⁶, body
+// trivialisation, classical RK4 coefficients: with Θ₁ = 0 and, for the stages
+// i = 2, 3, 4, Θᵢ = h aᵢ Fᵢ₋₁, Yᵢ = (R exp(Θᵢ), Π + h aᵢ Kᵢ₋₁),
+// Vᵢ = v + h aᵢ Wᵢ₋₁ (a = ½, ½, 1),
+//   Fᵢ = dexp⁻¹_Θᵢ Ω(Yᵢ),  Kᵢ = K(Yᵢ, t + cᵢh),  Wᵢ = A(Yᵢ, t + cᵢh) Vᵢ,
+// and R' = R exp(h/6 (F₁ + 2F₂ + 2F₃ + F₄)), likewise Π' and v'. On the ℝ⁹
+// factor dexp⁻¹ is the identity, so v is advanced by classical RK4 along the
+// stage states: the pair is fourth order. Steps of size h are the same as the
+// main trajectory's (fixed dt), but this is a separate integration: the main
+// run, its steps and its crossings do not depend on whether indicators are
+// asked for.
+//
+// Indicators, with v renormalised to |v| = 1 after every step (Euclidean norm
+// on ℝ⁶ in the scene's units) and Δₙ = ln|vₙ| the growth of step n, s the
+// time since the start:
+//   Lyapunov (G. Benettin, L. Galgani, A. Giorgilli, J.-M. Strelcyn,
+//   Meccanica 15 (1980) 9–20, renormalised tangent vector):
+//     λ(s) = (1/s) Σ Δₙ;
+//   MEGNO (P. M. Cincotta, C. Simó, Astron. Astrophys. Suppl. Ser. 147 (2000)
+//   205–228): Y(s) = (2/s) ∫₀ˢ σ (d/dσ ln|δ(σ)|) dσ and its mean
+//   ⟨Y⟩(s) = (1/s) ∫₀ˢ Y(σ) dσ; here ∫ over step n is σ_{n−½} Δₙ (midpoint
+//   rule) and the mean is the trapezoidal rule over the steps.
+// ⟨Y⟩ → 2 on invariant tori (linear growth of |δ|), → 0 near stable periodic
+// orbits, and grows like λs/2 on chaotic orbits.
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+
+#include "integrators/system/rigid_body.hpp"
+#include "lie/so3.hpp"
+
+namespace lgi::integrators {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+/// v̇ = A(x) v at the state (R, Π) and time t (top of this file).
+template <class Model>
+Vec6 tangent_rate(const Model& model, const lie::Mat3& R, const lie::Vec3& Pi, double t, const Vec6& v) {
+  const lie::Vec3 Omega = model.omega(Pi);
+  const auto jac = model.momentum_rate_jacobian(R, Pi, Omega, t);
+  const lie::Vec3 xi = v.head<3>(), dPi = v.tail<3>();
+  Vec6 r;
+  r.head<3>() = xi.cross(Omega) + model.omega_jacobian() * dPi;
+  r.tail<3>() = jac.attitude * xi + jac.momentum * dPi;
+  return r;
+}
+
+/// One RKMK4 step of the product (x, v) of size h from time t (top of this file).
+template <class Model>
+void tangent_step(const Model& model, system::State& x, Vec6& v, double t, double h) {
+  constexpr double a[4] = {0.0, 0.5, 0.5, 1.0};
+  constexpr double b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+  lie::Vec3 F = lie::Vec3::Zero(), K = lie::Vec3::Zero(), theta = lie::Vec3::Zero(), dPi = lie::Vec3::Zero();
+  Vec6 W = Vec6::Zero(), dv = Vec6::Zero();
+  for (int i = 0; i < 4; ++i) {
+    const lie::Vec3 Ti = (h * a[i]) * F;
+    const lie::Mat3 Ri = i == 0 ? x.R : lie::Mat3(x.R * lie::exp_so3(Ti));
+    const lie::Vec3 Pi_i = x.Pi + (h * a[i]) * K;
+    const Vec6 Vi = v + (h * a[i]) * W;
+    const double ti = t + a[i] * h;
+    const lie::Vec3 Omega = model.omega(Pi_i);
+    F = i == 0 ? Omega : lie::dexpinv_body(Ti, Omega);
+    K = model.momentum_rate(Ri, Pi_i, Omega, ti);
+    W = tangent_rate(model, Ri, Pi_i, ti, Vi);
+    theta += (h * b[i]) * F;
+    dPi += (h * b[i]) * K;
+    dv += (h * b[i]) * W;
+  }
+  x.R = x.R * lie::exp_so3(theta);
+  x.Pi += dPi;
+  v += dv;
+}
+
+/// The running sums of the indicators (top of this file).
+class ChaosAccumulator {
+ public:
+  /// After a step from s − h to s (times since the start) in which |v| grew
+  /// from 1 to `growth`.
+  void add(double s, double h, double growth) {
+    const double d = std::log(growth);
+    log_sum_ += d;
+    weighted_ += (s - 0.5 * h) * d;
+    const double y = 2.0 * weighted_ / s;
+    mean_sum_ += 0.5 * h * (y_ + y);
+    y_ = y;
+    s_ = s;
+  }
+  double lyapunov() const { return s_ > 0.0 ? log_sum_ / s_ : 0.0; }
+  double megno() const { return y_; }  // Y(s)
+  double mean_megno() const { return s_ > 0.0 ? mean_sum_ / s_ : 0.0; }  // ⟨Y⟩(s)
+
+ private:
+  double log_sum_ = 0.0, weighted_ = 0.0, mean_sum_ = 0.0, y_ = 0.0, s_ = 0.0;
+};
+
+struct ChaosIndicators {
+  double lyapunov = 0.0;   // λ(t_end)
+  double megno = 0.0;      // ⟨Y⟩(t_end)
+  double megno_y = 0.0;    // Y(t_end)
+  std::int64_t steps = 0;
+  bool ok = true;          // false: the tangent or the state blew up (the values are NaN)
+};
+
+/// Integrates (x, v) from t0 to t_end with steps dt (the last one shortened
+/// to land on t_end) and returns the indicators; x and v end at t_end.
+template <class Model>
+ChaosIndicators chaos_indicators(const Model& model, system::State& x, Vec6 v, double t0, double t_end, double dt) {
+  ChaosIndicators out;
+  ChaosAccumulator acc;
+  v.normalize();
+  double t = t0;
+  while (t < t_end) {
+    const double h = (t_end - t) < 1.0000001 * dt ? t_end - t : dt;
+    tangent_step(model, x, v, t, h);
+    t = (t_end - t) < 1.0000001 * dt ? t_end : t + h;
+    const double n = v.norm();
+    if (!std::isfinite(n) || !(n > 0.0) || !x.Pi.allFinite()) {
+      out.ok = false;
+      out.lyapunov = out.megno = out.megno_y = std::nan("");
+      return out;
+    }
+    v /= n;
+    acc.add(t - t0, h, n);
+    ++out.steps;
+  }
+  out.lyapunov = acc.lyapunov();
+  out.megno = acc.mean_megno();
+  out.megno_y = acc.megno();
+  return out;
+}
+
+}  // namespace lgi::integrators
