@@ -39,16 +39,7 @@ Provenance run_provenance(const system::Scene& scene, const integrators::SchemeI
 Diagnostics diagnostics_of(integrators::RunStats& stats, double output_seconds) {
   // Reported as it always was; the statistics are the loop's own.
   if (stats.interrupted) stats.status = integrators::interrupted_status;
-  Diagnostics diag;
-  diag.steps = stats.steps;
-  diag.rejected_steps = stats.work.rejected_steps;
-  diag.rhs_evaluations = stats.work.rhs_evaluations;
-  diag.newton_iterations_max = stats.work.newton_iterations_max;
-  diag.newton_failures = stats.work.newton_failures;
-  diag.output_seconds = output_seconds;
-  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
-  diag.status = stats.status;
-  return diag;
+  return diagnostics_of_run(stats, output_seconds);
 }
 
 }  // namespace

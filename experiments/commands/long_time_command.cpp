@@ -234,14 +234,7 @@ void print_summary(const std::string& scheme, const Diagnostics& diag, double t_
 /// /diagnostics of a run (RESULTS.md, "long-time").
 ResultAttributes long_time_diagnostics(const integrators::RunStats& stats, double output_seconds,
                                        std::int64_t rows, Diagnostics& diag) {
-  diag.steps = stats.steps;
-  diag.rejected_steps = stats.work.rejected_steps;
-  diag.rhs_evaluations = stats.work.rhs_evaluations;
-  diag.newton_iterations_max = stats.work.newton_iterations_max;
-  diag.newton_failures = stats.work.newton_failures;
-  diag.output_seconds = output_seconds;
-  diag.cpu_seconds = std::max(0.0, stats.cpu_seconds - diag.output_seconds);
-  diag.status = stats.status;
+  diag = diagnostics_of_run(stats, output_seconds);
   ResultAttributes a = diagnostics_attributes(diag);
   a.integer["samples"] = rows;
   a.number["t_final"] = stats.t_final;

@@ -404,20 +404,11 @@ void TrajectoryWriter::close_file() {
 void TrajectoryWriter::finish(const Diagnostics& diagnostics) {
   if (!open_) throw std::logic_error("trajectory '" + path_ + "': finish after the file was closed");
   QuietHdf5Errors quiet;
-  try {
+  write_then_close([&] {
     if (write_failed_) fail("an earlier block write failed");
     write_block();
     write_diagnostics(diagnostics);
-    close_file();
-  } catch (...) {
-    if (open_) {
-      try {
-        close_file();
-      } catch (...) {  // report the first failure
-      }
-    }
-    throw;
-  }
+  });
   // Without force, never replace a file that appeared during the run.
   hdf5::publish(partial_path_, path_, force_, "the trajectory is");
 }
@@ -433,7 +424,7 @@ void TrajectoryWriter::abandon_impl(const Diagnostics* d, const std::string& sta
     if (!write_failed_) write_block();
   } catch (const OutputFileError&) {  // keep going: the diagnostics matter more
   }
-  try {
+  write_then_close([&] {
     if (d != nullptr) {
       Diagnostics copy = *d;
       copy.status = status;
@@ -441,6 +432,12 @@ void TrajectoryWriter::abandon_impl(const Diagnostics* d, const std::string& sta
     } else {
       write_status(status);
     }
+  });
+}
+
+void TrajectoryWriter::write_then_close(const std::function<void()>& last_writes) {
+  try {
+    last_writes();
     close_file();
   } catch (...) {
     if (open_) {

@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -109,6 +110,22 @@ struct Diagnostics {
   std::string status = "ok";
 };
 
+/// The diagnostics of a run from its statistics: CPU seconds are the loop's
+/// minus the time spent writing (output_seconds).
+template <class RunStats>
+Diagnostics diagnostics_of_run(const RunStats& stats, double output_seconds) {
+  Diagnostics diag;
+  diag.steps = stats.steps;
+  diag.rejected_steps = stats.work.rejected_steps;
+  diag.rhs_evaluations = stats.work.rhs_evaluations;
+  diag.newton_iterations_max = stats.work.newton_iterations_max;
+  diag.newton_failures = stats.work.newton_failures;
+  diag.output_seconds = output_seconds;
+  diag.cpu_seconds = stats.cpu_seconds - output_seconds > 0.0 ? stats.cpu_seconds - output_seconds : 0.0;
+  diag.status = stats.status;
+  return diag;
+}
+
 struct WriterOptions {
   std::size_t block_size = 4096;        // samples buffered between writes (>= 1)
   std::size_t chunk_rows = 1024;        // HDF5 chunk length along the time axis (>= 1)
@@ -166,6 +183,9 @@ class TrajectoryWriter {
   void write_diagnostics(const Diagnostics& d);
   void write_status(const std::string& status);
   void close_file();
+  /// Runs `last_writes`, then closes the file; if either throws, the file is
+  /// closed anyway and the first failure is rethrown.
+  void write_then_close(const std::function<void()>& last_writes);
   void abandon_impl(const Diagnostics* d, const std::string& status);
   [[noreturn]] void fail(const std::string& what) const;
 
