@@ -12,6 +12,7 @@ import time
 import h5py
 import numpy as np
 import pytest
+from pacing import slowdown
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -36,7 +37,7 @@ def text(v):
 
 def interrupt(args, after=1.0, sig=signal.SIGINT):
     p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    time.sleep(after)
+    time.sleep(after * slowdown(LGI))  # the same moment of the run in a slower (sanitizer) build
     assert p.poll() is None, "the command ended before it could be interrupted"
     p.send_signal(sig)
     _, err = p.communicate(timeout=120)

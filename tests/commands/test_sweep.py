@@ -10,6 +10,7 @@ import time
 import h5py
 import numpy as np
 import pytest
+from pacing import slowdown
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 LGI_MPI = os.environ.get("LGI_MPI_EXECUTABLE", "")
@@ -152,7 +153,7 @@ def test_interrupt_keeps_the_partial_file(tmp_path):
     out = str(tmp_path / "int.h5")
     p = subprocess.Popen([LGI, "sweep", "--spec", s, "--out", out, "--threads", "1", "--quiet"],
                          stderr=subprocess.PIPE, text=True)
-    time.sleep(1.0)
+    time.sleep(1.0 * slowdown(LGI))  # the same moment of the run in a slower (sanitizer) build
     p.send_signal(signal.SIGINT)
     _, err = p.communicate(timeout=60)
     assert p.returncode == 130  # 128 + SIGINT

@@ -1,0 +1,23 @@
+"""How much slower the lgi under test runs than a release build (a sanitizer
+build: about 5x), measured once per session on a fixed simulate: the tests
+that signal a run at a chosen moment scale their waits by it, so that the run
+has reached the same point whatever the build."""
+import functools
+import os
+import subprocess
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+RELEASE_SECONDS = 0.15  # the same simulate in a release build on one core
+
+
+@functools.lru_cache(maxsize=None)
+def slowdown(lgi):
+    scene = os.path.join(ROOT, "experiments", "scenes", "free_body_hlw.toml")
+    with tempfile.TemporaryDirectory() as d:
+        start = time.monotonic()
+        subprocess.run([lgi, "simulate", "--scene", scene, "--scheme", "rkmk4", "--dt", "1e-4", "--t-end", "20",
+                        "--save-every", "100000", "--out", os.path.join(d, "pace.h5"), "--quiet"], check=True)
+        wall = time.monotonic() - start
+    return max(1.0, wall / RELEASE_SECONDS)
