@@ -1,7 +1,8 @@
-"""How much slower the lgi under test runs than a release build (a sanitizer
-build: about 5x), measured once per session on a fixed simulate: the tests
-that signal a run at a chosen moment scale their waits by it, so that the run
-has reached the same point whatever the build."""
+"""Pacing of the tests that cut a run short (signals, kills, faults): how much
+slower the lgi under test runs than a release build (a sanitizer build: about
+5x), measured once per session on a fixed simulate, by which they scale their
+waits so that the run has reached the same point whatever the build; and the
+long sweep they cut."""
 import functools
 import os
 import subprocess
@@ -21,3 +22,19 @@ def slowdown(lgi):
                         "--save-every", "100000", "--out", os.path.join(d, "pace.h5"), "--quiet"], check=True)
         wall = time.monotonic() - start
     return max(1.0, wall / RELEASE_SECONDS)
+
+
+# A sweep long enough to be cut in the middle (about 4 s on one core); SCENES
+# stands for the shipped scenes' folder.
+LONG_SWEEP = """
+scene = "SCENES/kovalevskaya.toml"
+scheme = "rkmk4"
+dt = 0.01
+t_end = 50.0
+seed = 3
+samples = 2000
+chunk = 20
+[level_set]
+h = 2.0
+l = 1.0
+"""

@@ -14,6 +14,7 @@ import time
 import h5py
 import numpy as np
 import pytest
+from pacing import LONG_SWEEP
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -150,25 +151,11 @@ def test_blow_up_stops_with_the_time_and_keeps_the_good_steps(tmp_path):
         assert f"t = {float(status.split('t = ')[1]):.6g}" == f"t = {t[-1] + 0.01:.6g}"
 
 
-SWEEP = """
-scene = "SCENES/kovalevskaya.toml"
-scheme = "rkmk4"
-dt = 0.01
-t_end = 50.0
-seed = 3
-samples = 2000
-chunk = 20
-[level_set]
-h = 2.0
-l = 1.0
-"""
-
-
 def test_resume_file_removed_mid_run(tmp_path):
     # lgi long-time has no --resume; lgi sweep has. Its resumed run keeps the .partial open: a
     # file removed under it lives on until it is closed (POSIX), so the sweep completes as it would have.
     spec = tmp_path / "spec.toml"
-    spec.write_text(SWEEP.replace("SCENES", SCENES))
+    spec.write_text(LONG_SWEEP.replace("SCENES", SCENES))
     out = str(tmp_path / "s.h5")
     args = [LGI, "sweep", "--spec", str(spec), "--out", out, "--threads", "1", "--quiet"]
     p = subprocess.Popen(args)

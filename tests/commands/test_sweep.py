@@ -10,7 +10,7 @@ import time
 import h5py
 import numpy as np
 import pytest
-from pacing import slowdown
+from pacing import LONG_SWEEP, slowdown
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 LGI_MPI = os.environ.get("LGI_MPI_EXECUTABLE", "")
@@ -64,19 +64,8 @@ component = 3
 direction = "rising"
 """
 
-# Long enough to be killed in the middle (about 4 s on one core).
-LONG = """
-scene = "SCENES/kovalevskaya.toml"
-scheme = "rkmk4"
-dt = 0.01
-t_end = 50.0
-seed = 3
-samples = 2000
-chunk = 20
-[level_set]
-h = 2.0
-l = 1.0
-[[event]]
+# Long enough to be killed in the middle, with an event.
+LONG = LONG_SWEEP + """[[event]]
 quantity = "angular_momentum"
 component = 1
 """
