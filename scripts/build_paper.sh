@@ -291,6 +291,17 @@ plot animate.py --frames "$frames" "$data/traj/book_axis2_$lie_scheme.h5" "$data
 [ -n "$singularity_file" ] && plot singularity.py "$singularity_file"
 wait_plots
 
+# ── the global dynamics of tops (paper/sections/tops.tex) ────────────────────
+if has_sub equilibria && has_sub bifurcation && has_sub poincare; then
+  "$root/scripts/paper_atlas.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_atlas.sh failed"; }
+else
+  for n in atlas_equilibria.tex atlas_megno.tex atlas_commands.tex; do
+    echo '\lginote{This \texttt{lgi} lacks equilibria, bifurcation or poincare: no data.}' > "$gen/$n"
+  done
+fi
+say "atlas done ($(( $(date +%s) - t_start )) s)"
+
 # ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
 bench="$(dirname "$lgi")/lgi_bench"
 rm -f "$gen/benchmarks.tex"

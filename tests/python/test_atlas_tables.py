@@ -1,0 +1,41 @@
+"""scripts/plots/atlas_tables.py, the tables of the paper's section "The global
+dynamics of tops": every equilibrium of the files in the table, MEGNO medians
+and chaotic fractions that tell the integrable top from the general one."""
+import os
+import subprocess
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+LGI = Path(os.environ.get("LGI_EXECUTABLE", ROOT / "build" / "release" / "lgi"))
+ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
+SCRIPT = ROOT / "scripts" / "plots" / "atlas_tables.py"
+SCENES = ROOT / "experiments" / "scenes"
+
+
+def lgi(*args):
+    subprocess.run([str(LGI), *args, "--quiet"], check=True)
+
+
+def test_atlas_tables(tmp_path):
+    lgi("equilibria", "--scene", str(SCENES / "general_top_richter.toml"), "--l", "3", "--out", str(tmp_path / "e.h5"))
+    for stem in ("kovalevskaya", "general_top_richter"):
+        lgi("poincare", "--scene", str(SCENES / f"{stem}.toml"), "--l", "1", "--h", "2", "--ics", "6",
+            "--t-end", "150", "--megno", "--out", str(tmp_path / f"{stem}.h5"))
+    (tmp_path / "cmds.txt").write_text("lgi equilibria --l 3\n")
+    subprocess.run(["/usr/bin/python3", str(SCRIPT), "--out", str(tmp_path / "gen"), "--equilibria",
+                    str(tmp_path / "e.h5"), "--sections", str(tmp_path / "kovalevskaya.h5"),
+                    str(tmp_path / "general_top_richter.h5"), "--commands", str(tmp_path / "cmds.txt")],
+                   check=True, env=ENV)
+    eq = (tmp_path / "gen" / "atlas_equilibria.tex").read_text()
+    # l = 3 has six permanent rotations (lgi equilibria --l 3), one row each
+    assert sum(1 for ln in eq.splitlines() if ln.startswith("3 & ")) == 6
+    rows = [ln for ln in (tmp_path / "gen" / "atlas_megno.tex").read_text().splitlines() if " & 6 & " in ln]
+    assert len(rows) == 2
+    kov, gen = (float(r.split("&")[3]) for r in rows)
+    assert abs(kov - 2.0) < 0.2 and gen > 3.0
+    assert "lgi equilibria --l 3" in (tmp_path / "gen" / "atlas_commands.tex").read_text()
+    # a file that is not lgi equilibria output: one line, exit 1
+    r = subprocess.run(["/usr/bin/python3", str(SCRIPT), "--out", str(tmp_path / "gen2"), "--equilibria",
+                        str(tmp_path / "kovalevskaya.h5"), "--sections", str(tmp_path / "kovalevskaya.h5")],
+                       env=ENV, capture_output=True, text=True)
+    assert r.returncode == 1 and "no /equilibria" in r.stderr
