@@ -25,6 +25,7 @@ import tomllib
 import numpy as np
 
 import lgi_plot_common as c
+from cost_table import CAP_COST, cost_rows, cpu_at_error
 
 
 EXTRA_MACROS = ""  # \\renewcommand lines that go to machine.tex (read in the preamble)
@@ -388,22 +389,6 @@ CAP_BEST = ("The cheapest scheme per scene at a global error of $10^{-8}$ (media
 BEST_SENTENCES = []  # filled by best_at_target(), written to discussion_best.tex
 
 
-def cpu_at_error(errs, cpus, target):
-    """CPU time at which one scheme's work-precision curve reaches `target`:
-    log-log interpolation between the bracketing runs (ordered by CPU time),
-    or the cheapest run below target if none is above it; None if no run reaches it."""
-    pts = sorted((cp, e) for e, cp in zip(errs, cpus) if np.isfinite(e) and np.isfinite(cp) and e > 0 and cp > 0)
-    below = [cp for cp, e in pts if e <= target]
-    if not below:
-        return None
-    best = min(below)
-    for (c0, e0), (c1, e1) in zip(pts, pts[1:]):
-        if e0 > target >= e1 and e0 != e1:
-            w = np.log(e0 / target) / np.log(e0 / e1)
-            best = min(best, float(np.exp(np.log(c0) + w * np.log(c1 / c0))))
-    return best
-
-
 def best_at_target(files, target=BEST_TARGET):
     """Table: per scene, the three cheapest schemes at `target` and the best baseline."""
     if not files:
@@ -739,6 +724,11 @@ def main():
     write(a.out, "singularity.tex", sg)
     write(a.out, "results_wp.tex", wp)
     write(a.out, "best_at_1e-8.tex", best_at_target(a.wp))
+    cost = cost_rows(load_work_precision, a.wp, info)
+    write(a.out, "cost_at_equal_error.tex",
+          longtable("@{}l l l l l@{}", "scene & family & $10^{-6}$ (ms) & $10^{-8}$ (ms) & $10^{-10}$ (ms)", cost,
+                    CAP_COST, "tab:cost") if cost else
+          missing_table(CAP_COST, "tab:cost", "No work-precision data on a heavy top: no table."))
     write(a.out, "discussion_best.tex",
           ("\\begin{itemize}\\itemsep0pt\n" + "\n".join(BEST_SENTENCES) + "\n\\end{itemize}\n") if BEST_SENTENCES
           else note("No work-precision data: no comparison at $10^{-8}$."))
