@@ -49,7 +49,7 @@ TEST_CASE("every shipped scene parses", "[scene]") {
       "prism_edurev.toml",           "gyroscope.toml",                  "heavy_top_trindade_1.toml",
       "heavy_top_trindade_2.toml",   "heavy_top_trindade_3.toml",       "heavy_top_trindade_4.toml",
       "heavy_top_trindade_singular.toml", "free_body_hlw.toml",         "kovalevskaya.toml", "magnetic_top.toml",
-      "general_top_richter.toml",    "stiff_damped_spring.toml"};
+      "general_top_richter.toml",    "stiff_damped_spring.toml", "heavy_top_hlw.toml"};
   std::set<std::string> found;
   for (const auto& entry : std::filesystem::directory_iterator(scenes_dir)) {
     if (entry.path().extension() != ".toml") continue;
