@@ -1,9 +1,9 @@
-// The atlas's speed bars (issue "Tops atlas"): the full (l, h) bifurcation
+// The atlas's speed targets: the full (l, h) bifurcation
 // diagram of a general top (every branch sampled with lgi bifurcation's
 // default 400 points, folds located, every point classified) and the
 // equilibria at one l, on general_top_richter. The counter
-// "fraction_of_2s_budget" is the time as a fraction of the 2 s the issue
-// allows for the diagram; no timing is asserted anywhere.
+// "fraction_of_2s_budget" is the time as a fraction of the 2 s target for
+// one diagram (README, Performance); no timing is asserted anywhere.
 #include <benchmark/benchmark.h>
 
 #include <string>
