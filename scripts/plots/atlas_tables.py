@@ -19,6 +19,8 @@ import tomllib
 import h5py
 import numpy as np
 
+import lgi_plot_common as c
+
 CLASS = {0: "stable", 1: "singly unstable", 2: "doubly unstable", 3: "complex unstable"}
 # MEGNO <Y> tends to 2 on quasi-periodic orbits and grows like lambda t / 2 on
 # chaotic ones (Cincotta & Simo 2000); 2.5 at the end of the run separates them
@@ -111,12 +113,12 @@ def commands_block(path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--out", required=True, help="folder for the .tex files")
+    ap.add_argument("--out", required=True, type=c.out_dir,
+                    help="folder for the .tex files (created with its parents if missing)")
     ap.add_argument("--equilibria", nargs="+", required=True, help="files of lgi equilibria --l")
     ap.add_argument("--sections", nargs="+", required=True, help="files of lgi poincare --megno")
     ap.add_argument("--commands", help="the lgi command lines, one per line")
     a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
     outputs = {"atlas_equilibria.tex": equilibria_table(a.equilibria), "atlas_megno.tex": megno_table(a.sections)}
     if a.commands:
         outputs["atlas_commands.tex"] = commands_block(a.commands)
