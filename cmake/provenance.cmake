@@ -12,7 +12,9 @@ if(GIT_FOUND)
   endif()
 endif()
 string(TOUPPER "${CMAKE_BUILD_TYPE}" _bt)
-set(LGI_CXX_FLAGS "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_bt}} -std=c++20 -ffp-contract=off -fno-fast-math")
+# The floating-point policy's flags as cmake/warnings.cmake sets them (LGI_FP_CONTRACT:
+# off by default, fast in the release-native preset, whose -march=native is in CMAKE_CXX_FLAGS).
+set(LGI_CXX_FLAGS "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_bt}} -std=c++20 -ffp-contract=${LGI_FP_CONTRACT} -fno-fast-math")
 string(STRIP "${LGI_CXX_FLAGS}" LGI_CXX_FLAGS)
 set(LGI_COMPILER "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION}")
 configure_file(${CMAKE_SOURCE_DIR}/cmake/build_info.hpp.in

@@ -9,7 +9,9 @@
 // Where Φ is a Strang splitting kick(½h) ∘ flow(h) ∘ kick(½h) (lgvi,
 // split-exact), consecutive half kicks of neighbouring stages are merged into
 // one kick by (γ_i + γ_{i+1}) h / 2 ("first same as last"), saving s − 1
-// torque evaluations per step (HLW §V.3.1, remark after (3.4)).
+// torque evaluations per step (HLW §V.3.1, remark after (3.4)); likewise the
+// outer rotations of outer(½h) ∘ inner(h) ∘ outer(½h) (split-axes,
+// split-symmetric).
 // Every coefficient set here has negative γ_i (order > 2 needs them: Sheng,
 // IMA J. Numer. Anal. 9 (1989) 199–212; Suzuki, J. Math. Phys. 32 (1991)
 // 400–407): a damped scene is then integrated backward over part
@@ -29,6 +31,15 @@ template <class Scheme, class Model>
 concept kick_flow_splitting = requires(Scheme& scheme, const Model& model, State& s, WorkCounters& w) {
   scheme.kick(model, s, 0.0, 0.0, w);
   { scheme.flow(model, s, 0.0, 0.0, w) } -> std::same_as<StepStatus>;
+};
+
+/// The same for a splitting whose outermost part is another exact flow that
+/// merges (split-axes, split-symmetric: a rotation about one axis):
+/// step(h) = outer(½h) ∘ inner(h) ∘ outer(½h), outer(a) ∘ outer(b) = outer(a + b).
+template <class Scheme, class Model>
+concept outer_inner_splitting = requires(Scheme& scheme, const Model& model, State& s, WorkCounters& w) {
+  scheme.outer(model, s, 0.0, 0.0, w);
+  { scheme.inner(model, s, 0.0, 0.0, w) } -> std::same_as<StepStatus>;
 };
 
 template <class Base, const auto& Coefficients>
@@ -51,6 +62,19 @@ class Composition {
     return detail::start(base_, model, initial, t0);
   }
 
+  // Resume (scheme_interface.hpp): a composition keeps between steps what its base keeps.
+  using base_scheme_type = Base;
+  void save_memory(std::vector<double>& out) const
+    requires saves_step_memory<Base>
+  {
+    base_.save_memory(out);
+  }
+  bool restore_memory(std::span<const double> in)
+    requires saves_step_memory<Base>
+  {
+    return base_.restore_memory(in);
+  }
+
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
     StepStatus total;
@@ -60,16 +84,25 @@ class Composition {
       total.residual = std::max(total.residual, st.residual);
       if (!st.converged && !total.reason) total.reason = st.reason;
     };
-    if constexpr (kick_flow_splitting<Base, Model>) {
+    constexpr bool kick_flow = kick_flow_splitting<Base, Model>;
+    if constexpr (kick_flow || outer_inner_splitting<Base, Model>) {
+      auto outer = [&](double tau, double length) {
+        if constexpr (kick_flow) base_.kick(model, s, tau, length, work);
+        else base_.outer(model, s, tau, length, work);
+      };
+      auto inner = [&](double tau, double hi) {
+        if constexpr (kick_flow) return base_.flow(model, s, tau, hi, work);
+        else return base_.inner(model, s, tau, hi, work);
+      };
       double tau = t;
-      base_.kick(model, s, tau, 0.5 * Coefficients.gamma[0] * h, work);
+      outer(tau, 0.5 * Coefficients.gamma[0] * h);
       for (std::size_t i = 0; i < stages; ++i) {
         const double hi = Coefficients.gamma[i] * h;
-        merge(base_.flow(model, s, tau, hi, work));
+        merge(inner(tau, hi));
         if (!total.converged) return total;
         tau += hi;
         const double next = i + 1 < stages ? Coefficients.gamma[i + 1] : 0.0;
-        base_.kick(model, s, tau, 0.5 * (Coefficients.gamma[i] + next) * h, work);
+        outer(tau, 0.5 * (Coefficients.gamma[i] + next) * h);
       }
     } else {
       double tau = t;

@@ -192,6 +192,50 @@ bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, Outp
   mark_interrupted(stats, k, t);
   return true;
 }
+/// The checkpoint the run resumes from (RunConfig::checkpoints), or null.
+inline const LoopCheckpoint* resume_point(const RunConfig& cfg) {
+  return cfg.checkpoints ? cfg.checkpoints->resume_from : nullptr;
+}
+/// Sets the run's state, step count, work counters and the scheme's memory
+/// from checkpoint c. False (the run failed, with the reason) if the scheme
+/// cannot be resumed or refuses the memory.
+template <class Scheme, class Model, bool Adaptive>
+bool resume(Scheme& scheme, const LoopCheckpoint& c, State& s, RunStats& stats) {
+  if constexpr (!resumable_scheme<Scheme, Model, Adaptive>()) {
+    mark_failed(stats, "cannot resume: the scheme keeps memory between steps that it does not save");
+    return false;
+  } else {
+    bool restored = c.memory.empty();
+    if constexpr (saves_step_memory<Scheme>) restored = scheme.restore_memory(c.memory);
+    if (!restored) {
+      mark_failed(stats, "cannot resume: the saved memory does not fit the scheme");
+      return false;
+    }
+    s = c.state;
+    stats.steps = c.step;
+    stats.work = c.work;
+    return true;
+  }
+}
+/// After a resume at t: the output times up to t were observed before it.
+inline void skip_output_times(OutputCursor& out, double t) {
+  if (!out.times) return;
+  const double tol = land_tolerance(t, out.span);
+  while (out.next < out.times->size() && out.direction * ((*out.times)[out.next] - t) <= tol) ++out.next;
+}
+/// Offers the checkpoint after accepted step `step` (not the run's last) to
+/// RunConfig::checkpoints, every `every` steps, if the scheme can be resumed.
+template <class Scheme, class Model, bool Adaptive>
+void offer_checkpoint(const Scheme& scheme, const RunConfig& cfg, std::int64_t step, double t, double h,
+                      const State& s, const RunStats& stats) {
+  if constexpr (resumable_scheme<Scheme, Model, Adaptive>()) {
+    Checkpoints* c = cfg.checkpoints;
+    if (c == nullptr || c->every < 1 || step % c->every != 0 || !c->due(step)) return;
+    LoopCheckpoint point{.step = step, .t = t, .h = h, .state = s, .work = stats.work, .memory = {}};
+    if constexpr (saves_step_memory<Scheme>) scheme.save_memory(point.memory);
+    c->save(point);
+  }
+}
 /// The initial sample, and the run's failure if the scheme refused to start.
 template <class Scheme>
 void observe_start(const Scheme& scheme, const StepStatus& started, double t0, OutputCursor& out, const State& s,

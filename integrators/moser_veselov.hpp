@@ -25,8 +25,12 @@
 // form; the tests check that both give the same numbers)
 //   φ(f) = h g + h g × f + (h g·f) f − 2 J f = 0,   g = Π_k + ½ h M_k,
 //   ∂φ/∂f = (h g)^ + (h g·f) I + f (h g)ᵀ − 2 J,
-// solved here by Newton from f₀ = ½ h J⁻¹ g (J the full tensor, which may be
-// non-diagonal) to |φ| ≤ 4ε·(|hg| + |hg × f| + |hg·f||f| + 2|Jf|), the sum
+// solved for a diagonal J by the fast path of moser_veselov_diagonal.hpp (the
+// equivalent quadratic form 2(I + f̂)Jf = (1 + |f|²) hg, componentwise, a
+// Gauss–Seidel starting guess, Newton by Cramer's rule, no square root; one
+// Newton correction per step at moderate h|Ω|), and otherwise (J the full
+// tensor, non-diagonal) by Newton from f₀ = ½ h J⁻¹ g
+// to |φ| ≤ 4ε·(|hg| + |hg × f| + |hg·f||f| + 2|Jf|), the sum
 // of the magnitudes of its terms, at most 50 iterations, followed by one more
 // correction with the last inverse Jacobian: an iterate that merely passes the
 // test keeps an error of the tolerance's size, of a sign that repeats along a
@@ -66,7 +70,13 @@
 //   1/Ĩ_j = (1/I_j)(1 + h² s₃ + h⁴ s₅ + …) + h² d₃ + h⁴ d₅ + …,
 // truncated after the h^{2r−2} terms, where s_k, d_k are homogeneous
 // polynomials in H = ½ Σ y_j²/I_j (the kinetic energy) and C = ½ |y|²
-// evaluated at the current momentum y_n (Theorem 2.1). No other pre- or
+// evaluated at the current momentum y_n (Theorem 2.1). For a free body the
+// scheme conserves H and C exactly (below), so they are taken once per run,
+// from the initial state in start(), and the series is kept as two
+// polynomials in h² (evaluated by Horner's rule at each step, as h may vary);
+// with a potential the kicks change H and C and the series is evaluated at
+// every step. (With H and C frozen the map is DMV with constant modified
+// moments for a given h; the registry still claims no symplecticity.) No other pre- or
 // post-processing is involved: the "preprocessing" is the modification of
 // the vector field (their ref. [2]). As the relation is basis-free,
 // J̃⁻¹ = s J⁻¹ + d I, so it holds for a non-diagonal J too (the constants
@@ -92,13 +102,12 @@
 #include <numbers>
 
 #include "integrators/compensated_sum.hpp"
+#include "integrators/moser_veselov_diagonal.hpp"
 #include "integrators/scheme_interface.hpp"
 
 namespace lgi::integrators {
 
 namespace moser_veselov {
-
-inline constexpr int max_newton_iterations = 50;
 
 /// Whether the model has any torque; its potential part M(R) is
 /// model.potential_torque(R), the sum of the terms' potential torques (a drive
@@ -159,12 +168,6 @@ inline bool turns_too_far(const Mat3& J_inv, const Vec3& Pi, double h) {
   return !(std::abs(h) * (J_inv * Pi).norm() < std::numbers::pi);
 }
 
-/// The rounding errors of a run's compensated state updates (compensated_sum.hpp).
-struct Carry {
-  Vec3 Pi = Vec3::Zero();
-  Mat3 R = Mat3::Zero();
-};
-
 /// One DMV step of length h with inertia J (inverse J_inv) on the state as
 /// it is (no kicks): R ← R F, Π ← Fᵀ Π, F = cay(2f), applied as compensated
 /// increments (header comment). The state and the carry are left untouched
@@ -172,13 +175,7 @@ struct Carry {
 inline StepStatus dmv_step(const Mat3& J, const Mat3& J_inv, State& s, Carry& carry, double h) {
   Vec3 f;
   const StepStatus st = solve_cayley_parameter(J, J_inv, h * s.Pi, f);
-  if (!st.converged) return st;
-  const Mat3 X = lie::hat(f);
-  const Mat3 F_minus_I = (2.0 / (1.0 + f.squaredNorm())) * (X + X * X);  // cay(2f) − I
-  const Vec3 dPi = F_minus_I.transpose() * s.Pi;
-  const Mat3 dR = s.R * F_minus_I;
-  add_compensated(s.Pi, dPi, carry.Pi);
-  add_compensated(s.R, dR, carry.R);
+  if (st.converged) apply_cayley_step(f, s, carry);
   return st;
 }
 
@@ -194,14 +191,21 @@ struct ModifiedInertiaSeries {
   // s[k−1][i], d[k−1][i]: the coefficient of H^{k−i} C^{i} in s_{2k+1}, d_{2k+1}.
   std::array<std::array<double, 5>, 4> s{}, d{};
 
+  /// x^n for |n| ≤ 4 by multiplication (a run's set-up is on the benchmark's clock, libm's pow is not needed).
+  static double ipow(double x, int n) {
+    double p = 1.0;
+    for (int i = 0; i < (n < 0 ? -n : n); ++i) p *= x;
+    return n < 0 ? 1.0 / p : p;
+  }
+
   /// From the principal moments (any order).
   explicit ModifiedInertiaSeries(const Vec3& I = Vec3::Ones()) {
     const double I1 = I.x(), I2 = I.y(), I3 = I.z();
-    auto sigma = [&](int a) { return std::pow(I1, a) + std::pow(I2, a) + std::pow(I3, a); };
+    auto sigma = [&](int a) { return ipow(I1, a) + ipow(I2, a) + ipow(I3, a); };
     // τ_{b,c} = Σ_{i≠j} I_i^b / I_j^c = (I2^b + I3^b)/I1^c + (I3^b + I1^b)/I2^c + (I1^b + I2^b)/I3^c
     auto tau = [&](int b, int c) {
-      const double p1 = std::pow(I1, b), p2 = std::pow(I2, b), p3 = std::pow(I3, b);
-      return (p2 + p3) / std::pow(I1, c) + (p3 + p1) / std::pow(I2, c) + (p1 + p2) / std::pow(I3, c);
+      const double p1 = ipow(I1, b), p2 = ipow(I2, b), p3 = ipow(I3, b);
+      return (p2 + p3) / ipow(I1, c) + (p3 + p1) / ipow(I2, c) + (p1 + p2) / ipow(I3, c);
     };
     const double dl = I1 * I2 * I3;  // δ
     const double dl2 = dl * dl, dl3 = dl2 * dl, dl4 = dl2 * dl2;
@@ -254,6 +258,45 @@ struct ModifiedInertiaSeries {
       }
     }
   }
+
+  /// The same series as polynomials in x = h² at fixed H and C (a free body,
+  /// where both are invariants of the scheme): css = 1 + Σ_k cs[k−1] x^k,
+  /// cdd = Σ_k cd[k−1] x^k, cs[k−1] = Σ_i s_{k,i} H^{k−i} C^i (likewise cd).
+  void coefficients_in_h2(double H, double C, std::array<double, 4>& cs, std::array<double, 4>& cd) const {
+    cs = {};
+    cd = {};
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(degrees); ++k) {
+      for (std::size_t i = 0; i <= k; ++i) {
+        const double m = ipow(H, static_cast<int>(k - i)) * ipow(C, static_cast<int>(i));
+        cs[k - 1] += s[k - 1][i] * m;
+        cd[k - 1] += d[k - 1][i] * m;
+      }
+    }
+  }
+};
+
+/// Horner's rule for 1 + x (c₀ + x (c₁ + …)) (offset 1) or x (c₀ + …) (offset 0), `degree` terms.
+inline double horner_in_h2(const std::array<double, 4>& c, int degree, double x, double offset) {
+  double v = 0.0;
+  for (int k = degree - 1; k >= 0; --k) v = c[static_cast<std::size_t>(k)] + x * v;
+  return offset + x * v;
+}
+
+/// The per-run constants of the diagonal fast path (moser_veselov_diagonal.hpp):
+/// whether J is diagonal, its moments and their inverses.
+struct DiagonalInertia {
+  bool diagonal = false;
+  Vec3 I = Vec3::Ones(), J_inv = Vec3::Ones();
+  DiagonalMoments moments{};
+  DiagonalInertia() = default;
+  template <class InertiaT>
+  explicit DiagonalInertia(const InertiaT& inertia)
+      : diagonal(is_diagonal(inertia.J)), I(inertia.J.diagonal()), J_inv(inertia.J_inv.diagonal()),
+        moments(I, I.cwiseInverse()) {}
+  /// |h Ω|² < π² with Ω = J⁻¹Π (turns_too_far for a diagonal J, without a square root).
+  bool turns_too_far(const Vec3& Pi, double h) const {
+    return !((h * h) * J_inv.cwiseProduct(Pi).squaredNorm() < std::numbers::pi * std::numbers::pi);
+  }
 };
 
 }  // namespace moser_veselov
@@ -266,6 +309,11 @@ namespace moser_veselov {
 template <class Scheme, class Model>
 StepStatus strang_step(Scheme& scheme, const Model& model, State& s, Carry& carry, double t, double h,
                        WorkCounters& work) {
+  if constexpr (!has_potential<Model>) {  // no kicks: the free step alone, which leaves s untouched on failure
+    const StepStatus st = scheme.free_step(model, s, carry, h);
+    if (st.converged) work.rhs_evaluations += 1;
+    return st;
+  }
   State x = s;
   Carry c = carry;
   scheme.kick(model, x, c, t, 0.5 * h);
@@ -292,17 +340,27 @@ class Lgvi {
                    "Phys. 139 (1991)"};
   /// A run starts with no carried rounding error.
   template <class Model>
-  void start(const Model& /*model*/, const State& /*initial*/, double /*t0*/) {
+  void start(const Model& model, const State& /*initial*/, double /*t0*/) {
     carry_ = {};
+    diag_ = moser_veselov::DiagonalInertia(model.inertia);
+    ready_ = true;
   }
   /// Π ← Π + τ M(R), the potential torque only (nothing for a free body), compensated.
   template <class Model>
   static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double /*t*/, double tau) {
     if constexpr (moser_veselov::has_potential<Model>) add_compensated(s.Pi, Vec3(tau * model.potential_torque(s.R)), carry.Pi);
   }
-  /// The free DMV step of length h (no kicks).
+  /// The free DMV step of length h (no kicks); the diagonal fast path when J is diagonal.
   template <class Model>
-  static StepStatus free_step(const Model& model, State& s, moser_veselov::Carry& carry, double h) {
+  StepStatus free_step(const Model& model, State& s, moser_veselov::Carry& carry, double h) {
+    if (!ready_) {
+      diag_ = moser_veselov::DiagonalInertia(model.inertia);
+      ready_ = true;
+    }
+    if (diag_.diagonal) {
+      if (diag_.turns_too_far(s.Pi, h)) return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
+      return moser_veselov::dmv_step_diagonal(diag_.moments, s, carry, h);
+    }
     if (moser_veselov::turns_too_far(model.inertia.J_inv, s.Pi, h))
       return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
     return moser_veselov::dmv_step(model.inertia.J, model.inertia.J_inv, s, carry, h);
@@ -326,6 +384,8 @@ class Lgvi {
 
  private:
   moser_veselov::Carry carry_{};
+  moser_veselov::DiagonalInertia diag_{};  // per run (start), or at the first step without one
+  bool ready_ = false;
 };
 
 /// `dmv`: the same step, kept to free bodies, where it also conserves the energy.
@@ -355,10 +415,11 @@ class DmvPreprocessed {
       .reference = "Hairer & Vilmart, J. Phys. A 39 (2006) 13225-13235, Algorithm 2.2; modified inertia: Table 1 "
                    "and the authors' DMV10.f"};
 
+  /// Per run: the series constants, the diagonal path's constants and, for a
+  /// free body, the series as polynomials in h² at the initial H and |Π|²/2.
   template <class Model>
-  void start(const Model& model, const State& /*initial*/, double /*t0*/) {
-    series_ = moser_veselov::ModifiedInertiaSeries<Order>(model.inertia.principal);
-    ready_ = true;
+  void start(const Model& model, const State& initial, double /*t0*/) {
+    prepare(model, initial);
     carry_ = {};
   }
 
@@ -368,27 +429,44 @@ class DmvPreprocessed {
   }
 
   /// The preprocessed DMV step of length h (no kicks): DMV with the modified
-  /// inertia J̃⁻¹ = css J⁻¹ + cdd I evaluated at the current Π.
+  /// inertia J̃⁻¹ = css J⁻¹ + cdd I at the current H and |Π|²/2 (for a free
+  /// body, the initial ones: the scheme conserves both, header comment).
   template <class Model>
   StepStatus free_step(const Model& model, State& s, moser_veselov::Carry& carry, double h) {
-    if (!ready_) {
-      series_ = moser_veselov::ModifiedInertiaSeries<Order>(model.inertia.principal);
-      ready_ = true;
-    }
+    if (!ready_) prepare(model, s);
     const Mat3& J_inv = model.inertia.J_inv;
-    const Vec3 Omega = J_inv * s.Pi;
-    if (!(std::abs(h) * Omega.norm() < std::numbers::pi))
+    if (diag_.diagonal ? diag_.turns_too_far(s.Pi, h) : moser_veselov::turns_too_far(J_inv, s.Pi, h))
       return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
-    const double H = 0.5 * s.Pi.dot(Omega);
-    const double C = 0.5 * s.Pi.squaredNorm();
+    if constexpr (!moser_veselov::has_potential<Model>) {
+      // Free body, diagonal J: the modified moments depend on h alone (H and C are
+      // the run's); the last h's are kept (h = t_{k+1} − t_k repeats bitwise often).
+      if (diag_.diagonal && h == cached_h_) return moser_veselov::dmv_step_diagonal(cached_moments_, s, carry, h);
+    }
     double css = 1.0, cdd = 0.0;
-    series_.evaluate(h * h * H, h * h * C, css, cdd);
+    const double x = h * h;
+    if constexpr (moser_veselov::has_potential<Model>) {
+      const double H = 0.5 * s.Pi.dot(J_inv * s.Pi);
+      const double C = 0.5 * s.Pi.squaredNorm();
+      series_.evaluate(x * H, x * C, css, cdd);
+    } else {
+      constexpr int degrees = moser_veselov::ModifiedInertiaSeries<Order>::degrees;
+      css = moser_veselov::horner_in_h2(css_in_h2_, degrees, x, 1.0);
+      cdd = moser_veselov::horner_in_h2(cdd_in_h2_, degrees, x, 0.0);
+    }
     // J̃⁻¹ shares J's principal axes, with moments css/λ_j + cdd: refuse a step
     // where the truncated series has left them non-positive (h far too large).
-    const Vec3 moments_inv = css * model.inertia.principal.cwiseInverse() + Vec3::Constant(cdd);
+    const Vec3 moments_inv = css * (diag_.diagonal ? diag_.J_inv : principal_inv_) + Vec3::Constant(cdd);
     if (!(moments_inv.minCoeff() > 0.0))
       return moser_veselov::refused_step(
           "step refused: the truncated modified-inertia series is not positive at this h|Omega|; reduce --dt");
+    if (diag_.diagonal) {  // moments_inv = 1/Ĩ_j in J's own order
+      const moser_veselov::DiagonalMoments m(moments_inv.cwiseInverse(), moments_inv);
+      if constexpr (!moser_veselov::has_potential<Model>) {
+        cached_moments_ = m;
+        cached_h_ = h;
+      }
+      return moser_veselov::dmv_step_diagonal(m, s, carry, h);
+    }
     Mat3 Jt_inv = css * J_inv;
     Jt_inv.diagonal().array() += cdd;
     return moser_veselov::dmv_step(Jt_inv.inverse(), Jt_inv, s, carry, h);
@@ -400,7 +478,26 @@ class DmvPreprocessed {
   }
 
  private:
+  template <class Model>
+  void prepare(const Model& model, const State& x) {
+    series_ = moser_veselov::ModifiedInertiaSeries<Order>(model.inertia.principal);
+    principal_inv_ = model.inertia.principal.cwiseInverse();
+    diag_ = moser_veselov::DiagonalInertia(model.inertia);
+    if constexpr (!moser_veselov::has_potential<Model>) {
+      const double H = 0.5 * x.Pi.dot(model.inertia.J_inv * x.Pi);
+      const double C = 0.5 * x.Pi.squaredNorm();
+      series_.coefficients_in_h2(H, C, css_in_h2_, cdd_in_h2_);
+    }
+    cached_h_ = std::numeric_limits<double>::quiet_NaN();
+    ready_ = true;
+  }
+
   moser_veselov::ModifiedInertiaSeries<Order> series_{};
+  double cached_h_ = std::numeric_limits<double>::quiet_NaN();  // free body: the h of cached_moments_
+  moser_veselov::DiagonalMoments cached_moments_{};
+  std::array<double, 4> css_in_h2_{}, cdd_in_h2_{};  // free body: the series in h² (prepare)
+  Vec3 principal_inv_ = Vec3::Ones();
+  moser_veselov::DiagonalInertia diag_{};
   bool ready_ = false;
   moser_veselov::Carry carry_{};
 };

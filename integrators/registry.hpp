@@ -30,6 +30,8 @@ struct SchemeInfo {
   int order_with_torque = 0;  // order on scenes with torques where it differs (Strang splitting); 0: the same
   std::string base_scheme{};  // a composition's base scheme (`lgi schemes --json` "base"); empty otherwise
   bool locates_events = true;  // driven by the stepper loop, which honours RunConfig::events (not the baselines)
+  /// A run can be resumed from a checkpoint (RunConfig::checkpoints; scheme_interface.hpp, "Resume").
+  bool resumable = false;
 };
 
 const std::vector<SchemeInfo>& scheme_registry();

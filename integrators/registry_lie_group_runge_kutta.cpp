@@ -21,6 +21,13 @@ void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& r) {
   add_scheme<Rkmk4>(r, {.name = "rkmk4", .family = "RKMK"});
   add_scheme<RkmkDp54>(
       r, {.name = "rkmk-dp54", .family = "RKMK", .notes = "adaptive (--tol); error estimated on the algebra and in Pi"});
+  add_scheme<RkmkVerner65>(r, {.name = "rkmk-verner65",
+                               .family = "RKMK",
+                               .notes = "adaptive (--tol), Verner 6(5) pair; dense output of order 6; PI controller"});
+  add_scheme<RkmkDop853>(r, {.name = "rkmk-dop853",
+                             .family = "RKMK",
+                             .notes = "adaptive (--tol), DOP853 with 8(5,3) estimator; dense output of order 7; PI "
+                                      "controller"});
   add_scheme<Cg3>(r, {.name = "cg3", .family = "Crouch-Grossman"});
   add_scheme<Cg4a>(r, {.name = "cg4a", .family = "Crouch-Grossman", .notes = "5 stages"});
   add_scheme<Cf4>(r, {.name = "cf4", .family = "commutator-free", .notes = "two exponentials per step"});

@@ -64,7 +64,8 @@ void add_scheme(std::vector<SchemeInfo>& registry, const SchemeEntry& entry) {
                       .notes = entry.notes,
                       .run = &run_scheme<Scheme>,
                       .order_with_torque = facts.order_with_torque,
-                      .base_scheme = entry.base_scheme});
+                      .base_scheme = entry.base_scheme,
+                      .resumable = resumable_scheme<Scheme, system::FreeBody, facts.properties.adaptive>()});
 }
 
 /// Registers BASE@yoshida4, @suzuki4, @kahan-li6 and @kahan-li8 for a

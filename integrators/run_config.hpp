@@ -13,6 +13,40 @@
 
 namespace lgi::integrators {
 
+/// Everything a run needs, beyond its configuration, to go on from an
+/// accepted step as if it had never stopped (a resumed run's steps are bit
+/// for bit those of an uninterrupted one): the step count, t, the state, the
+/// work counters, the adaptive loop's next trial step and the scheme's
+/// memory between steps (scheme_interface.hpp, "Resume").
+struct LoopCheckpoint {
+  std::int64_t step = 0;
+  double t = 0.0;
+  double h = 0.0;  // adaptive runs: the next trial step; fixed-step runs: unused (0)
+  State state{};
+  WorkCounters work{};
+  std::vector<double> memory;  // Scheme::save_memory(); empty for a scheme without memory
+};
+
+/// Checkpoints of a run (RunConfig::checkpoints), for a caller that saves
+/// them (lgi long-time) and resumes from one. The loop asks due() after
+/// every `every`-th accepted step that does not end the run, after the
+/// step's samples (and, adaptive, its next trial step); if true, it hands
+/// the checkpoint to save(). Schemes that cannot be resumed
+/// (resumable_scheme) are never asked. save() may throw: the run ends with
+/// the exception.
+class Checkpoints {
+ public:
+  virtual ~Checkpoints() = default;
+  virtual bool due(std::int64_t step) = 0;
+  virtual void save(const LoopCheckpoint& checkpoint) = 0;
+  std::int64_t every = 4096;  // steps between two calls of due() (>= 1)
+  /// If set: the run starts from this checkpoint instead of t0 (start() is
+  /// still called with the run's initial state, the state passed to the
+  /// run, and the initial state is not observed again). A scheme that
+  /// cannot be resumed, or a memory it refuses, fails the run.
+  const LoopCheckpoint* resume_from = nullptr;
+};
+
 struct RunConfig {
   double t0 = 0.0;
   double t_end = 0.0;
@@ -39,6 +73,8 @@ struct RunConfig {
   bool chart_guards = true;
   /// Adaptive runs: this many rejections in a row end the run (not ok).
   std::int64_t max_consecutive_rejections = 1000;
+  /// If set: checkpoints are offered to it, and a run may resume from one (Checkpoints).
+  Checkpoints* checkpoints = nullptr;
 };
 
 /// Receives the samples of a run. Called once per saved step (never inside

@@ -18,7 +18,23 @@
 // (Observer::observe_euler_zxz), refusal_reason() (StepStatus::refused).
 // Schemes never write files and never renormalise the attitude (a baseline
 // chart that projects, quat-normalized, says so in its name).
+//
+// Resume (a run continued bit for bit from a saved step, RunConfig::
+// checkpoints, run_config.hpp): a scheme whose step depends on nothing but
+// the state, t and h (and what start() set up from the run's initial state)
+// needs nothing saved. That holds when the step the loop takes is const
+// (step() of a fixed-step scheme, attempt() of an adaptive one), or when the
+// scheme states it:
+//   static constexpr bool memoryless_steps = true;
+// A scheme that carries something from one step to the next (a compensated
+// sum's carry, an FSAL stage) saves and restores it:
+//   void save_memory(std::vector<double>& out) const;  // appends its memory
+//   bool restore_memory(std::span<const double> in);    // false: not a memory it saved
+// Any other scheme cannot be resumed (SchemeInfo::resumable is false).
+#include <concepts>
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "integrators/scheme_facts.hpp"
 #include "integrators/system/rigid_body.hpp"
@@ -65,5 +81,35 @@ struct WorkCounters {
   std::int64_t newton_iterations_max = 0;
   std::int64_t newton_failures = 0;
 };
+
+template <class Scheme>
+concept saves_step_memory = requires(const Scheme& c, Scheme& s, std::vector<double>& out, std::span<const double> in) {
+  c.save_memory(out);
+  { s.restore_memory(in) } -> std::same_as<bool>;
+};
+
+namespace detail {
+template <class Scheme>
+concept declared_memoryless = requires { requires Scheme::memoryless_steps; };
+template <class Scheme>
+concept has_base_scheme = requires { typename Scheme::base_scheme_type; };
+template <class Scheme, class Model>
+concept const_step = requires(const Scheme& c, const Model& m, State& x, WorkCounters& w) { c.step(m, x, 0.0, 0.0, w); };
+template <class Scheme, class Model>
+concept const_attempt =
+    requires(const Scheme& c, const Model& m, State& x, WorkCounters& w) { c.attempt(m, x, 0.0, 0.0, w); };
+}  // namespace detail
+
+/// Whether the fixed-step (Adaptive: the adaptive) loop can resume Scheme on
+/// Model from a saved step (top of this file). A composition keeps what its
+/// base keeps (composition.hpp: base_scheme_type, and the base's memory).
+template <class Scheme, class Model, bool Adaptive>
+constexpr bool resumable_scheme() {
+  if constexpr (saves_step_memory<Scheme> || detail::declared_memoryless<Scheme>) return true;
+  else if constexpr (detail::has_base_scheme<Scheme>)
+    return resumable_scheme<typename Scheme::base_scheme_type, Model, false>();
+  else if constexpr (Adaptive) return detail::const_attempt<Scheme, Model>;
+  else return detail::const_step<Scheme, Model>;
+}
 
 }  // namespace lgi::integrators

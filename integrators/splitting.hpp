@@ -67,6 +67,8 @@ class SplitExact {
   void start(const Model& model, const State& /*initial*/, double /*t0*/) {
     flow_.emplace(model.inertia);
   }
+  // Resume (scheme_interface.hpp): start() sets the flow up from the inertia; a step changes nothing else.
+  static constexpr bool memoryless_steps = true;
 
   /// The exact flow over `length` (either sign) of Ṙ = 0, Π̇ = τ(R, Π, t) at frozen R and t.
   template <class Model>

@@ -36,7 +36,16 @@
 // step whose implicit solve fails, or that leaves a non-finite state, ends
 // the run (not ok, status "event location failed ...").
 //
-// With all three null, the loop is the one it always was: the same steps,
+// Checkpoints (RunConfig::checkpoints, run_config.hpp): every `every`-th
+// accepted step that does not end the run, a scheme that can be resumed
+// (scheme_interface.hpp, "Resume") offers its LoopCheckpoint after the
+// step's samples. A run given resume_from calls start() with the state it is
+// passed (the run's initial state), then goes on from the checkpoint's step,
+// t, state, work counters, scheme memory and (adaptive) trial step, without
+// observing the initial state again: its steps, samples and counters are bit
+// for bit those of the uninterrupted run from there on.
+//
+// With all four null, the loop is the one it always was: the same steps,
 // the same arithmetic and the same observe() calls.
 #include <algorithm>
 #include <cmath>
@@ -62,14 +71,21 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   const double direction = cfg.t_end < cfg.t0 ? -1.0 : 1.0;
   const std::int64_t n = started.refused ? 0 : fixed_step_count(direction * (cfg.t_end - cfg.t0), cfg.dt);
   detail::OutputCursor out{.times = cfg.output_times, .direction = direction, .span = cfg.t_end - cfg.t0};
-  detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
   double t = cfg.t0;
+  std::int64_t first = 0;
+  if (const LoopCheckpoint* from = detail::resume_point(cfg); from && !started.refused) {
+    first = n;  // unless the resume succeeds
+    if (detail::resume<Scheme, Model, false>(scheme, *from, s, stats)) first = from->step, t = from->t;
+    detail::skip_output_times(out, t);
+  } else {
+    detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
+  }
   const EventFunctions* events = cfg.events;
   std::vector<double> g;
   std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the step
   State x_before;
-  if (events) detail::event_values(*events, cfg.t0, s, g);
-  for (std::int64_t k = 0; k < n; ++k) {
+  if (events) detail::event_values(*events, t, s, g);
+  for (std::int64_t k = first; k < n; ++k) {
     const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + direction * static_cast<double>(k + 1) * cfg.dt;
     if (events) {
       scheme_before.emplace(scheme);
@@ -115,6 +131,7 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
       }
     }
     if (detail::observe_step(scheme, model, cfg, out, k + 1, t_start, t, k + 1 == n, s, observer, stats)) break;
+    if (k + 1 < n) detail::offer_checkpoint<Scheme, Model, false>(scheme, cfg, k + 1, t, 0.0, s, stats);
   }
   stats.t_final = t;
   stats.cpu_seconds = cfg.cpu_clock ? detail::cpu_now() - cpu0 : 0.0;
@@ -136,15 +153,20 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
   const std::vector<double>* times = cfg.output_times;
   const double span = cfg.t_end - cfg.t0;
   detail::OutputCursor out{.times = times, .direction = 1.0, .span = span};
-  detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
   double t = cfg.t0;
   double h = 0.0;
-  if (stats.ok && span > 0.0) h = cfg.dt > 0.0 ? std::min(cfg.dt, span) : scheme.initial_step(model, s, t, span);
   std::int64_t k = 0, rejected_in_a_row = 0;
+  if (const LoopCheckpoint* from = detail::resume_point(cfg); from && !started.refused) {
+    if (detail::resume<Scheme, Model, true>(scheme, *from, s, stats)) t = from->t, h = from->h, k = from->step;
+    detail::skip_output_times(out, t);
+  } else {
+    detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
+    if (stats.ok && span > 0.0) h = cfg.dt > 0.0 ? std::min(cfg.dt, span) : scheme.initial_step(model, s, t, span);
+  }
   const EventFunctions* events = cfg.events;
   std::vector<double> g;
   std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the attempt
-  if (events) detail::event_values(*events, cfg.t0, s, g);
+  if (events) detail::event_values(*events, t, s, g);
   while (stats.ok && span > 0.0 && t < cfg.t_end) {
     // The time this step may not pass: t_end, or the next output time before it.
     double target = cfg.t_end;
@@ -207,6 +229,7 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
     // A step shortened to land on an output time (or t_end, which ends the
     // run) does not shrink the next proposal.
     h = last ? std::max(a.h_next, h) : a.h_next;
+    if (t < cfg.t_end) detail::offer_checkpoint<Scheme, Model, true>(scheme, cfg, k, t, h, s, stats);
   }
   stats.t_final = t;
   stats.cpu_seconds = cfg.cpu_clock ? detail::cpu_now() - cpu0 : 0.0;

@@ -91,9 +91,13 @@ def main():
             f.write(out)
     per_scene = {}
     maps = []
+    ensembles = {}
     for b in data["benchmarks"]:
         if b.get("error_occurred"):
             continue  # e.g. an Euler-angle baseline on a scene that starts at its singularity
+        if b["name"].startswith("ensemble/"):  # bench_ensemble.cpp: trajectories/s, scalar loop vs ensemble
+            ensembles[b["name"]] = b["trajectories_per_second"]
+            continue
         if b["name"].startswith("newton/"):
             continue  # the implicit schemes' Newton variants (bench_implicit_newton.cpp): not a per-scheme row
         if "ns_per_step" in b:
@@ -111,6 +115,19 @@ def main():
         print(f"{r[0]:<22}{r[1]:<30}{r[2]:>12.1f}{r[3]:>9.2f}  {r[4]}")
     for name, t, unit in maps:
         print(f"{name:<22}{t:>10.2f} {unit} per call")
+    # The preprocessed DMV bar (issue 13): dmv-pre10 <= 0.45 x quat/rk4 per step on
+    # Hairer & Vilmart's body at h = 0.01 (tests/benchmarks/scenes/), same run.
+    hv = per_scene.get("free_body_hairer_vilmart", {})
+    if "quat/rk4" in hv:
+        for scheme in ("dmv", "dmv-pre4", "dmv-pre6", "dmv-pre8", "dmv-pre10"):
+            if scheme in hv:
+                print(f"# free_body_hairer_vilmart: {scheme} / quat/rk4 = {hv[scheme] / hv['quat/rk4']:.3f}"
+                      + (" (bar: <= 0.45)" if scheme == "dmv-pre10" else ""))
+    # The ensemble stepper (docs/ensemble.md): trajectories per second per core over the scalar loop, same run.
+    for name, rate in ensembles.items():
+        base = name.rsplit("/", 1)[0] + "/scalar"
+        if name != base and base in ensembles:
+            print(f"# {name}: {rate:.0f} trajectories/s, {rate / ensembles[base]:.2f} x the scalar loop")
     ctx = data["context"]
     print(f"# {ctx.get('host_name', '')} {ctx.get('num_cpus', '')} cpus @ {ctx.get('mhz_per_cpu', '')} MHz, "
           f"library build {ctx.get('library_build_type', '')}")

@@ -69,6 +69,15 @@ TEST_CASE("every composition reaches its order on the asymmetric free body", "[c
     const auto pts = convergence(scheme, model, scene.initial, T, exact);
     const auto fit = testing::fitted_slope(pts, 1e-12);  // 17 substeps per step: round-off reaches 1e-13
     testing::report_slope(scheme.name, "free_body_hlw", fit, pts);
+    // split-symmetric@kahan-li8 is within 1e-10 of the exact flow at the
+    // coarsest step (the split-off remainder is small on this body), so only
+    // 2 points lie above round-off and a coarser start is pre-asymptotic
+    // (slope 7.45 from h = 1). The next test case measures it on the
+    // Kovalevskaya top (slope 8.00).
+    if (pts.front().error < 1e-10) {
+      WARN(scheme.name << " is at round-off on this body; measured on the Kovalevskaya top");
+      continue;
+    }
     INFO(scheme.name << ": slope " << fit.slope << " from " << fit.points << " points");
     CHECK(fit.points >= 3);
     CHECK(std::abs(fit.slope - scheme.order) <= 0.2);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "integrators/system/cardan.hpp"
 #include "integrators/system/inertia.hpp"
 #include "integrators/system/terms/scene_terms.hpp"
 #include "lie/product_state.hpp"
@@ -26,6 +27,12 @@ struct Scene {
   SceneTerms::Parameters terms;  // std::optional<T::Parameters> per scene term
 
   lie::SO3xR3 initial;  // (R0, Π0)
+
+  /// [suspension]: the body hangs in a Cardan frame (docs/cardan.md); its
+  /// state lives on T³ × ℝ³, from [initial] cardan_angles and cardan_rates,
+  /// and `initial` holds the body's (R, Π) at that state.
+  std::optional<SuspensionParameters> suspension;
+  TorusState cardan_initial{};
 
   // [run]: defaults for the command line, which overrides each of them.
   std::optional<double> t_end;

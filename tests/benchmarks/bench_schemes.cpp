@@ -1,7 +1,9 @@
-// Nanoseconds per step of every registered scheme on free_body_hlw and
-// heavy_top_trindade_1, through the same run functions lgi simulate uses
-// (no output: a null observer). Ratios to quat/rk4 (or rkmk4 where the
-// baselines are absent) on the same scene come from
+// Nanoseconds per step of every registered scheme on free_body_hlw,
+// heavy_top_trindade_1 and free_body_hairer_vilmart (Hairer & Vilmart's test
+// body I = (0.6, 0.8, 1.0), Π0 = (1.8, 0.4, −0.9) at h = 0.01, a benchmark
+// scene of its own: tests/benchmarks/scenes/), through the same run functions
+// lgi simulate uses (no output: a null observer). Ratios to quat/rk4 (or
+// rkmk4 where the baselines are absent) on the same scene come from
 // scripts/benchmark_ratios.py, which runs this program and divides.
 #include <benchmark/benchmark.h>
 
@@ -45,10 +47,15 @@ struct Registration {
   std::vector<std::unique_ptr<system::Scene>> scenes;
   std::vector<std::unique_ptr<system::AnyModel>> models;
   Registration() {
-    static const char* files[] = {"free_body_hlw", "heavy_top_trindade_1"};
-    for (const char* file : files) {
-      scenes.push_back(std::make_unique<system::Scene>(
-          experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + file + ".toml")));
+    static const struct {
+      const char* dir;
+      const char* file;
+    } files[] = {{LGI_SCENES_DIR, "free_body_hlw"},
+                 {LGI_SCENES_DIR, "heavy_top_trindade_1"},
+                 {LGI_BENCH_SCENES_DIR, "free_body_hairer_vilmart"}};
+    for (const auto& [dir, file] : files) {
+      scenes.push_back(
+          std::make_unique<system::Scene>(experiments::read_scene(std::string(dir) + "/" + file + ".toml")));
       models.push_back(std::make_unique<system::AnyModel>(system::make_model(*scenes.back())));
       const system::Scene* scene = scenes.back().get();
       const system::AnyModel* model = models.back().get();

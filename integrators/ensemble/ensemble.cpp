@@ -1,0 +1,178 @@
+// The ensemble stepper's dispatch (ensemble.hpp): which instruction sets this
+// CPU has, which schemes and models have kernels, and the lane block.
+// Compiled for the baseline instruction set; it includes no xsimd header.
+#include "integrators/ensemble/ensemble.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <type_traits>
+#include <variant>
+
+namespace lgi::integrators::ensemble {
+
+namespace {
+
+bool cpu_has(Isa isa) {
+#if defined(LGI_ENSEMBLE_X86)
+  switch (isa) {
+    case Isa::baseline: return true;
+    case Isa::avx2: return __builtin_cpu_supports("avx2");
+    case Isa::avx512: return __builtin_cpu_supports("avx512f");  // libgcc also checks the OS saves the state
+  }
+  return false;
+#else
+  return isa == Isa::baseline;
+#endif
+}
+
+KernelSet kernels(Isa isa) {
+#if defined(LGI_ENSEMBLE_X86)
+  if (isa == Isa::avx2) return avx2_kernels();
+  if (isa == Isa::avx512) return avx512_kernels();
+#endif
+  return baseline_kernels();
+}
+
+/// A scheme's kernel in a KernelSet, and its cost per step.
+struct SchemeKernel {
+  std::string_view name;
+  StepKernel KernelSet::*kernel;
+  int rhs_per_step;
+};
+constexpr SchemeKernel scheme_kernels[] = {
+    {"rkmk4", &KernelSet::rkmk4, 4},
+};
+
+const SchemeKernel* find(std::string_view scheme) {
+  for (const auto& k : scheme_kernels)
+    if (k.name == scheme) return &k;
+  return nullptr;
+}
+
+void copy3(const lie::Vec3& v, double (&out)[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = v(i);
+}
+
+// The kernels mirror the scene model's terms in this order (ensemble_model.hpp).
+static_assert(std::is_same_v<system::SceneModel,
+                             system::RigidBody<system::Declared<system::GravityTerm>, system::Declared<system::SpringTerm>,
+                                               system::Declared<system::HarmonicDriveTerm>,
+                                               system::Declared<system::MagneticDipoleTerm>>>,
+              "the scene terms changed: update EnsembleModel, scene_torque() and describe() to match");
+
+/// The kernels' view of a model; nullopt with the reason where no kernel applies.
+std::optional<EnsembleModel> describe(const system::AnyModel& any, std::string* why) {
+  EnsembleModel m;
+  const system::Inertia& inertia = std::visit([](const auto& model) -> const system::Inertia& { return model.inertia; }, any);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m.J_inv[i][j] = inertia.J_inv(i, j);
+  const auto* scene = std::get_if<system::SceneModel>(&any);
+  if (!scene) return m;  // the free body
+  m.free_body = false;
+  const auto& [gravity, spring, drive, magnetic] = scene->terms;
+  if (spring.active) {
+    if (why) *why = "no ensemble kernel for a spring (a matrix logarithm per lane)";
+    return std::nullopt;
+  }
+  m.gravity = gravity.active;
+  copy3(gravity.term.mg_chi, m.mg_chi);
+  m.drive = drive.active;
+  copy3(drive.term.amplitude, m.drive_amplitude);
+  m.drive_frequency = drive.term.angular_frequency;
+  m.drive_phase = drive.term.phase;
+  m.magnetic = magnetic.active;
+  copy3(magnetic.term.field, m.magnetic_field);
+  copy3(magnetic.term.minus_moment, m.magnetic_minus_moment);
+  return m;
+}
+
+std::atomic<int> sweep_choice{-2};  // −2: not set (best_isa()), −1: none, else an Isa
+
+}  // namespace
+
+const char* isa_name(Isa isa) {
+  switch (isa) {
+    case Isa::baseline: return kernels(Isa::baseline).isa;
+    case Isa::avx2: return "avx2";
+    case Isa::avx512: return "avx512";
+  }
+  return "";
+}
+
+std::optional<Isa> parse_isa(std::string_view name) {
+  for (Isa isa : {Isa::baseline, Isa::avx2, Isa::avx512})
+    if (name == isa_name(isa)) return isa;
+  return std::nullopt;
+}
+
+bool isa_available(Isa isa) { return cpu_has(isa); }
+
+std::vector<Isa> available_isas() {
+  std::vector<Isa> out;
+  for (Isa isa : {Isa::baseline, Isa::avx2, Isa::avx512})
+    if (isa_available(isa)) out.push_back(isa);
+  return out;
+}
+
+Isa best_isa() { return available_isas().back(); }
+
+int isa_lanes(Isa isa) { return kernels(isa).lanes; }
+
+std::optional<Isa> sweep_isa() {
+  const int c = sweep_choice.load();
+  if (c == -2) return best_isa();
+  if (c == -1) return std::nullopt;
+  return static_cast<Isa>(c);
+}
+
+void set_sweep_isa(std::optional<Isa> isa) { sweep_choice = isa ? static_cast<int>(*isa) : -1; }
+
+bool has_kernel(std::string_view scheme) { return find(scheme) != nullptr; }
+
+std::string unsupported_reason(std::string_view scheme, const system::AnyModel& model) {
+  if (!find(scheme)) return "no ensemble kernel for " + std::string(scheme);
+  std::string why;
+  if (!describe(model, &why)) return why;
+  return {};
+}
+
+std::optional<EnsembleStepper> EnsembleStepper::make(std::string_view scheme, const system::AnyModel& model, Isa isa) {
+  const SchemeKernel* k = find(scheme);
+  if (!k || !isa_available(isa)) return std::nullopt;
+  const std::optional<EnsembleModel> m = describe(model, nullptr);
+  if (!m) return std::nullopt;
+  const KernelSet set = kernels(isa);
+  EnsembleStepper e;
+  e.model_ = *m;
+  e.kernel_ = set.*(k->kernel);
+  e.scheme_ = k->name;
+  e.lanes_ = set.lanes;
+  e.rhs_per_step_ = k->rhs_per_step;
+  e.isa_ = isa;
+  return e;
+}
+
+void EnsembleStepper::set_lane(int lane, const State& s) {
+  const auto l = static_cast<std::size_t>(lane);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) block_.row[3 * i + j][l] = s.R(i, j);
+    block_.row[9 + i][l] = s.Pi(i);
+  }
+}
+
+void EnsembleStepper::get_lane(int lane, State& s) const {
+  const auto l = static_cast<std::size_t>(lane);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) s.R(i, j) = block_.row[3 * i + j][l];
+    s.Pi(i) = block_.row[9 + i][l];
+  }
+}
+
+bool EnsembleStepper::lane_finite(int lane) const {
+  const auto l = static_cast<std::size_t>(lane);
+  for (const auto& row : block_.row)
+    if (!std::isfinite(row[l])) return false;
+  return true;
+}
+
+}  // namespace lgi::integrators::ensemble

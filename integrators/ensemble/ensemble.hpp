@@ -1,0 +1,81 @@
+#pragma once
+// The ensemble stepper: several trajectories of one scene advanced together
+// in SIMD lanes, each lane bit for bit the trajectory the scalar scheme
+// computes one at a time (docs/ensemble.md). Kernels exist for rkmk4 on the
+// free body and on scenes whose torques are gravity, the harmonic drive and
+// the magnetic dipole (not the spring); they are compiled for the baseline
+// instruction set (SSE2 on x86-64) and, on x86-64, for AVX2 and AVX-512F
+// (without FMA), chosen at run time from what the CPU supports.
+//
+// A step allocates nothing: the lanes live in a fixed-size block inside the
+// stepper. Lanes beyond the trajectories in use are padding (a copy of the
+// first trajectory) whose results are dropped.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/system/model.hpp"
+
+namespace lgi::integrators::ensemble {
+
+using system::State;
+
+/// The instruction sets the kernels are compiled for, narrowest first.
+enum class Isa { baseline, avx2, avx512 };
+
+/// "sse2" (the baseline on x86-64; xsimd's name for it elsewhere), "avx2", "avx512".
+const char* isa_name(Isa isa);
+/// The name's instruction set, or nullopt for an unknown name.
+std::optional<Isa> parse_isa(std::string_view name);
+/// Compiled in, and supported by this CPU and operating system.
+bool isa_available(Isa isa);
+/// The available instruction sets, narrowest first (the baseline always).
+std::vector<Isa> available_isas();
+/// The widest available instruction set.
+Isa best_isa();
+/// Trajectories per ensemble step on that instruction set.
+int isa_lanes(Isa isa);
+
+/// The instruction set sweeps use for their ensemble path, or nullopt for
+/// none (one trajectory at a time). Default: best_isa(). `lgi sweep --simd`
+/// sets it once, before the run starts.
+std::optional<Isa> sweep_isa();
+void set_sweep_isa(std::optional<Isa> isa);
+
+/// Whether `scheme` (a registry name) has an ensemble kernel.
+bool has_kernel(std::string_view scheme);
+/// Empty if `scheme` has a kernel for this model, else why not.
+std::string unsupported_reason(std::string_view scheme, const system::AnyModel& model);
+
+class EnsembleStepper {
+ public:
+  /// nullopt unless unsupported_reason(scheme, model) is empty and isa is available.
+  static std::optional<EnsembleStepper> make(std::string_view scheme, const system::AnyModel& model, Isa isa);
+
+  int lanes() const { return lanes_; }
+  Isa isa() const { return isa_; }
+  /// The scheme's registry name.
+  std::string_view scheme() const { return scheme_; }
+  /// Right-hand-side evaluations one step costs per lane (WorkCounters).
+  int rhs_per_step() const { return rhs_per_step_; }
+  void set_lane(int lane, const State& s);
+  void get_lane(int lane, State& s) const;
+  /// Every lane from t to t + h.
+  void step(double t, double h) { kernel_(model_, block_, t, h); }
+  /// Whether every entry of lane's R and Π is finite (detail::finite_state).
+  bool lane_finite(int lane) const;
+
+ private:
+  EnsembleStepper() = default;
+  EnsembleModel model_{};
+  StepKernel kernel_ = nullptr;
+  std::string_view scheme_;
+  int lanes_ = 0;
+  int rhs_per_step_ = 0;
+  Isa isa_ = Isa::baseline;
+  LaneBlock block_{};
+};
+
+}  // namespace lgi::integrators::ensemble

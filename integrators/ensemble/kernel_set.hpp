@@ -1,0 +1,18 @@
+#pragma once
+// The kernels of one instruction set, for ensemble_<isa>.cpp: each of those
+// units includes this with its own lane type (docs/ensemble.md).
+#include "integrators/ensemble/rkmk_kernel.hpp"
+#include "integrators/tableaus/runge_kutta.hpp"
+
+namespace lgi::integrators::ensemble {
+
+template <class LaneType>
+KernelSet kernel_set(const char* isa) {
+  KernelSet set;
+  set.isa = isa;
+  set.lanes = LaneType::size;
+  set.rkmk4 = &rkmk_block_step<tableaus::classical_rk4, LaneType>;
+  return set;
+}
+
+}  // namespace lgi::integrators::ensemble

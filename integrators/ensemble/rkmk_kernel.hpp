@@ -1,0 +1,133 @@
+#pragma once
+// The RKMK step (integrators/rkmk.hpp) for lane numbers: the same stages,
+// the same operations in the same order, on T = double or Lanes<Batch, K>
+// (docs/ensemble.md). rkmk.hpp states the scheme; this is its ensemble
+// form, checked bit for bit against it (tests/test_ensemble.cpp):
+//   w_i = h Σ_{j<i} a_ij k̃_j,  Π_i = Π_n + h Σ_{j<i} a_ij K_j,  Ω_i = J⁻¹Π_i,
+//   k̃_i = dexp⁻¹_body(w_i) Ω_i (k̃_1 = Ω_1),  K_i = Π_i × Ω_i + τ(R_n exp(w_i), t_n + c_i h),
+//   R_{n+1} = R_n exp(h Σ b_i k̃_i),  Π_{n+1} = Π_n + h Σ b_i K_i.
+// The tableau's zeros a_ij are skipped as rkmk.hpp skips them (at compile
+// time here); its weights b_i are not (nor are they there).
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+#include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/ensemble/lane_so3.hpp"
+
+namespace lgi::integrators::ensemble {
+
+/// The body torque of system::SceneModel at (R, t): gravity + (spring + (drive + magnetic)),
+/// the scene model's fold, an undeclared term contributing +0 (the spring never has a kernel).
+template <class T>
+inline V3<T> scene_torque(const EnsembleModel& model, const M3<T>& R, double t) {
+  const V3<T> zero = zero3<T>();
+  V3<T> gravity = zero, drive = zero, magnetic = zero;
+  if (model.gravity) {
+    const V3<T> gamma{{R.m[2][0], R.m[2][1], R.m[2][2]}};  // Γ = Rᵀe3, row 2 of R
+    gravity = cross(gamma, V3<double>{{model.mg_chi[0], model.mg_chi[1], model.mg_chi[2]}});
+  }
+  if (model.drive) {  // A sin(ω t + φ): the same in every lane
+    const double s = std::sin(model.drive_frequency * t + model.drive_phase);
+    for (int i = 0; i < 3; ++i) drive.v[i] = T(model.drive_amplitude[i] * s);
+  }
+  if (model.magnetic) {
+    const V3<T> b = transposed_mat_vec(R, model.magnetic_field);  // B_b = Rᵀ B
+    const double(&c)[3] = model.magnetic_minus_moment;
+    magnetic = cross(b, V3<double>{{c[0], c[1], c[2]}});
+  }
+  V3<T> tau;
+  for (int i = 0; i < 3; ++i) tau.v[i] = gravity.v[i] + (zero.v[i] + (drive.v[i] + magnetic.v[i]));
+  return tau;
+}
+
+namespace detail {
+
+/// w = Σ_{j<i, a_ij ≠ 0} a_ij k_j from w = 0, as rkmk.hpp accumulates it.
+template <const auto& Tableau, std::size_t I, class T, std::size_t... J>
+inline void stage_sums(const V3<T>* k_algebra, const V3<T>* k_momentum, V3<T>& w, V3<T>& dPi,
+                       std::index_sequence<J...>) {
+  auto term = [&]<std::size_t Jc>() {
+    constexpr double a = Tableau.a[I][Jc];
+    if constexpr (a != 0.0) {
+      w = add(w, scale(a, k_algebra[Jc]));
+      dPi = add(dPi, scale(a, k_momentum[Jc]));
+    }
+  };
+  (term.template operator()<J>(), ...);
+  (void)term;  // stage 0 sums nothing
+}
+
+template <const auto& Tableau, std::size_t I, class T>
+inline void stage(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, double t, double h,
+                  V3<T>* k_algebra, V3<T>* k_momentum) {
+  V3<T> w = zero3<T>(), dPi = zero3<T>();
+  stage_sums<Tableau, I>(k_algebra, k_momentum, w, dPi, std::make_index_sequence<I>{});
+  w = scale(h, w);
+  const V3<T> Pi_i = add(Pi, scale(h, dPi));
+  const V3<T> Omega_i = mat_vec(model.J_inv, Pi_i);
+  if constexpr (I == 0) {
+    k_algebra[I] = Omega_i;
+  } else {
+    k_algebra[I] = dexpinv_body(w, Omega_i);
+  }
+  const V3<T> gyroscopic = cross(Pi_i, Omega_i);
+  if (model.free_body) {
+    k_momentum[I] = gyroscopic;
+    return;
+  }
+  constexpr double c = Tableau.c[I];
+  V3<T> tau;
+  if constexpr (I == 0) {
+    tau = scene_torque(model, R, t + c * h);
+  } else if (model.magnetic) {
+    tau = scene_torque(model, mat_mat(R, exp_so3(w)), t + c * h);
+  } else {  // only row 2 of R_i = R_n exp(w_i) is read (gravity): the others are not formed
+    tau = scene_torque(model, last_row_product(R, exp_so3(w)), t + c * h);
+  }
+  k_momentum[I] = add(gyroscopic, tau);
+}
+
+template <const auto& Tableau, class T, std::size_t... I>
+inline void rkmk_stages(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, double t, double h,
+                        V3<T>* k_algebra, V3<T>* k_momentum, std::index_sequence<I...>) {
+  (stage<Tableau, I>(model, R, Pi, t, h, k_algebra, k_momentum), ...);
+}
+
+}  // namespace detail
+
+/// One RKMK step of (R, Π) from t to t + h in every lane.
+template <const auto& Tableau, class T>
+inline void rkmk_step(const EnsembleModel& model, M3<T>& R, V3<T>& Pi, double t, double h) {
+  constexpr std::size_t stages = std::remove_cvref_t<decltype(Tableau)>::stages;
+  V3<T> k_algebra[stages];
+  V3<T> k_momentum[stages];
+  detail::rkmk_stages<Tableau>(model, R, Pi, t, h, k_algebra, k_momentum, std::make_index_sequence<stages>{});
+  V3<T> w = zero3<T>(), dPi = zero3<T>();
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    auto term = [&]<std::size_t Ic>() {
+      constexpr double b = Tableau.b[Ic];
+      w = add(w, scale(b, k_algebra[Ic]));
+      dPi = add(dPi, scale(b, k_momentum[Ic]));
+    };
+    (term.template operator()<I>(), ...);
+  }(std::make_index_sequence<stages>{});
+  R = mat_mat(R, exp_so3(scale(h, w)));
+  Pi = add(Pi, scale(h, dPi));
+}
+
+/// rkmk_step on the lanes of a LaneBlock (T = Lanes<Batch, K>, T::size lanes).
+template <const auto& Tableau, class T>
+inline void rkmk_block_step(const EnsembleModel& model, LaneBlock& block, double t, double h) {
+  M3<T> R;
+  V3<T> Pi;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R.m[i][j] = load<typename T::batch_type, T::batches>(block.row[3 * i + j]);
+  for (int i = 0; i < 3; ++i) Pi.v[i] = load<typename T::batch_type, T::batches>(block.row[9 + i]);
+  rkmk_step<Tableau>(model, R, Pi, t, h);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) store(R.m[i][j], block.row[3 * i + j]);
+  for (int i = 0; i < 3; ++i) store(Pi.v[i], block.row[9 + i]);
+}
+
+}  // namespace lgi::integrators::ensemble

@@ -1,0 +1,109 @@
+#pragma once
+// Embedded Runge–Kutta pairs with a continuous extension (dense output), as
+// constexpr data, and their compile-time checks. The pairs themselves are in
+// dop853.hpp and verner65.hpp; the scheme that drives them on SO(3) × ℝ³ is
+// integrators/rkmk_pair.hpp.
+//
+// A pair is an explicit tableau (a, b, c) of order p with
+//   - embedded weights b̂ of order p̂ (the error estimate h Σ (b_i − b̂_i) k_i),
+//   - optionally a second, lower embedded solution b̌ (DOP853's order-3
+//     weights, for the 8(5,3) estimator, HNW I §II.10),
+//   - an extended tableau over X ≥ S stages: the S stages of the step, the
+//     evaluation at the new point (row b, node 1; FSAL pairs have it among
+//     the S stages already), and any extra stages the dense output needs;
+//   - dense-output weights b_i(θ) = Σ_{k=1..D} d_k,i θ^k over the X stages,
+//     a continuous extension of order q (HNW I §II.6): the step's solution at
+//     t_n + θh is y_n + h Σ_i b_i(θ) k_i, and b_i(1) = b_i.
+#include <array>
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+#include "integrators/tableaus/explicit_tableau.hpp"
+
+namespace lgi::tableaus {
+
+template <std::size_t S, std::size_t X, std::size_t D>
+struct DenseEmbeddedTableau : EmbeddedTableau<S> {
+  static constexpr std::size_t dense_stages = X;
+  static constexpr std::size_t dense_degree = D;
+  std::array<double, S> b_low{};  // a second embedded solution; unused when low_order == 0
+  int low_order = 0;
+  ExplicitTableau<X> extended{};                   // a, c over all X stages; b = b_i(1)
+  std::array<std::array<double, X>, D + 1> dense{};  // dense[k][i]: coefficient of θ^k in b_i(θ)
+  int dense_order = 0;
+};
+
+/// The pairs' order conditions are checked 5× tighter than the default: with
+/// heavy cancellation (Verner's b̂ has entries near ±73) the default 1e-14 of
+/// the absolute-value scale lets a perturbation of 1e-12 in one weight pass,
+/// while both pairs here satisfy every condition to 5e-16 of that scale.
+inline constexpr double pair_condition_tolerance = 2e-15;
+
+namespace detail {
+/// Whether the extended tableau repeats the step's stages (rows and nodes
+/// 0..S-1), its other rows are explicit, and Σ_k d_k = b (so b_i(1) = b_i).
+template <class P>
+constexpr bool extension_consistent(const P& p) {
+  constexpr std::size_t S = P::stages, X = P::dense_stages;
+  if (!strictly_lower(p.extended) || !rows_sum_to_nodes(p.extended, 1e-14)) return false;
+  for (std::size_t i = 0; i < S; ++i) {
+    if (p.extended.c[i] != p.c[i]) return false;
+    for (std::size_t j = 0; j < X; ++j)
+      if (p.extended.a[i][j] != (j < S ? p.a[i][j] : 0.0)) return false;
+  }
+  for (std::size_t i = 0; i < X; ++i) {
+    double at_one = 0.0, scale = 0.0;
+    for (const auto& dk : p.dense) {
+      at_one += dk[i];
+      scale += abs_value(dk[i]);
+    }
+    const double b = i < S ? p.b[i] : 0.0;
+    if (abs_value(at_one - b) > 1e-14 * (scale > 1.0 ? scale : 1.0)) return false;
+    if (p.dense[0][i] != 0.0) return false;  // b_i(0) = 0
+  }
+  return true;
+}
+}  // namespace detail
+
+/// The order of the dense-output coefficient d_k: the largest q ≤ max_order
+/// such that Σ_i d_k,i Φ_i(τ) = δ_{k,|τ|}/γ(τ) for |τ| ≤ q (rooted_trees.hpp).
+template <class P>
+constexpr int dense_coefficient_order(const P& p, std::size_t k, int max_order,
+                                      double tolerance = order_condition_tolerance) {
+  return order_of_weights(p.extended.a, p.dense[k], max_order, tolerance, static_cast<int>(k));
+}
+
+namespace detail {
+/// One constant evaluation per coefficient: over 16 stages, the seven
+/// coefficients together would exceed the compiler's constexpr step budget.
+template <const auto& P, std::size_t K>
+inline constexpr int dense_coefficient_order_v =
+    dense_coefficient_order(P, K, capped_order(P.dense_order + 1), pair_condition_tolerance);
+}  // namespace detail
+
+/// The order q of the continuous extension, checked up to one more than the
+/// stated order: the smallest order of its coefficients d_1..d_D.
+template <const auto& P>
+constexpr int dense_output_order() {
+  using Pair = std::remove_cvref_t<decltype(P)>;
+  return []<std::size_t... K>(std::index_sequence<K...>) {
+    int q = max_checked_order;
+    ((q = detail::dense_coefficient_order_v<P, K + 1> < q ? detail::dense_coefficient_order_v<P, K + 1> : q), ...);
+    return q;
+  }(std::make_index_sequence<Pair::dense_degree>{});
+}
+
+/// Every compile-time check of a pair: consistency, the stated orders of b,
+/// b̂ and b̌ hold and the next ones fail, the extension repeats the step and
+/// ends at b, and the dense output has exactly its stated order.
+template <const auto& P>
+constexpr bool pair_checks_out() {
+  constexpr double tol = pair_condition_tolerance;
+  return consistent_explicit(P) && classical_order(P, tol) == capped_order(P.order) &&
+         classical_order_of_weights(P, P.b_hat, tol) == capped_order(P.embedded_order) &&
+         (P.low_order == 0 || classical_order_of_weights(P, P.b_low, tol) == capped_order(P.low_order)) &&
+         detail::extension_consistent(P) && dense_output_order<P>() == capped_order(P.dense_order);
+}
+
+}  // namespace lgi::tableaus

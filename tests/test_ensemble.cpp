@@ -1,0 +1,318 @@
+// The ensemble stepper (integrators/ensemble/, docs/ensemble.md): every lane
+// is bit for bit the scalar scheme's trajectory, on every instruction set
+// this CPU has and for any number of trajectories in use; the ensemble loop
+// gives each lane the scalar loop's samples, crossings and run statistics;
+// a step allocates nothing.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "experiments/io/scene_reader.hpp"
+#include "integrators/ensemble/ensemble_loop.hpp"
+#include "integrators/ensemble/rkmk_kernel.hpp"
+#include "integrators/registry.hpp"
+#include "integrators/rkmk.hpp"
+
+using namespace lgi;
+namespace ensemble = lgi::integrators::ensemble;
+using integrators::State;
+
+namespace {
+
+/// Bit for bit, except that any two NaNs are equal: IEEE 754 leaves the sign
+/// and payload of a NaN produced by arithmetic unspecified, and SSE2 and x87
+/// paths differ there (a lane started at NaN or infinity).
+bool same_bits(const double* a, const double* b, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!(std::isnan(a[i]) && std::isnan(b[i])) && std::memcmp(a + i, b + i, sizeof(double)) != 0) return false;
+  return true;
+}
+bool same_bits(const State& a, const State& b) {
+  return same_bits(a.R.data(), b.R.data(), 9) && same_bits(a.Pi.data(), b.Pi.data(), 3);
+}
+
+/// Initial states near the scene's: the attitude turned and the momentum
+/// scaled and tilted by a seeded draw (some lanes far from others).
+std::vector<State> initial_states(const State& base, int n, unsigned seed) {
+  std::mt19937_64 gen(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<State> out;
+  for (int l = 0; l < n; ++l) {
+    State s = base;
+    s.R = base.R * lie::exp_so3(lie::Vec3(u(gen), u(gen), u(gen)));
+    s.Pi = (1.5 + u(gen)) * base.Pi + 0.3 * base.Pi.norm() * lie::Vec3(u(gen), u(gen), u(gen));
+    out.push_back(s);
+  }
+  return out;
+}
+
+/// Steps `n` trajectories of model together and one at a time by Rkmk4 and
+/// compares every lane after every step, bit for bit.
+template <class Model>
+void check_lanes(const system::AnyModel& any, const Model& model, const State& base, double h, int steps,
+                 ensemble::Isa isa, int n) {
+  auto e = ensemble::EnsembleStepper::make("rkmk4", any, isa);
+  REQUIRE(e);
+  REQUIRE(n <= e->lanes());
+  std::vector<State> scalar = initial_states(base, n, 17u + static_cast<unsigned>(n));
+  for (int l = 0; l < e->lanes(); ++l) e->set_lane(l, scalar[static_cast<std::size_t>(l < n ? l : 0)]);
+  integrators::Rkmk4 rkmk4;
+  integrators::WorkCounters work;
+  int mismatches = 0;
+  for (int k = 0; k < steps; ++k) {
+    const double t = k * h;
+    e->step(t, h);
+    for (int l = 0; l < n; ++l) {
+      State& s = scalar[static_cast<std::size_t>(l)];
+      rkmk4.step(model, s, t, h, work);
+      State lane;
+      e->get_lane(l, lane);
+      if (!same_bits(lane, s)) {
+        if (mismatches == 0) UNSCOPED_INFO("first mismatch: step " << k << " lane " << l << " scalar finite " << s.R.allFinite() << s.Pi.allFinite() << " Pi " << s.Pi.transpose() << " vs " << lane.Pi.transpose());
+        ++mismatches;
+      }
+    }
+  }
+  INFO(ensemble::isa_name(isa) << ", " << n << " of " << e->lanes() << " lanes, " << steps << " steps of " << h);
+  CHECK(mismatches == 0);
+}
+
+void check_scene_lanes(const system::Scene& scene, const system::AnyModel& model, double h, int steps) {
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    const int lanes = ensemble::isa_lanes(isa);
+    for (const int n : {1, 3, lanes}) {
+      std::visit([&](const auto& m) { check_lanes(model, m, scene.initial, h, steps, isa, n); }, model);
+    }
+  }
+}
+
+system::Scene shipped(const std::string& name) {
+  return experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + name + ".toml");
+}
+
+/// A heavy top that also carries a magnetic dipole and a harmonic drive: every term the kernels evaluate.
+system::Scene every_kernel_term() {
+  system::Scene scene = shipped("general_top_richter");
+  const std::string extra =
+      "\n[magnetic]\ndipole_moment = [0.3, -0.2, 0.1]\nfield = [0.5, 1.0, -2.0]\n"
+      "\n[drive]\ntorque_amplitude = [0.1, 0.2, -0.3]\nangular_frequency = 2.0\nphase = 0.3\n";
+  return experiments::parse_scene(scene.toml_text + extra, "every_kernel_term.toml");
+}
+
+}  // namespace
+
+TEST_CASE("ensemble lanes are rkmk4 bit for bit on every instruction set", "[ensemble]") {
+  for (const char* name : {"free_body_hlw", "dzhanibekov_book_axis2", "heavy_top_trindade_1", "kovalevskaya",
+                           "general_top_richter", "gyroscope", "magnetic_top"}) {
+    const system::Scene scene = shipped(name);
+    const system::AnyModel model = system::make_model(scene);
+    INFO(name);
+    REQUIRE(ensemble::unsupported_reason("rkmk4", model).empty());
+    check_scene_lanes(scene, model, scene.dt.value_or(1e-2), 200);
+  }
+  const system::Scene all = every_kernel_term();
+  const system::AnyModel model = system::make_model(all);
+  REQUIRE(ensemble::unsupported_reason("rkmk4", model).empty());
+  check_scene_lanes(all, model, 0.02, 200);
+  // Large steps, 1-2.5 rad per step at this top's spin: the closed forms of
+  // exp and dexp⁻¹ rather than their series in every lane. (At 0.2, 10 rad
+  // per step, the runs blow up; past overflow, where the time loop has
+  // stopped a run, lanes and scalar steps may differ.)
+  check_scene_lanes(shipped("heavy_top_trindade_1"), system::make_model(shipped("heavy_top_trindade_1")), 0.02, 100);
+}
+
+TEST_CASE("ensemble lanes stay rkmk4 bit for bit over long runs", "[ensemble][slow]") {
+  for (const char* name : {"free_body_hlw", "kovalevskaya", "heavy_top_trindade_2"}) {
+    const system::Scene scene = shipped(name);
+    INFO(name);
+    check_scene_lanes(scene, system::make_model(scene), scene.dt.value_or(1e-2), 20000);
+  }
+}
+
+TEST_CASE("the lane SO(3) maps are the scalar maps bit for bit", "[ensemble]") {
+  std::mt19937_64 gen(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int mismatches = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    // Angles from 1e-9 to 3: both sides of each series threshold.
+    const double scale = std::pow(10.0, -9.0 + 9.5 * (0.5 + 0.5 * u(gen)));
+    const lie::Vec3 xi = scale * lie::Vec3(u(gen), u(gen), u(gen));
+    const lie::Vec3 omega(u(gen), 2.0 * u(gen), 3.0 * u(gen));
+    const ensemble::V3<double> x{{xi(0), xi(1), xi(2)}}, w{{omega(0), omega(1), omega(2)}};
+    const lie::Mat3 E = lie::exp_so3(xi);
+    const ensemble::M3<double> e = ensemble::exp_so3(x);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) mismatches += std::memcmp(&E(i, j), &e.m[i][j], sizeof(double)) != 0;
+    const lie::Vec3 D = lie::dexpinv_body(xi, omega);
+    const ensemble::V3<double> d = ensemble::dexpinv_body(x, w);
+    for (int i = 0; i < 3; ++i) mismatches += std::memcmp(&D(i), &d.v[i], sizeof(double)) != 0;
+    const lie::Mat3 P = E * lie::exp_so3(omega);
+    const ensemble::M3<double> p = ensemble::mat_mat(e, ensemble::exp_so3(w));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) mismatches += std::memcmp(&P(i, j), &p.m[i][j], sizeof(double)) != 0;
+  }
+  // Eigen's evaluation order of fixed-size products (lane_so3.hpp) holds in
+  // the default build; with -mfma Eigen fuses its products and no order can match.
+#if defined(__FMA__)
+  WARN("built with FMA: the scalar products are fused, the comparison is not meaningful");
+#else
+  CHECK(mismatches == 0);
+#endif
+}
+
+TEST_CASE("what has no ensemble kernel says why", "[ensemble]") {
+  const system::AnyModel spring = system::make_model(shipped("stiff_damped_spring"));
+  CHECK_THAT(ensemble::unsupported_reason("rkmk4", spring), Catch::Contains("spring"));
+  CHECK_FALSE(ensemble::EnsembleStepper::make("rkmk4", spring, ensemble::Isa::baseline));
+  const system::AnyModel free = system::make_model(shipped("free_body_hlw"));
+  CHECK_THAT(ensemble::unsupported_reason("lgvi", free), Catch::Contains("no ensemble kernel"));
+  CHECK(ensemble::has_kernel("rkmk4"));
+  CHECK(ensemble::parse_isa(ensemble::isa_name(ensemble::Isa::avx2)) == ensemble::Isa::avx2);
+  CHECK_FALSE(ensemble::parse_isa("avx3"));
+  CHECK(ensemble::available_isas().front() == ensemble::Isa::baseline);
+}
+
+namespace {
+
+/// Everything a run hands its observer.
+struct Recorder final : integrators::Observer {
+  std::vector<std::int64_t> steps;
+  std::vector<double> times;
+  std::vector<State> states;
+  std::vector<integrators::EventHit> hits;
+  bool stopped = false;
+  void observe(std::int64_t step, double t, const State& s) override {
+    steps.push_back(step), times.push_back(t), states.push_back(s);
+  }
+  void on_event(const integrators::EventHit& hit) override { hits.push_back(hit); }
+  void on_stop() override { stopped = true; }
+};
+
+/// Π1 = 0 both ways and Γ3 = 0.2 rising.
+struct Surfaces final : integrators::EventFunctions {
+  int count() const override { return 2; }
+  double value(int i, double, const State& x) const override { return i == 0 ? x.Pi(0) : x.R(2, 2) - 0.2; }
+  int direction(int i) const override { return i == 0 ? 0 : 1; }
+};
+
+void require_same_run(const Recorder& a, const Recorder& b, const integrators::RunStats& sa,
+                      const integrators::RunStats& sb, const State& xa, const State& xb) {
+  CHECK(sa.steps == sb.steps);
+  CHECK(sa.ok == sb.ok);
+  CHECK(sa.status == sb.status);
+  CHECK(sa.interrupted == sb.interrupted);
+  CHECK(sa.t_final == sb.t_final);
+  CHECK(sa.work.rhs_evaluations == sb.work.rhs_evaluations);
+  CHECK(same_bits(xa, xb));
+  CHECK(a.stopped == b.stopped);
+  REQUIRE(a.steps == b.steps);
+  CHECK(a.times == b.times);
+  for (std::size_t k = 0; k < a.states.size(); ++k) CHECK(same_bits(a.states[k], b.states[k]));
+  REQUIRE(a.hits.size() == b.hits.size());
+  for (std::size_t k = 0; k < a.hits.size(); ++k) {
+    CHECK(a.hits[k].event == b.hits[k].event);
+    CHECK(a.hits[k].direction == b.hits[k].direction);
+    CHECK(a.hits[k].step == b.hits[k].step);
+    CHECK(a.hits[k].t == b.hits[k].t);
+    CHECK(same_bits(a.hits[k].state, b.hits[k].state));
+  }
+}
+
+/// The ensemble loop against the registry's rkmk4 run, lane by lane.
+void check_loop(const system::Scene& scene, const integrators::RunConfig& cfg, std::vector<State> initial) {
+  const system::AnyModel model = system::make_model(scene);
+  const integrators::SchemeInfo& rkmk4 = *integrators::find_scheme("rkmk4");
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    auto e = ensemble::EnsembleStepper::make("rkmk4", model, isa);
+    REQUIRE(e);
+    const auto n = std::min(initial.size(), static_cast<std::size_t>(e->lanes()));
+    std::vector<State> states(initial.begin(), initial.begin() + static_cast<std::ptrdiff_t>(n));
+    std::vector<Recorder> recorders(n);
+    std::vector<integrators::Observer*> observers;
+    for (auto& r : recorders) observers.push_back(&r);
+    std::vector<integrators::RunStats> stats(n);
+    ensemble::EnsembleWorkspace ws;
+    ensemble::run_ensemble(*e, model, states, cfg, observers, stats, ws);
+    for (std::size_t l = 0; l < n; ++l) {
+      INFO(ensemble::isa_name(isa) << ", lane " << l);
+      Recorder alone;
+      State x = initial[l];
+      const integrators::RunStats s = rkmk4.run(model, x, cfg, alone);
+      require_same_run(recorders[l], alone, stats[l], s, states[l], x);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the ensemble loop gives each lane the scalar loop's run", "[ensemble]") {
+  const system::Scene top = shipped("heavy_top_trindade_1");
+  Surfaces surfaces;
+  integrators::RunConfig cfg{0.0, 3.0, 1e-2, 0.0, 7};
+  cfg.cpu_clock = false;
+  cfg.events = &surfaces;
+  std::vector<State> initial = initial_states(top.initial, 16, 3);
+  SECTION("samples every 7 steps and crossings") { check_loop(top, cfg, initial); }
+  SECTION("output times") {
+    const std::vector<double> times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
+    cfg.output_times = &times;
+    check_loop(top, cfg, initial);
+  }
+  SECTION("backward in time") {
+    cfg.t_end = -2.0;
+    check_loop(top, cfg, initial);
+  }
+  SECTION("a lane that blows up, the others go on") {
+    initial[1].Pi(2) = std::numeric_limits<double>::infinity();
+    initial[4].Pi(0) = std::numeric_limits<double>::quiet_NaN();
+    check_loop(top, cfg, initial);
+  }
+  SECTION("the stop flag") {
+    std::atomic<bool> stop{true};
+    cfg.stop = &stop;
+    check_loop(top, cfg, initial);
+  }
+  SECTION("the free body, a step that does not divide the span") {
+    const system::Scene free = shipped("free_body_hlw");
+    cfg.t_end = 2.005;
+    check_loop(free, cfg, initial_states(free.initial, 5, 9));
+  }
+}
+
+TEST_CASE("an ensemble step allocates nothing", "[ensemble][allocations]") {
+  const system::Scene scene = shipped("kovalevskaya");
+  const system::AnyModel model = system::make_model(scene);
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    auto e = ensemble::EnsembleStepper::make("rkmk4", model, isa);
+    REQUIRE(e);
+    for (int l = 0; l < e->lanes(); ++l) e->set_lane(l, scene.initial);
+    const long before = experiments::verification::counted_allocations();
+    for (int k = 0; k < 1000; ++k) e->step(k * 0.01, 0.01);
+    CHECK(experiments::verification::counted_allocations() == before);
+    // The loop: what a run allocates does not grow with its steps (its observers' samples aside).
+    auto loop_allocations = [&](double t_end) {
+      std::vector<State> states(static_cast<std::size_t>(e->lanes()), scene.initial);
+      integrators::NullObserver none;
+      std::vector<integrators::Observer*> observers(states.size(), &none);
+      std::vector<integrators::RunStats> stats(states.size());
+      Surfaces surfaces;
+      integrators::RunConfig cfg{0.0, t_end, 0.01, 0.0, 1};
+      cfg.events = &surfaces;
+      static ensemble::EnsembleWorkspace ws;
+      const long start = experiments::verification::counted_allocations();
+      ensemble::run_ensemble(*e, model, states, cfg, observers, stats, ws);
+      return experiments::verification::counted_allocations() - start;
+    };
+    loop_allocations(0.1);  // sizes the workspace
+    CHECK(loop_allocations(0.1) == loop_allocations(10.0));
+  }
+}

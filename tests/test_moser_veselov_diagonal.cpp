@@ -1,0 +1,116 @@
+// The diagonal-inertia fast path of dmv, lgvi and dmv-pre*
+// (integrators/moser_veselov_diagonal.hpp) against the general Newton solve
+// (integrators/moser_veselov.hpp), and the free body's modified-inertia
+// series evaluated once per run as a polynomial in h²:
+//  - the same Cayley parameter and the same step to round-off, over a range
+//    of h|Ω| and random diagonal bodies;
+//  - one Newton correction per step on Hairer & Vilmart's body at h = 0.01;
+//  - a clean, reported failure where no solution exists;
+//  - the series in h² equals the series evaluated at each step.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "integrators/moser_veselov.hpp"
+#include "support/registered_run.hpp"
+
+using namespace lgi;
+using lie::Mat3;
+using lie::Vec3;
+namespace mv = integrators::moser_veselov;
+
+namespace {
+
+system::FreeBody diagonal_body(const Vec3& I) {
+  system::FreeBody body;
+  body.inertia = system::make_inertia(Mat3(I.asDiagonal()));
+  return body;
+}
+
+}  // namespace
+
+TEST_CASE("the diagonal fast path solves the DMV equation of the general Newton solve", "[variational][newton]") {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> moment(0.5, 2.0), component(-1.0, 1.0);
+  for (const double turn : {1e-4, 1e-2, 0.03, 0.3, 0.8}) {  // h|Ω|
+    for (int trial = 0; trial < 50; ++trial) {
+      const Vec3 I(moment(rng), moment(rng), moment(rng));
+      const Vec3 Pi(component(rng), component(rng), component(rng));
+      const double h = turn / Pi.cwiseQuotient(I).norm();
+      const Mat3 J = I.asDiagonal();
+      const Mat3 J_inv = I.cwiseInverse().asDiagonal();
+      Vec3 f_general, f_fast;
+      const auto general = mv::solve_cayley_parameter(J, J_inv, h * Pi, f_general);
+      const auto fast = mv::solve_cayley_parameter_diagonal(mv::DiagonalMoments(I, I.cwiseInverse()), h, Pi, f_fast);
+      INFO("h|Omega| = " << turn << ", I = " << I.transpose() << ", Pi = " << Pi.transpose());
+      REQUIRE(general.converged);
+      REQUIRE(fast.converged);
+      CHECK(fast.residual <= 4.0 * std::numeric_limits<double>::epsilon());
+      CHECK((f_fast - f_general).norm() <= 1e-14 * f_general.norm());
+      if (turn <= 0.03) CHECK(fast.iterations <= 2);
+    }
+  }
+}
+
+TEST_CASE("a diagonal DMV step equals the general step to round-off", "[variational]") {
+  const Vec3 I(0.6, 0.8, 1.0);
+  const system::State x0{Mat3::Identity(), Vec3(1.8, 0.4, -0.9)};
+  for (const double h : {1e-3, 1e-2, 0.1}) {
+    system::State general = x0, fast = x0;
+    mv::Carry c_general, c_fast;
+    REQUIRE(mv::dmv_step(Mat3(I.asDiagonal()), Mat3(I.cwiseInverse().asDiagonal()), general, c_general, h).converged);
+    REQUIRE(mv::dmv_step_diagonal(mv::DiagonalMoments(I, I.cwiseInverse()), fast, c_fast, h).converged);
+    INFO("h = " << h);
+    CHECK((fast.Pi - general.Pi).norm() <= 1e-15 * x0.Pi.norm());
+    CHECK((fast.R - general.R).norm() <= 1e-15);
+  }
+}
+
+TEST_CASE("dmv-pre10 takes one Newton correction per step on Hairer-Vilmart's body at h = 0.01", "[variational][newton]") {
+  const system::AnyModel body = diagonal_body(Vec3(0.6, 0.8, 1.0));
+  const system::State x0{Mat3::Identity(), Vec3(1.8, 0.4, -0.9)};
+  for (const char* name : {"dmv", "dmv-pre4", "dmv-pre10"}) {
+    const auto run = testing::run_registered(name, body, x0, 100.0, 0.01);
+    INFO(name << ": " << run.stats.status);
+    REQUIRE(run.stats.ok);
+    CHECK(run.stats.work.newton_iterations_max == 1);
+    CHECK(run.stats.work.newton_failures == 0);
+  }
+}
+
+TEST_CASE("the diagonal fast path fails cleanly where no DMV solution exists", "[variational][newton]") {
+  // A spin about a principal axis has sin θ = h|Ω| (moser_veselov.hpp): none past h|Ω| = 1.
+  const Vec3 I(1.0, 2.0, 3.0);
+  const Vec3 Pi(0.0, 0.0, 3.0);  // Ω = (0, 0, 1)
+  Vec3 f;
+  const mv::DiagonalMoments m(I, I.cwiseInverse());
+  const auto ok = mv::solve_cayley_parameter_diagonal(m, 0.99, Pi, f);
+  CHECK(ok.converged);
+  CHECK(std::abs(2.0 * std::atan(f.z()) - std::asin(0.99)) < 1e-12);
+  const auto fail = mv::solve_cayley_parameter_diagonal(m, 1.01, Pi, f);
+  CHECK_FALSE(fail.converged);
+  CHECK(fail.iterations <= mv::max_newton_iterations);
+  CHECK(fail.residual > 0.0);
+}
+
+TEST_CASE("the free body's modified-inertia series in h^2 equals the series at each step", "[variational]") {
+  const Vec3 I(0.6, 0.8, 1.0);
+  const Vec3 Pi(1.8, 0.4, -0.9);
+  const double H = 0.5 * Pi.dot(I.cwiseInverse().cwiseProduct(Pi)), C = 0.5 * Pi.squaredNorm();
+  auto check = [&](const auto& series) {
+    std::array<double, 4> cs{}, cd{};
+    series.coefficients_in_h2(H, C, cs, cd);
+    for (const double h : {1e-3, 1e-2, 0.1, 0.3}) {
+      double css = 0.0, cdd = 0.0;
+      series.evaluate(h * h * H, h * h * C, css, cdd);
+      const double degrees = series.degrees;
+      INFO("order " << 2 * (degrees + 1) << ", h = " << h);
+      CHECK(std::abs(mv::horner_in_h2(cs, series.degrees, h * h, 1.0) - css) <= 4e-16 * std::abs(css));
+      CHECK(std::abs(mv::horner_in_h2(cd, series.degrees, h * h, 0.0) - cdd) <= 4e-16 * std::abs(css));
+    }
+  };
+  check(mv::ModifiedInertiaSeries<4>(I));
+  check(mv::ModifiedInertiaSeries<6>(I));
+  check(mv::ModifiedInertiaSeries<8>(I));
+  check(mv::ModifiedInertiaSeries<10>(I));
+}
