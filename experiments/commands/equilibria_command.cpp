@@ -9,8 +9,10 @@
 #include <optional>
 #include <string>
 
+#include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
@@ -24,6 +26,8 @@ namespace {
 struct EquilibriaOptions {
   std::string scene, out;
   std::optional<double> l;
+  std::vector<double> appelrot;  // lgi bifurcation --appelrot: the Kovalevskaya (h, k) diagram at these l
+  std::string appelrot_h;
   int samples = 400;
   bool force = false, quiet = false;
   std::string command_line;
@@ -69,11 +73,37 @@ void print_row(const RelativeEquilibrium& e) {
               e.g2, e.nonlinearly_stable ? "yes" : "no", e.fold ? " fold" : "");
 }
 
+void check_flags(const EquilibriaOptions& o) {
+  if (o.l && !std::isfinite(*o.l)) throw UsageError("--l: must be a finite number");
+  if (o.samples < 3) throw UsageError("--samples: must be at least 3");
+  for (const double l : o.appelrot)
+    if (!std::isfinite(l)) throw UsageError("--appelrot: the values of l must be finite numbers");
+  if (!o.appelrot_h.empty()) {
+    if (o.appelrot.empty()) throw UsageError("--appelrot-h: only with --appelrot");
+    parse_grid_range(o.appelrot_h, "--appelrot-h");
+  }
+}
+
+/// --appelrot: the Kovalevskaya top's (h, k) diagram (analysis/kovalevskaya_diagram.hpp),
+/// the range of k at --appelrot-h (default: h/(J3 c) from -1.1 to 5 in steps of 0.05).
+std::vector<TableGroup> appelrot(const EquilibriaOptions& o, const system::Scene& scene, const HeavyTopBody& body) {
+  if (o.appelrot.empty()) return {};
+  const auto scale = kovalevskaya_scale(body);
+  if (!scale)
+    throw UsageError("--appelrot: " + scene.file +
+                     " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
+  const double unit = scale->J3 * scale->c;
+  const std::string range = o.appelrot_h.empty()
+                                ? format_general(-1.1 * unit, 17) + ":" + format_general(5.0 * unit, 17) + ":123"
+                                : o.appelrot_h;
+  const std::vector<double> hs = parse_grid_range(range, "--appelrot-h");
+  return appelrot_groups(body, *scale, o.appelrot, hs);
+}
+
 int run_equilibria(const EquilibriaOptions& o) {
   const system::Scene scene = read_scene(o.scene);
   const HeavyTopBody body = heavy_top(scene);
-  if (o.l && !std::isfinite(*o.l)) throw UsageError("--l: must be a finite number");
-  if (o.samples < 3) throw UsageError("--samples: must be at least 3");
+  check_flags(o);
   const EquilibriumSet set = o.l ? equilibria_at(body, *o.l) : equilibrium_branches(body, o.samples);
   std::map<std::string, std::string> parameters = {
       {"subcommand", "equilibria"}, {"command_line", o.command_line}, {"scene_file", scene.file},
@@ -83,7 +113,12 @@ int run_equilibria(const EquilibriaOptions& o) {
   std::string branches;
   for (const auto& b : set.branches) branches += std::to_string(b.id) + ": " + b.kind + "\n";
   parameters["branches"] = branches;
-  write_table_file(o.out, o.force, "equilibria", columns_of(set.rows), parameters);
+  if (!o.appelrot.empty()) {
+    std::string ls;
+    for (const double l : o.appelrot) ls += (ls.empty() ? "" : ",") + format_general(l, 17);
+    parameters["appelrot_l"] = ls;
+  }
+  write_table_file(o.out, o.force, "equilibria", columns_of(set.rows), parameters, appelrot(o, scene, body));
   if (o.quiet) return exit_ok;
   for (const auto& e : set.rows)
     if (o.l || e.fold) print_row(e);
@@ -105,10 +140,12 @@ Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& contex
   sub->add_option("--samples", o->samples, "Points per branch without --l")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_equilibria(*o);
-          }};
+          },
+          [o] { check_flags(*o); }};
 }
 
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context) {
@@ -119,12 +156,20 @@ Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& conte
       "stability and folds (the table of lgi equilibria without --l; figure: scripts/plots/bifurcation.py)");
   sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a free body")->required();
   sub->add_option("--samples", o->samples, "Points per branch")->capture_default_str();
+  sub->add_option("--appelrot", o->appelrot,
+                  "Kovalevskaya top: the (h, k) diagram at these l (comma-separated): Appelrot curves, the "
+                  "equilibria's (h, k) and the range of k (groups /appelrot*)")
+      ->delimiter(',');
+  sub->add_option("--appelrot-h", o->appelrot_h, "With --appelrot: the energies a:b:n where the range of k is found "
+                                                 "(default: h/(J3 c) from -1.1 to 5, 123 values)");
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_equilibria(*o);
-          }};
+          },
+          [o] { check_flags(*o); }};
 }
 
 }  // namespace lgi::experiments

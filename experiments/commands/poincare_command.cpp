@@ -79,7 +79,8 @@ HeavyTopBody heavy_top(const system::Scene& scene) {
   return body;
 }
 
-void check_options(const PoincareOptions& o, const system::Scene& scene, const integrators::SchemeInfo& scheme) {
+/// The checks that need no scene (CommandLine::parse runs them first).
+void check_flags(const PoincareOptions& o) {
   if (!std::isfinite(o.l)) throw UsageError("--l: must be a finite number");
   if (!std::isfinite(o.h)) throw UsageError("--h: must be a finite number");
   if (!(o.t_end > 0.0) || !std::isfinite(o.t_end)) throw UsageError("--t-end: must be a positive number");
@@ -91,9 +92,14 @@ void check_options(const PoincareOptions& o, const system::Scene& scene, const i
     throw UsageError("--section: \"" + o.section + "\": expected richter, gamma, gamma1, gamma2 or gamma3");
   if (o.section.size() == 6 && !o.axis.empty())
     throw UsageError("--axis: --section " + o.section + " sets the axis e" + o.section.substr(5) + " already");
+  const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
   if (scheme.properties.adaptive || !scheme.locates_events)
     throw UsageError("--scheme: " + scheme.name + ": lgi poincare takes a fixed-step Lie-group scheme that locates "
                                                   "events (the tangent flow takes the same steps)");
+}
+
+void check_options(const PoincareOptions& o, const system::Scene& scene) {
+  check_flags(o);
   const double lowest = minimum_energy(heavy_top(scene), o.l);
   if (o.h < lowest - 1e-12 * std::max(1.0, std::abs(lowest)))
     throw UsageError("--h: h is below the minimum energy at this l: h = " + number(o.h) + " < " + number(lowest) +
@@ -179,7 +185,7 @@ int run_poincare(const PoincareOptions& o) {
   if (SweepRanks::world().size() > 1) throw UsageError("lgi poincare runs on one MPI rank (use --threads)");
   const system::Scene scene = read_scene(o.scene);
   const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
-  check_options(o, scene, scheme);
+  check_options(o, scene);
   const SectionKind kind = o.section.starts_with("gamma") ? SectionKind::gamma : SectionKind::richter;
   // --section gammaK: Γ_K = 0, the axis e_K.
   const std::string axis = o.section.size() == 6 ? "e" + o.section.substr(5) : o.axis;
@@ -260,10 +266,12 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_flag("--force", o->force, "Replace an existing output file");
   sub->add_flag("--quiet", o->quiet, "No progress line and no summary");
   sub->footer(exit_status_help);
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_with_write_failures_as_run_errors([&] { return run_poincare(*o); });
-          }};
+          },
+          [o] { check_flags(*o); }};
 }
 
 }  // namespace lgi::experiments

@@ -1,0 +1,275 @@
+// lgi chaos-map --scene FILE --l-range a:b:n --h-range a:b:n --ics N --t-end T [--dt H] [--seed S]
+//   [--threshold Y] [--threads N] [--out FILE.h5] [--force] [--quiet]
+// The fraction of chaotic orbits over the (l, h) plane of a heavy top: in
+// every cell N initial states drawn on the level set (l, h) exactly as
+// `lgi poincare --l --h --ics N --seed S` draws them, and for each the MEGNO
+// and the maximal Lyapunov exponent from the tangent flow
+// (analysis/poincare_section.hpp, orbit_indicators); an orbit is chaotic
+// where MEGNO <Y>(t_end) > threshold (layout and meaning: experiments/CHAOS_MAP.md).
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "experiments/analysis/accessible_region.hpp"
+#include "experiments/analysis/poincare_section.hpp"
+#include "experiments/analysis/sweep_plan.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/grid_range.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/run_options.hpp"
+#include "experiments/commands/sweep/sweep_ranks.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/hdf5_support.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+struct ChaosMapOptions {
+  std::string scene, out = "chaos_map.h5", l_range, h_range;
+  std::int64_t ics = 0;
+  double t_end = 0.0, threshold = 3.0;
+  std::optional<double> dt;
+  std::uint64_t seed = 0;
+  int threads = 0;
+  bool force = false, quiet = false;
+  std::string command_line;
+};
+
+enum CellStatus : std::int64_t { cell_ok = 0, cell_empty = 1, cell_unreached = 2, cell_not_run = 3 };
+
+std::string number(double x) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", x);
+  return b;
+}
+
+void check_flags(const ChaosMapOptions& o) {
+  parse_grid_range(o.l_range, "--l-range");
+  parse_grid_range(o.h_range, "--h-range");
+  if (o.ics < 1 || o.ics > 1000000) throw UsageError("--ics: must be between 1 and 1000000");
+  if (!(o.t_end > 0.0) || !std::isfinite(o.t_end)) throw UsageError("--t-end: must be a positive number");
+  if (o.dt && (!(*o.dt > 0.0) || !std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
+  if (!std::isfinite(o.threshold)) throw UsageError("--threshold: must be a finite number");
+  if (o.seed > static_cast<std::uint64_t>(INT64_MAX)) throw UsageError("--seed: at most 2^63 - 1 (a TOML integer)");
+}
+
+/// The level-set draw of `lgi poincare` at (l, h): the same spec keys, so the
+/// same initial states for the same seed (experiments/SWEEPS.md, "Level set").
+std::string spec_text(const ChaosMapOptions& o, const std::string& scene_path, double dt, double l, double h) {
+  return "name = \"lgi chaos-map\"\nscene = \"" + scene_path + "\"\nscheme = \"rkmk4\"\ndt = " + number(dt) +
+         "\nt_end = " + number(o.t_end) + "\nseed = " + std::to_string(o.seed) + "\nsamples = " + std::to_string(o.ics) +
+         "\n\n[level_set]\nh = " + number(h) + "\nl = " + number(l) + "\n";
+}
+
+/// One cell: its spec and plan (none where the level is empty or not reached).
+struct Cell {
+  double l = 0.0, h = 0.0;
+  CellStatus status = cell_ok;
+  std::unique_ptr<SweepSpec> spec;
+  std::unique_ptr<SweepPlan> plan;
+};
+
+struct Orbit {
+  double megno = NAN, lyapunov = NAN;
+  Vec3 gamma = Vec3::Constant(NAN), Pi = Vec3::Constant(NAN);
+  bool done = false;
+};
+
+std::vector<Cell> make_cells(const ChaosMapOptions& o, const system::Scene& scene, const HeavyTopBody& body, double dt,
+                             const std::vector<double>& ls, const std::vector<double>& hs, std::vector<double>& h_min) {
+  const std::string scene_path = std::filesystem::absolute(o.scene).lexically_normal().string();
+  std::vector<Cell> cells;
+  for (const double l : ls) {
+    const double lowest = minimum_energy(body, l);
+    h_min.push_back(lowest);
+    for (const double h : hs) {
+      Cell c;
+      c.l = l, c.h = h;
+      if (h < lowest) {
+        c.status = cell_empty;
+      } else {
+        try {
+          c.spec = std::make_unique<SweepSpec>(parse_sweep_spec(spec_text(o, scene_path, dt, l, h), "lgi-chaos-map.toml"));
+          c.plan = std::make_unique<SweepPlan>(*c.spec, scene);
+        } catch (const InputError&) {  // h within the lattice's resolution of the minimum: no draw
+          c.status = cell_unreached;
+          c.plan.reset();
+        }
+      }
+      cells.push_back(std::move(c));
+    }
+  }
+  return cells;
+}
+
+/// Every orbit of every cell, on `threads` threads (each orbit a function of
+/// its cell and index alone); stops early when a signal asks.
+std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>& cells, const system::Scene& scene,
+                              double dt, int threads) {
+  const auto total = static_cast<std::int64_t>(cells.size()) * o.ics;
+  std::vector<Orbit> orbits(static_cast<std::size_t>(total));
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> flat;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t task = 0; task < total; ++task) {
+      const Cell& cell = cells[static_cast<std::size_t>(task / o.ics)];
+      if (!cell.plan || interrupt_requested) continue;
+      const std::int64_t i = task % o.ics;
+      Orbit& r = orbits[static_cast<std::size_t>(task)];
+      try {
+        cell.plan->inputs(i, flat);
+        const system::State x0 = cell.plan->initial_state(i, scene, flat);
+        r.gamma = x0.R.transpose() * Vec3::UnitZ(), r.Pi = x0.Pi;
+        const OrbitIndicators ind = orbit_indicators(scene, x0, o.t_end, dt, o.seed, i);
+        r.megno = ind.megno, r.lyapunov = ind.lyapunov;
+      } catch (const std::exception&) {  // no initial state (TrajectorySetupError): NaN indicators
+      }
+      r.done = !interrupt_requested;
+    }
+  }
+  return orbits;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  const std::size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
+  const double upper = v[m];
+  if (v.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
+}
+
+/// The per-cell summary (/chaos_map) and the per-orbit table (/orbits).
+std::vector<TableGroup> result_groups(const ChaosMapOptions& o, const std::vector<Cell>& cells,
+                                      const std::vector<Orbit>& orbits, const std::vector<double>& ls,
+                                      const std::vector<double>& hs, const std::vector<double>& h_min) {
+  const int width = static_cast<int>(hs.size());
+  TableColumn l_col{"l"}, h_col{"h"}, h_min_col{"h_min"}, status{"status", width, true}, count{"orbits", width, true},
+      fraction{"chaotic_fraction", width}, megno_median{"megno_median", width}, lyap_max{"lyapunov_max", width},
+      lyap_median{"lyapunov_median", width};
+  l_col.real = ls, h_col.real = hs, h_min_col.real = h_min;
+  std::vector<TableColumn> per = {{"l"}, {"h"}, {"cell", 1, true}, {"index", 1, true}, {"megno"}, {"lyapunov"},
+                                  {"initial.gamma", 3}, {"initial.angular_momentum", 3}};
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    std::vector<double> megno, lyapunov;
+    bool complete = true;
+    std::int64_t chaotic = 0;
+    for (std::int64_t i = 0; cells[c].plan && i < o.ics; ++i) {
+      const Orbit& r = orbits[c * static_cast<std::size_t>(o.ics) + static_cast<std::size_t>(i)];
+      if (!r.done) {
+        complete = false;
+        continue;
+      }
+      per[0].real.push_back(cells[c].l), per[1].real.push_back(cells[c].h);
+      per[2].whole.push_back(static_cast<std::int64_t>(c)), per[3].whole.push_back(i);
+      per[4].real.push_back(r.megno), per[5].real.push_back(r.lyapunov);
+      per[6].real.insert(per[6].real.end(), r.gamma.data(), r.gamma.data() + 3);
+      per[7].real.insert(per[7].real.end(), r.Pi.data(), r.Pi.data() + 3);
+      if (!std::isfinite(r.megno) || !std::isfinite(r.lyapunov)) continue;
+      megno.push_back(r.megno), lyapunov.push_back(r.lyapunov);
+      chaotic += r.megno > o.threshold ? 1 : 0;
+    }
+    const CellStatus s = cells[c].status == cell_ok && !complete ? cell_not_run : cells[c].status;
+    status.whole.push_back(s);
+    count.whole.push_back(static_cast<std::int64_t>(megno.size()));
+    const bool any = s == cell_ok && !megno.empty();
+    fraction.real.push_back(any ? static_cast<double>(chaotic) / static_cast<double>(megno.size()) : NAN);
+    megno_median.real.push_back(any ? median(megno) : NAN);
+    lyap_max.real.push_back(any ? *std::max_element(lyapunov.begin(), lyapunov.end()) : NAN);
+    lyap_median.real.push_back(any ? median(lyapunov) : NAN);
+  }
+  TableGroup map{"chaos_map", {l_col, h_col, h_min_col, status, count, fraction, megno_median, lyap_max, lyap_median}};
+  map.attributes["status_names"] = "0: ok\n1: empty level (h below the minimum energy at l)\n"
+                                   "2: level not reached by the draw (h within 1e-3 of the minimum)\n3: not run (interrupted)";
+  map.attributes["threshold"] = number(o.threshold);
+  return {map, TableGroup{"orbits", per}};
+}
+
+int run_chaos_map(const ChaosMapOptions& o) {
+  check_flags(o);
+  if (SweepRanks::world().size() > 1) throw UsageError("lgi chaos-map runs on one MPI rank (use --threads)");
+  const system::Scene scene = read_scene(o.scene);
+  const HeavyTopBody body = heavy_top_of(scene, "chaos-map");
+  const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
+  if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
+  const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
+  std::vector<double> h_min;
+  const std::vector<Cell> cells = make_cells(o, scene, body, dt, ls, hs, h_min);
+  const int threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Orbit> orbits;
+  {
+    const InterruptGuard interrupt_guard;
+    orbits = run_orbits(o, cells, scene, dt, threads);
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const bool interrupted = interrupt_signal() != 0;
+  std::map<std::string, std::string> parameters = {
+      {"subcommand", "chaos-map"}, {"command_line", o.command_line}, {"scene_file", scene.file},
+      {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
+      {"cxx_flags", build_info::cxx_flags}, {"l_range", o.l_range}, {"h_range", o.h_range},
+      {"ics", std::to_string(o.ics)}, {"t_end", number(o.t_end)}, {"dt", number(dt)}, {"seed", std::to_string(o.seed)},
+      {"threshold", number(o.threshold)}, {"indicators", "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp)"},
+      {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)},
+      {"status", interrupted ? "interrupted by signal" : "complete"}};
+  const auto groups = result_groups(o, cells, orbits, ls, hs, h_min);
+  const std::string path = interrupted ? o.out + ".partial" : o.out;
+  write_groups_file(path, o.force || interrupted, groups, parameters);
+  if (interrupted) {
+    std::cerr << "lgi: chaos-map interrupted by signal; the finished orbits are in " << path << '\n';
+    return interrupted_exit_status();
+  }
+  if (!o.quiet)
+    std::cout << "chaos-map: " << ls.size() << " x " << hs.size() << " cells, " << o.ics << " orbits each to t = "
+              << number(o.t_end) << ", chaotic where MEGNO > " << number(o.threshold) << "; " << format_general(wall, 3)
+              << " s wall on " << threads << " threads; wrote " << o.out << '\n';
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<ChaosMapOptions>();
+  auto* sub = app.add_subcommand(
+      "chaos-map",
+      "The fraction of chaotic orbits (MEGNO above a threshold), the median MEGNO and the largest Lyapunov "
+      "exponent on each cell of an (l, h) grid of a heavy top (experiments/CHAOS_MAP.md)");
+  sub->add_option("--scene", o->scene, "Scene file (a heavy top: gravity alone, or a free body)")->required();
+  sub->add_option("--l-range", o->l_range, "l values a:b:n (n from a to b)")->required();
+  sub->add_option("--h-range", o->h_range, "h values a:b:n")->required();
+  sub->add_option("--ics", o->ics, "Orbits per cell, drawn on the level set as lgi poincare draws them")->required();
+  sub->add_option("--t-end", o->t_end, "Time span of each orbit")->required();
+  sub->add_option("--dt", o->dt, "Step of the tangent flow (RKMK4; default: the scene's [run] dt)");
+  sub->add_option("--seed", o->seed, "Seed of the level-set draws and of the tangent vectors")->capture_default_str();
+  sub->add_option("--threshold", o->threshold, "An orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
+      ->capture_default_str();
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  add_force_quiet_flags(*sub, *o, "Replace an existing output file");
+  sub->footer(exit_status_help);
+  return {sub,
+          [o, context] {
+            o->command_line = context.command_line;
+            return run_chaos_map(*o);
+          },
+          [o] { check_flags(*o); }};
+}
+
+}  // namespace lgi::experiments
