@@ -1,0 +1,151 @@
+#include "experiments/cli/cardan_simulation.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "experiments/cli/interrupt_guard.hpp"
+
+#include "experiments/cli/run_parameters.hpp"
+#include "experiments/cli/step_settings.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/output_timing.hpp"
+#include "experiments/io/scene_suspension.hpp"
+#include "lie/quaternion.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+using integrators::torus::TorusSchemeInfo;
+
+constexpr std::size_t cardan_series = 6;  // cardan_angle_1..3, cardan_momentum_1..3
+
+TrajectoryLayout cardan_layout() {
+  TrajectoryLayout layout;
+  for (int k = 1; k <= 3; ++k) layout.scalar_invariants.push_back({"cardan_angle_" + std::to_string(k), ""});
+  for (int k = 1; k <= 3; ++k)
+    layout.scalar_invariants.push_back({"cardan_momentum_" + std::to_string(k), "kg m+2 s-1"});
+  return layout;
+}
+
+/// The SO(3) registry's view of a T³ scheme, for the shared settings rules and provenance.
+integrators::SchemeInfo as_scheme_info(const TorusSchemeInfo& s) {
+  integrators::SchemeInfo info;
+  info.name = s.name;
+  info.order = s.order;
+  info.family = s.family;
+  info.properties = s.properties;
+  info.reference = s.reference;
+  info.notes = s.notes;
+  return info;
+}
+
+/// Samples → the H5MD writer; keeps the energy and p1 errors for the summary line.
+class CardanObserver final : public integrators::torus::TorusObserver {
+ public:
+  CardanObserver(const system::CardanTop& top, TrajectoryWriter* writer) : top_(top), writer_(writer) {}
+
+  void observe(std::int64_t step, double t, const system::TorusState& x) override {
+    const double H = top_.energy(x);
+    if (!started_) H0_ = H, p10_ = x.p[0], started_ = true;
+    const double e = std::abs(H - H0_) / (H0_ != 0.0 ? std::abs(H0_) : 1.0);
+    const double m = std::abs(x.p[0] - p10_) / (p10_ != 0.0 ? std::abs(p10_) : 1.0);
+    energy_end_ = e, p1_end_ = m;
+    if (!(e <= energy_max_)) energy_max_ = e;
+    if (!(m <= p1_max_)) p1_max_ = m;
+    if (!writer_) return;
+    const lie::SO3xR3 body = top_.body_state(x);
+    TrajectorySample sample;
+    sample.step = step;
+    sample.time = t;
+    sample.quaternion_wxyz = lie::to_wxyz(lie::quat_from_matrix(body.R));
+    sample.angular_momentum_body = body.Pi;
+    sample.angular_velocity_body = system::CardanTop::body_rate_matrix(x.q) * top_.velocity(x);
+    sample.energy = H;
+    sample.invariant_count = cardan_series;
+    for (int k = 0; k < 3; ++k) {
+      sample.invariants[static_cast<std::size_t>(k)] = x.q[k];
+      sample.invariants[static_cast<std::size_t>(k) + 3] = x.p[k];
+    }
+    sample.orthogonality_error = lie::orthogonality_error(body.R);
+    writer_->append(sample);
+  }
+  std::string summary() const {
+    return "energy_error_end=" + format_sci(energy_end_) + " energy_error_max=" + format_sci(energy_max_) +
+           " cardan_momentum_1_error_end=" + format_sci(p1_end_) + " cardan_momentum_1_error_max=" + format_sci(p1_max_);
+  }
+
+ private:
+  const system::CardanTop& top_;
+  TrajectoryWriter* writer_;
+  bool started_ = false;
+  double H0_ = 0.0, p10_ = 0.0, energy_end_ = 0.0, energy_max_ = 0.0, p1_end_ = 0.0, p1_max_ = 0.0;
+};
+
+}  // namespace
+
+bool is_cardan_scene(const system::Scene& scene) { return scene.suspension.has_value(); }
+bool is_cardan_scheme(const std::string& name) { return integrators::torus::find_torus_scheme(name) != nullptr; }
+
+int simulate_cardan(const system::Scene& scene, const std::string& scheme_name, const SimulationRequest& request) {
+  SimulationOutcome outcome;
+  {
+    const InterruptGuard interrupt_guard;
+    outcome = run_cardan_simulation(scene, scheme_name, request, &interrupt_requested);
+  }
+  if (!outcome.stats.ok) {
+    std::cerr << "lgi: " << outcome.failure_message << '\n';
+    return outcome.stats.interrupted ? interrupted_exit_status() : exit_run_failed;
+  }
+  if (!request.quiet) {
+    const integrators::RunStats& stats = outcome.stats;
+    std::cout << "scheme=" << scheme_name << " steps=" << stats.steps << " rejected=" << stats.work.rejected_steps
+              << " rhs_evaluations=" << stats.work.rhs_evaluations
+              << " cpu_seconds=" << format_sci(outcome.diagnostics.cpu_seconds)
+              << " t_end=" << format_general(stats.t_final, 10) << ' ' << outcome.error_summary << '\n';
+  }
+  return exit_ok;
+}
+
+SimulationOutcome run_cardan_simulation(const system::Scene& scene, const std::string& scheme_name,
+                                        const SimulationRequest& request, const std::atomic<bool>* stop) {
+  const TorusSchemeInfo* torus = integrators::torus::find_torus_scheme(scheme_name);
+  if (!is_cardan_scene(scene))
+    throw RunError("scheme '" + scheme_name + "' integrates the Cardan top on T^3 and needs a scene with a "
+                   "[suspension] table; scene " + scene.file + " has none");
+  if (!torus)
+    throw RunError("scheme '" + scheme_name + "' integrates SO(3) states; scene " + scene.file +
+                   " has a [suspension] (state on T^3): use cardan-midpoint, cardan-dg, cardan-rk4 or cardan-dp54");
+  const integrators::SchemeInfo info = as_scheme_info(*torus);
+  integrators::RunConfig cfg = simulation_config(request, scene, info);
+  cfg.stop = stop;
+  if (cfg.retry_halving > 0) throw UsageError("--retry-halving: not available for the Cardan schemes");
+  const system::CardanTop top = cardan_top(scene);
+  std::optional<TrajectoryWriter> writer;
+  if (!request.out.empty()) {
+    const ResultAttributes run = run_parameters(scene, info, cfg, request.command_line);
+    Provenance prov{run.text, run.number, run.integer};
+    prov.integer_attributes["save_every"] = cfg.save_every;
+    writer.emplace(request.out, request.force, cardan_layout(), prov);
+  }
+  CardanObserver observer(top, writer ? &*writer : nullptr);
+  system::TorusState state = scene.cardan_initial;
+  SimulationOutcome outcome;
+  outcome.stats = torus->run(top, state, cfg, observer);
+  if (outcome.stats.interrupted) outcome.stats.status = integrators::interrupted_status;
+  outcome.diagnostics = diagnostics_of_run(outcome.stats, 0.0);
+  outcome.error_summary = observer.summary();
+  if (!outcome.stats.ok) {
+    outcome.failure_message = torus->name + " on " + scene.file + ": " + outcome.stats.status;
+    if (writer) {
+      writer->abandon(outcome.diagnostics);
+      outcome.failure_message += "; partial trajectory kept in " + writer->partial_path();
+    }
+    return outcome;
+  }
+  if (writer) writer->finish(outcome.diagnostics);
+  return outcome;
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,223 @@
+// lgi actions --scene FILE --out FILE.h5 [--h H [--grid N] [--l L1,L2,.. --tori N]]
+//             [--scheme S] [--dt DT] [--crossings N] [--force] [--quiet]
+// The action variables of the tori of an integrable top (analysis/actions.hpp;
+// formulas: docs/actions.md; layout: experiments/ACTIONS.md). Without --h:
+// the torus of the scene's initial state, in closed form (Lagrange, Euler)
+// and numerically from the flow. With --h: the energy surface H = h in action
+// space, on a grid (closed forms) or from --tori numerical tori at each --l.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiments/analysis/actions.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/run_options.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/table_file.hpp"
+#include "integrators/registry.hpp"
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+struct ActionsOptions {
+  std::string scene, out, scheme = "rkmk4";
+  std::optional<double> h, dt;
+  std::vector<double> l;
+  int grid = 61, tori = 12, crossings = 400;
+  bool force = false, quiet = false;
+  std::string command_line;
+};
+
+enum Method : std::int64_t { closed_lagrange = 0, closed_euler = 1, numerical = 2 };
+
+struct Row {
+  Method method = numerical;
+  Vec3 actions = Vec3::Zero(), frequencies = Vec3::Zero();
+  double h = 0.0, rotation_number = nan(), return_time = nan(), fit_residual = nan();
+  bool ok = true;
+  static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
+};
+
+HeavyTopBody heavy_top(const system::Scene& scene) {
+  const bool gravity = scene.declared<system::GravityTerm>().has_value();
+  if (!scene.is_free_body() && !scene.declares_only<system::GravityTerm>())
+    throw InputError(scene.file + ": lgi actions needs a heavy top (gravity and no other torque term) or a free body");
+  HeavyTopBody body;
+  body.J = scene.inertia;
+  if (gravity)
+    body.weight = *scene.mass * scene.declared<system::GravityTerm>()->g * scene.center_of_mass.value_or(Vec3::Zero());
+  return body;
+}
+
+/// The principal moments of a diagonal J with distinct moments (the Euler closed form).
+std::optional<Vec3> euler_moments(const system::Scene& scene) {
+  if (!scene.is_free_body()) return std::nullopt;
+  const Mat3& J = scene.inertia;
+  if (!J.isDiagonal(1e-14 * J.norm())) return std::nullopt;
+  const Vec3 d = J.diagonal();
+  if (d[0] == d[1] || d[1] == d[2] || d[0] == d[2]) return std::nullopt;
+  return d;
+}
+
+Row numerical_row(const system::Scene& scene, const system::State& x, const ActionsOptions& o) {
+  NumericalTorusOptions opt;
+  opt.scheme = o.scheme;
+  opt.dt = o.dt.value_or(scene.dt.value_or(1e-2));
+  opt.crossings = o.crossings;
+  const NumericalTorus t = numerical_torus(scene, x, opt);
+  Row r;
+  r.method = numerical;
+  r.actions = {t.l, t.action_a, t.action_b};
+  r.frequencies = {Row::nan(), t.omega_a, t.omega_b};
+  r.h = t.h;
+  r.rotation_number = t.rotation_number;
+  r.return_time = t.return_time;
+  r.fit_residual = t.fit_residual;
+  r.ok = t.ok;
+  return r;
+}
+
+Row lagrange_row(const LagrangeActions& a, double h) {
+  Row r;
+  r.method = closed_lagrange;
+  r.actions = a.actions;
+  r.frequencies = a.frequencies;
+  r.h = h;
+  r.return_time = a.period;
+  return r;
+}
+
+Row euler_row(const EulerActions& a, double h) {
+  Row r;
+  r.method = closed_euler;
+  r.actions = a.actions;
+  r.frequencies = a.frequencies;
+  r.h = h;
+  r.return_time = a.period;
+  return r;
+}
+
+std::vector<Row> single_torus(const system::Scene& scene, const HeavyTopBody& body, const ActionsOptions& o) {
+  std::vector<Row> rows;
+  const system::State& x = scene.initial;
+  const Vec3 gamma = x.R.row(2).transpose();
+  const double l = x.Pi.dot(gamma), h = 0.5 * x.Pi.dot(body.J.inverse() * x.Pi) + body.weight.dot(gamma);
+  if (const auto lb = lagrange_body(body)) {
+    if (const auto a = lagrange_actions(*lb, l, x.Pi.z(), h)) rows.push_back(lagrange_row(*a, h));
+  } else if (const auto moments = euler_moments(scene)) {
+    if (const auto a = euler_actions(*moments, x.Pi, l)) rows.push_back(euler_row(*a, h));
+  }
+  rows.push_back(numerical_row(scene, x, o));
+  return rows;
+}
+
+std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& body, const ActionsOptions& o) {
+  std::vector<Row> rows;
+  const double h = *o.h;
+  if (o.l.empty()) {
+    if (const auto lb = lagrange_body(body)) {
+      for (const auto& a : lagrange_surface(*lb, h, o.grid)) rows.push_back(lagrange_row(a, h));
+      return rows;
+    }
+    if (const auto moments = euler_moments(scene)) {
+      for (const auto& a : euler_surface(*moments, h, o.grid)) rows.push_back(euler_row(a, h));
+      return rows;
+    }
+    throw UsageError("--l: " + scene.file + " has no closed form; give the momenta l of the numerical tori");
+  }
+  for (const double l : o.l)
+    for (const auto& x : level_set_states(body, l, h, o.tori)) rows.push_back(numerical_row(scene, x, o));
+  return rows;
+}
+
+std::vector<TableColumn> columns_of(const std::vector<Row>& rows) {
+  std::vector<TableColumn> c = {{"method", 1, true}, {"actions", 3}, {"h"}, {"frequencies", 3},
+                                {"rotation_number"}, {"return_time"}, {"fit_residual"}, {"ok", 1, true}};
+  for (const auto& r : rows) {
+    c[0].whole.push_back(r.method);
+    c[1].real.insert(c[1].real.end(), r.actions.data(), r.actions.data() + 3);
+    c[2].real.push_back(r.h);
+    c[3].real.insert(c[3].real.end(), r.frequencies.data(), r.frequencies.data() + 3);
+    c[4].real.push_back(r.rotation_number);
+    c[5].real.push_back(r.return_time);
+    c[6].real.push_back(r.fit_residual);
+    c[7].whole.push_back(r.ok ? 1 : 0);
+  }
+  return c;
+}
+
+void check_flags(const ActionsOptions& o) {
+  if (o.h && !std::isfinite(*o.h)) throw UsageError("--h: must be a finite number");
+  for (const double l : o.l)
+    if (!std::isfinite(l)) throw UsageError("--l: the values must be finite numbers");
+  if (!o.l.empty() && !o.h) throw UsageError("--l: only with --h");
+  if (o.grid < 2 || o.grid > 2000) throw UsageError("--grid: must be between 2 and 2000");
+  if (o.tori < 1) throw UsageError("--tori: must be at least 1");
+  if (o.crossings < 16) throw UsageError("--crossings: must be at least 16");
+  if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
+  if (integrators::find_scheme(o.scheme) == nullptr) throw UsageError("--scheme: unknown scheme " + o.scheme);
+}
+
+int run_actions(const ActionsOptions& o) {
+  const system::Scene scene = read_scene(o.scene);
+  const HeavyTopBody body = heavy_top(scene);
+  check_flags(o);
+  const std::vector<Row> rows = o.h ? energy_surface(scene, body, o) : single_torus(scene, body, o);
+  std::map<std::string, std::string> parameters = {
+      {"subcommand", "actions"},      {"command_line", o.command_line},  {"scene_file", scene.file},
+      {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
+      {"cxx_flags", build_info::cxx_flags}, {"scheme", o.scheme},          {"crossings", std::to_string(o.crossings)},
+      {"methods", "0: Lagrange closed form (l, L3, I_theta); 1: Euler closed form (l, G, I_l); "
+                  "2: numerical (l, I_a, I_b)"}};
+  if (o.h) parameters["h"] = format_general(*o.h, 17);
+  write_table_file(o.out, o.force, "tori", columns_of(rows), parameters);
+  if (o.quiet) return exit_ok;
+  if (o.h) {
+    std::cout << rows.size() << " tori on H = " << format_general(*o.h, 17) << "; wrote " << o.out << '\n';
+    return exit_ok;
+  }
+  for (const auto& r : rows)
+    std::printf("method=%s h=%.17g actions=(%.15g, %.15g, %.15g) frequencies=(%.15g, %.15g, %.15g) ok=%d\n",
+                r.method == closed_lagrange ? "lagrange" : r.method == closed_euler ? "euler" : "numerical", r.h,
+                r.actions[0], r.actions[1], r.actions[2], r.frequencies[0], r.frequencies[1], r.frequencies[2],
+                r.ok ? 1 : 0);
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<ActionsOptions>();
+  auto* sub = app.add_subcommand(
+      "actions",
+      "Action variables of the tori of an integrable top: the scene's torus, or the energy surface H = h in action "
+      "space (--h), in closed form (Lagrange, Euler) or numerically from the flow (experiments/ACTIONS.md)");
+  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a free body")->required();
+  sub->add_option("--h", o->h, "The energy of the surface; without it, the torus of the scene's initial state");
+  sub->add_option("--l", o->l, "With --h: the momenta l of the numerical tori (comma-separated)")->delimiter(',');
+  sub->add_option("--grid", o->grid, "With --h and a closed form: grid points per axis")->capture_default_str();
+  sub->add_option("--tori", o->tori, "With --l: numerical tori per l")->capture_default_str();
+  sub->add_option("--scheme", o->scheme, "Scheme of the numerical tori")->capture_default_str();
+  sub->add_option("--dt", o->dt, "Step of the numerical tori. Default: the scene's [run] dt, else 0.01");
+  sub->add_option("--crossings", o->crossings, "Section crossings per numerical torus")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
+  add_force_quiet_flags(*sub, *o, "Replace existing output files");
+  return {sub,
+          [o, context] {
+            o->command_line = context.command_line;
+            return run_actions(*o);
+          },
+          [o] { check_flags(*o); }};
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,83 @@
+"""`lgi actions` as a user runs it (experiments/ACTIONS.md, docs/actions.md):
+ - the scene's torus: the Lagrange closed form and the numerical torus agree up to the
+   integer change of basis (I_a = |L3|, I_b = I_theta + n |L3|, omega.I the same);
+ - the Euler top's energy surface: every row has H(G, I_l) = h (checked through the
+   free body's energy range: G^2/(2 J_max) <= h <= G^2/(2 J_min)), |l| <= G, omega_l < 0;
+ - the Lagrange energy surface: I_theta >= 0 and the plot script draws it;
+ - bad flags exit 2 with one line naming the flag."""
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "experiments", "scenes")
+LAGRANGE = os.path.join(SCENES, "lagrange_top_cigar.toml")
+FREE = os.path.join(SCENES, "free_body_hlw.toml")
+KOVALEVSKAYA = os.path.join(SCENES, "kovalevskaya.toml")
+
+
+def lgi(*args, check=True):
+    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
+    if check:
+        assert r.returncode == 0, r.stderr
+    return r
+
+
+def tori(path):
+    with h5py.File(path, "r") as f:
+        return {k: f["tori"][k][()] for k in f["tori"]}
+
+
+def test_single_lagrange_torus_closed_form_and_numerical(tmp_path):
+    out = str(tmp_path / "a.h5")
+    r = lgi("actions", "--scene", LAGRANGE, "--dt", "0.002", "--crossings", "200", "--out", out)
+    assert r.stdout.count("method=") == 2
+    t = tori(out)
+    assert list(t["method"]) == [0, 2] and list(t["ok"]) == [1, 1]
+    (l0, L3, I_theta), (l1, Ia, Ib) = t["actions"]
+    assert abs(l0 - l1) < 1e-14 * abs(l0)
+    assert abs(Ia - abs(L3)) < 1e-9 * abs(L3)
+    n = (Ib - I_theta) / abs(L3)
+    assert abs(n - round(n)) < 1e-8
+    w0, w1 = t["frequencies"]
+    assert abs(w1[2] - w0[2]) < 1e-8 * w0[2]
+    assert abs((w1[1] * Ia + w1[2] * Ib) - (w0[1] * L3 + w0[2] * I_theta)) < 1e-8 * abs(w0[1] * L3)
+    assert os.path.exists(str(tmp_path / "a.csv"))
+
+
+def test_euler_energy_surface(tmp_path):
+    out = str(tmp_path / "e.h5")
+    lgi("actions", "--scene", FREE, "--h", "0.5", "--grid", "21", "--out", out, "--quiet")
+    t = tori(out)
+    l, G, I = t["actions"].T
+    assert len(l) > 300 and np.all(t["method"] == 1)
+    J = np.array([2.0, 1.0, 2.0 / 3.0])
+    assert np.all(G**2 / (2 * J.max()) <= 0.5 + 1e-12) and np.all(G**2 / (2 * J.min()) >= 0.5 - 1e-12)
+    assert np.all(np.abs(l) <= G * (1 + 1e-12)) and np.all((I >= 0) & (I <= G))
+    assert np.all(t["frequencies"][:, 0] == 0) and np.all(t["frequencies"][:, 2] < 0)
+
+
+def test_lagrange_energy_surface_and_plot(tmp_path):
+    out = str(tmp_path / "lag.h5")
+    lgi("actions", "--scene", LAGRANGE, "--h", "2", "--grid", "25", "--out", out, "--quiet")
+    t = tori(out)
+    assert len(t["h"]) > 50 and np.all(t["actions"][:, 2] >= 0) and np.all(t["h"] == 2.0)
+    script = os.path.join(ROOT, "scripts", "plots", "actions.py")
+    r = subprocess.run([sys.executable, script, "--out", str(tmp_path / "figs"), out], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert os.path.getsize(str(tmp_path / "figs" / "actions.png")) > 1000
+
+
+def test_bad_flags(tmp_path):
+    out = str(tmp_path / "x.h5")
+    for args, flag in [(["--h", "nan"], "--h"), (["--l", "1"], "--l"), (["--grid", "1", "--h", "1"], "--grid"),
+                       (["--scheme", "nope"], "--scheme"), (["--crossings", "3"], "--crossings")]:
+        r = lgi("actions", "--scene", LAGRANGE, *args, "--out", out, check=False)
+        assert r.returncode == 2 and flag in r.stderr and r.stderr.count("\n") == 1, (args, r.stderr)
+    r = lgi("actions", "--scene", KOVALEVSKAYA, "--h", "2", "--out", out, check=False)
+    assert r.returncode == 2 and "--l" in r.stderr
+    assert not os.path.exists(out)
