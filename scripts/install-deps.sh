@@ -13,7 +13,10 @@ packages=(
   libcli11-dev             # CLI11
   libtomlplusplus-dev      # toml++
   libbenchmark-dev         # Google Benchmark
+  libxsimd-dev             # xsimd 8 (header-only): the ensemble stepper's SIMD lanes
   clang libclang-rt-14-dev  # the fuzz preset: libFuzzer harnesses with ASan + UBSan (scripts/fuzz.sh)
+  libomp-14-dev            # OpenMP for clang: the fuzz preset builds lgi's library for fuzz_command_line
+  valgrind                 # memcheck of short simulate runs (CTest valgrind_simulate_*)
   libopenmpi-dev openmpi-bin  # MPI for `mpirun -np K lgi sweep` (-DLGI_MPI=ON; the lgi-mpi test build)
   python3-matplotlib python3-h5py python3-numpy  # Debian's /usr/bin/python3 for plots
   python3-pil                                     # GIF animations (matplotlib's PillowWriter)

@@ -49,7 +49,10 @@ TEST_CASE("every shipped scene parses", "[scene]") {
       "prism_edurev.toml",           "gyroscope.toml",                  "heavy_top_trindade_1.toml",
       "heavy_top_trindade_2.toml",   "heavy_top_trindade_3.toml",       "heavy_top_trindade_4.toml",
       "heavy_top_trindade_singular.toml", "free_body_hlw.toml",         "kovalevskaya.toml", "magnetic_top.toml",
-      "general_top_richter.toml",    "stiff_damped_spring.toml", "heavy_top_hlw.toml"};
+      "general_top_richter.toml",    "lagrange_top_cigar.toml",         "lagrange_top_oblate.toml",
+      "lagrange_top_disk.toml",    "stiff_damped_spring.toml",
+      "heavy_top_hlw.toml",          "cardan_trindade_1_massless.toml", "cardan_lagrange_upright.toml",
+      "cardan_lagrange_horizontal.toml"};
   std::set<std::string> found;
   for (const auto& entry : std::filesystem::directory_iterator(scenes_dir)) {
     if (entry.path().extension() != ".toml") continue;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "lie/quaternion.hpp"
 
@@ -116,6 +117,7 @@ struct SweepRunner::Context {
   std::vector<int> error_slots;  // for each sweep error column, its index in invariants.error_names() (−1: none)
   std::string refusal;           // why the scheme cannot run on this model (empty: it can)
   std::vector<double> inputs;    // the inputs it was built for
+  std::optional<integrators::ensemble::EnsembleStepper> ensemble;  // where run_next() may batch trajectories
   Context(system::Scene s, const std::vector<EventSpec>& spec_events, const std::vector<std::string>& error_names)
       : scene(std::move(s)),
         model(system::make_model(scene)),
@@ -131,7 +133,15 @@ struct SweepRunner::Context {
 
 SweepRunner::SweepRunner(const SweepSpec& spec, const SweepPlan& plan, const integrators::SchemeInfo& scheme,
                          const integrators::RunConfig& base_config, const std::vector<std::string>& error_names)
-    : spec_(spec), plan_(plan), scheme_(scheme), config_(base_config), error_names_(error_names) {}
+    : spec_(spec),
+      plan_(plan),
+      scheme_(scheme),
+      config_(base_config),
+      error_names_(error_names),
+      rows_(integrators::ensemble::max_lanes),
+      states_(integrators::ensemble::max_lanes),
+      stats_(integrators::ensemble::max_lanes),
+      lane_events_(integrators::ensemble::max_lanes) {}
 
 SweepRunner::~SweepRunner() = default;
 
@@ -142,6 +152,9 @@ void SweepRunner::prepare(std::int64_t i) {
     context_ = std::make_unique<Context>(plan_.scene(inputs_), spec_.events, error_names_);
     context_->inputs = inputs_;
     context_->refusal = integrators::unsupported_reason(scheme_, context_->model);
+    const auto isa = integrators::ensemble::sweep_isa();
+    if (isa && context_->refusal.empty() && !scheme_.properties.adaptive && config_.dt > 0.0)
+      context_->ensemble = integrators::ensemble::EnsembleStepper::make(scheme_.name, context_->model, *isa);
   }
 }
 
@@ -151,8 +164,10 @@ void SweepRunner::run(std::int64_t i, std::vector<double>& events, const std::at
   row.cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop,
-                            TrajectoryRow& row) {
+/// Trajectory i's row before its run, and its initial state; false if it
+/// has no run (its set-up failed, or the scheme refuses the scene): then the
+/// row is complete.
+bool SweepRunner::begin_row(std::int64_t i, TrajectoryRow& row, system::State& x) {
   row.index = i;
   row.status = sweep_ok;
   row.reason.clear();
@@ -161,7 +176,6 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
   row.interrupted = false;
   row.max_errors.assign(error_names_.size(), nan);
   row.angular_momentum.fill(nan), row.gamma.fill(nan), row.orientation.fill(nan);
-  system::State x;
   try {
     prepare(i);
     x = plan_.initial_state(i, context_->scene, inputs_);
@@ -169,31 +183,32 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
     row.inputs = inputs_;
     row.status = sweep_setup_failed;
     row.reason = e.what();
-    return;
+    return false;
   }
   row.inputs = inputs_;
   if (!context_->refusal.empty()) {
     row.status = sweep_setup_failed;
     row.reason = context_->refusal;
-    return;
+    return false;
   }
   std::fill(row.max_errors.begin(), row.max_errors.end(), 0.0);
   for (std::size_t k = 0; k < row.max_errors.size(); ++k)
     if (context_->error_slots[k] < 0) row.max_errors[k] = nan;
-  const std::size_t events_before = events.size();
-  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, spec_.trajectory_every,
-                         events, row.max_errors, scratch_);
-  integrators::RunConfig cfg = config_;
-  cfg.stop = stop;
-  cfg.cpu_clock = false;  // timed by run() and the chunk (sweep_trajectory.hpp)
-  if (!spec_.events.empty()) cfg.events = &context_->events;
-  const integrators::RunStats stats = scheme_.run(context_->model, x, cfg, observer);
+  return true;
+}
+
+namespace {
+
+/// The rest of a row once its run ended: the final state, the counts and the status.
+void finish_row(const SweepSpec& spec, const integrators::RunStats& stats, const system::State& x,
+                SweepObserver& observer, std::size_t events_before, const std::vector<double>& events,
+                TrajectoryRow& row) {
   row.interrupted = stats.interrupted;
   row.steps = stats.steps;
   row.rejected_steps = stats.work.rejected_steps;
   row.t_final = stats.t_final;
   // The thinned trajectory ends with the final state.
-  if (spec_.trajectory_every > 0 && observer.last_sample() != stats.steps) observer.sample(stats.steps, stats.t_final, x);
+  if (spec.trajectory_every > 0 && observer.last_sample() != stats.steps) observer.sample(stats.steps, stats.t_final, x);
   row.sample_count = observer.samples();
   row.event_count = static_cast<std::int64_t>((events.size() - events_before) / event_row_width) - row.sample_count;
   std::copy(x.Pi.data(), x.Pi.data() + 3, row.angular_momentum.begin());
@@ -203,11 +218,97 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
   if (!stats.ok) {
     row.status = sweep_run_failed;
     row.reason = stats.status;
-  } else if (observer.crossings() > spec_.max_events) {
+  } else if (observer.crossings() > spec.max_events) {
     row.status = sweep_events_truncated;
     row.reason = std::to_string(observer.crossings()) + " crossings, more than max_events = " +
-                 std::to_string(spec_.max_events) + "; the first " + std::to_string(spec_.max_events) + " kept";
+                 std::to_string(spec.max_events) + "; the first " + std::to_string(spec.max_events) + " kept";
   }
+}
+
+}  // namespace
+
+void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop,
+                            TrajectoryRow& row) {
+  system::State x;
+  if (!begin_row(i, row, x)) return;
+  const std::size_t events_before = events.size();
+  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, spec_.trajectory_every,
+                         events, row.max_errors, scratch_);
+  integrators::RunConfig cfg = config_;
+  cfg.stop = stop;
+  cfg.cpu_clock = false;  // timed by run() and the chunk (sweep_trajectory.hpp)
+  if (!spec_.events.empty()) cfg.events = &context_->events;
+  const integrators::RunStats stats = scheme_.run(context_->model, x, cfg, observer);
+  finish_row(spec_, stats, x, observer, events_before, events, row);
+}
+
+int SweepRunner::run_next(std::int64_t i, std::int64_t limit, std::vector<double>& events,
+                          const std::atomic<bool>* stop) {
+  const auto start = std::chrono::steady_clock::now();
+  int n = 1;
+  if (limit > 1 && integrators::ensemble::sweep_isa()) {
+    n = run_ensemble(i, limit, events, stop);
+  } else {
+    run_timed(i, events, stop, rows_[0]);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (int j = 0; j < n; ++j) rows_[static_cast<std::size_t>(j)].cpu_seconds = seconds / n;
+  return n;
+}
+
+/// run_next() with the ensemble path: trajectory i first (alone, by
+/// run_timed, unless its scene has an ensemble), then the following ones
+/// while they share its scene and lanes remain. A trajectory whose set-up
+/// fails takes a row and no lane.
+int SweepRunner::run_ensemble(std::int64_t i, std::int64_t limit, std::vector<double>& events,
+                              const std::atomic<bool>* stop) {
+  system::State x;
+  const bool first_runs = begin_row(i, rows_[0], x);
+  if (!first_runs || !context_->ensemble || context_->ensemble->lanes() < 2) {
+    if (first_runs) run_timed(i, events, stop, rows_[0]);  // begins the row again: the same row
+    return 1;
+  }
+  integrators::ensemble::EnsembleStepper& ensemble = *context_->ensemble;
+  const std::size_t lanes = static_cast<std::size_t>(ensemble.lanes());
+  int rows = 0;
+  std::size_t used = 0;
+  int lane_of_row[integrators::ensemble::max_lanes];
+  std::optional<SweepObserver> observers[integrators::ensemble::max_lanes];
+  integrators::Observer* observer_of_lane[integrators::ensemble::max_lanes];
+  auto add_lane = [&](std::int64_t index, TrajectoryRow& row, const system::State& initial) {
+    std::vector<double>& buffer = lane_events_[used];
+    buffer.clear();
+    observers[used].emplace(context_->invariants, context_->error_slots, index, spec_.max_events,
+                            spec_.trajectory_every, buffer, row.max_errors, scratch_);
+    observer_of_lane[used] = &*observers[used];
+    states_[used] = initial;
+    lane_of_row[rows] = static_cast<int>(used++);
+  };
+  add_lane(i, rows_[0], x);
+  ++rows;
+  std::vector<double>& next_inputs = scratch_inputs_;
+  for (std::int64_t j = i + 1; j < i + limit && used < lanes && rows < integrators::ensemble::max_lanes; ++j) {
+    plan_.inputs(j, next_inputs);
+    if (!plan_.same_scene(context_->inputs, next_inputs)) break;
+    TrajectoryRow& row = rows_[static_cast<std::size_t>(rows)];
+    lane_of_row[rows] = -1;
+    if (begin_row(j, row, x)) add_lane(j, row, x);
+    ++rows;
+  }
+  integrators::RunConfig cfg = config_;
+  cfg.stop = stop;
+  cfg.cpu_clock = false;
+  if (!spec_.events.empty()) cfg.events = &context_->events;
+  integrators::ensemble::run_ensemble(ensemble, context_->model, {states_.data(), used}, cfg, {observer_of_lane, used},
+                                      {stats_.data(), used}, workspace_);
+  for (int r = 0; r < rows; ++r) {
+    const int lane = lane_of_row[r];
+    if (lane < 0) continue;
+    const auto l = static_cast<std::size_t>(lane);
+    finish_row(spec_, stats_[l], states_[l], *observers[l], 0, lane_events_[l], rows_[static_cast<std::size_t>(r)]);
+    events.insert(events.end(), lane_events_[l].begin(), lane_events_[l].end());
+  }
+  return rows;
 }
 
 }  // namespace lgi::experiments

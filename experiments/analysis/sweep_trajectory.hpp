@@ -12,6 +12,7 @@
 
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/io/sweep_file.hpp"  // event_row_width
+#include "integrators/ensemble/ensemble_loop.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/invariants.hpp"
 
@@ -54,10 +55,23 @@ class SweepRunner {
   /// `row` is overwritten (a caller reuses one row: no allocation per trajectory).
   void run(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
 
+  /// Runs trajectories i, i + 1, … (at most `limit`) and returns how many it
+  /// ran; their rows are row(0), row(1), …, their crossings appended to
+  /// `events` in index order. Several share one ensemble (docs/ensemble.md)
+  /// where the scheme has an ensemble kernel for their scene (and
+  /// ensemble::sweep_isa() is set): trajectory i and the following ones
+  /// with the same scene, as many as the ensemble has lanes. Each row is the
+  /// one run() gives, bit for bit, but cpu_seconds: an ensemble's time is
+  /// shared equally by its rows.
+  int run_next(std::int64_t i, std::int64_t limit, std::vector<double>& events, const std::atomic<bool>* stop);
+  const TrajectoryRow& row(int j) const { return rows_[static_cast<std::size_t>(j)]; }
+
  private:
   struct Context;
   void prepare(std::int64_t i);
+  bool begin_row(std::int64_t i, TrajectoryRow& row, system::State& x);
   void run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
+  int run_ensemble(std::int64_t i, std::int64_t limit, std::vector<double>& events, const std::atomic<bool>* stop);
   const SweepSpec& spec_;
   const SweepPlan& plan_;
   const integrators::SchemeInfo& scheme_;
@@ -65,7 +79,14 @@ class SweepRunner {
   std::vector<std::string> error_names_;
   std::unique_ptr<Context> context_;  // the scene, model and invariants in use
   std::vector<double> inputs_;
+  std::vector<double> scratch_inputs_;  // the next trajectory's, to compare scenes
   std::vector<double> scratch_;  // invariant errors of one sample
+  // The ensemble path (run_next): one row, state, result and event buffer per lane, reused.
+  std::vector<TrajectoryRow> rows_;
+  std::vector<system::State> states_;
+  std::vector<integrators::RunStats> stats_;
+  std::vector<std::vector<double>> lane_events_;
+  integrators::ensemble::EnsembleWorkspace workspace_;
 };
 
 }  // namespace lgi::experiments

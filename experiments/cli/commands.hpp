@@ -4,6 +4,9 @@
 // declares its options and returns the action to run when it is selected.
 // Actions return an exit status (exit_status.hpp) and throw InputError /
 // UsageError / OutputFileError for bad input (status 2) or RunError (1).
+// `check`, if set, checks the arguments that need no file (a scheme name, a
+// range) right after the parse (cli.hpp, CommandLine::parse), throwing
+// InputError or UsageError; it runs nothing and touches no file.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
@@ -13,6 +16,7 @@ namespace lgi::experiments {
 struct Subcommand {
   CLI::App* app = nullptr;
   std::function<int()> action;
+  std::function<void()> check{};
 };
 
 /// The whole command line, for provenance in output files.
@@ -42,5 +46,8 @@ int run_sweep_request(const SweepRequest& request);  // commands/sweep_command.c
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context);  // commands/poincare_command.cpp
+Subcommand add_region_subcommand(CLI::App& app, const CommandContext& context);  // commands/region_command.cpp
+Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context);  // commands/chaos_map_command.cpp
+Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context);  // commands/actions_command.cpp
 
 }  // namespace lgi::experiments

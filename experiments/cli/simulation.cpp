@@ -44,16 +44,21 @@ Diagnostics diagnostics_of(integrators::RunStats& stats, double output_seconds) 
 
 }  // namespace
 
-integrators::RunConfig simulation_config(const SimulationRequest& request, const system::Scene& scene,
-                                         const integrators::SchemeInfo& scheme) {
+void check_simulation_flags(const SimulationRequest& request, const integrators::SchemeInfo& scheme) {
   if (request.save_every < 1) throw UsageError("--save-every: must be >= 1");
-  integrators::RunConfig cfg =
-      resolve_run_config({request.dt, request.tol, request.t_end}, scene, scheme, /*allow_zero_t_end=*/true);
-  cfg.save_every = request.save_every;
+  check_step_flags({request.dt, request.tol, request.t_end}, /*allow_zero_t_end=*/true);
   if (request.retry_halving < 0 || request.retry_halving > 30)
     throw UsageError("--retry-halving: must be between 0 and 30");
   if (request.retry_halving > 0 && scheme.properties.adaptive)
     throw UsageError("--retry-halving: scheme '" + scheme.name + "' is adaptive and controls its own steps");
+}
+
+integrators::RunConfig simulation_config(const SimulationRequest& request, const system::Scene& scene,
+                                         const integrators::SchemeInfo& scheme) {
+  check_simulation_flags(request, scheme);
+  integrators::RunConfig cfg =
+      resolve_run_config({request.dt, request.tol, request.t_end}, scene, scheme, /*allow_zero_t_end=*/true);
+  cfg.save_every = request.save_every;
   cfg.retry_halving = request.retry_halving;
   return cfg;
 }

@@ -27,6 +27,10 @@ struct SimulationRequest {
   std::string command_line;
 };
 
+/// The checks of the request that need no scene (flag ranges, --retry-halving
+/// with an adaptive scheme); throws UsageError naming the flag.
+void check_simulation_flags(const SimulationRequest& request, const integrators::SchemeInfo& scheme);
+
 /// Validates the request against the scene and the scheme and fills the run
 /// config (the request, then the scene's [run], step_settings.hpp). Throws
 /// UsageError naming the flag.

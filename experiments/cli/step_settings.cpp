@@ -10,13 +10,22 @@ namespace {
 
 bool positive_finite(double x) { return x > 0.0 && std::isfinite(x); }
 
+void check_t_end_flag(const std::optional<double>& flag, bool allow_zero) {
+  if (flag && (!std::isfinite(*flag) || *flag < 0.0 || (!allow_zero && *flag == 0.0)))
+    throw UsageError(std::string("--t-end: must be a finite number ") + (allow_zero ? ">= 0" : "> 0"));
+}
+
 }  // namespace
 
+void check_step_flags(const StepFlags& flags, bool allow_zero_t_end) {
+  check_t_end_flag(flags.t_end, allow_zero_t_end);
+  if (flags.dt && !positive_finite(*flags.dt)) throw UsageError("--dt: must be a finite number > 0");
+  if (flags.tol && !positive_finite(*flags.tol)) throw UsageError("--tol: must be a finite number > 0");
+}
+
 double resolve_t_end(const std::optional<double>& flag, const system::Scene& scene, bool allow_zero) {
-  const char* bound = allow_zero ? ">= 0" : "> 0";
   if (flag) {
-    if (!std::isfinite(*flag) || *flag < 0.0 || (!allow_zero && *flag == 0.0))
-      throw UsageError(std::string("--t-end: must be a finite number ") + bound);
+    check_t_end_flag(flag, allow_zero);
     return *flag;
   }
   if (!scene.t_end) throw UsageError("--t-end: needed, since " + scene.file + " has no [run] t_end");
@@ -27,10 +36,9 @@ double resolve_t_end(const std::optional<double>& flag, const system::Scene& sce
 
 integrators::RunConfig resolve_run_config(const StepFlags& flags, const system::Scene& scene,
                                           const integrators::SchemeInfo& scheme, bool allow_zero_t_end) {
+  check_step_flags(flags, allow_zero_t_end);
   integrators::RunConfig cfg;
   cfg.t_end = resolve_t_end(flags.t_end, scene, allow_zero_t_end);
-  if (flags.dt && !positive_finite(*flags.dt)) throw UsageError("--dt: must be a finite number > 0");
-  if (flags.tol && !positive_finite(*flags.tol)) throw UsageError("--tol: must be a finite number > 0");
   const std::string name = "scheme '" + scheme.name + "'";
   if (scheme.properties.adaptive) {
     if (!flags.tol && !scene.tol)

@@ -15,6 +15,11 @@ struct StepFlags {
   std::optional<double> dt, tol, t_end;
 };
 
+/// Throws UsageError naming the flag when a given --t-end, --dt or --tol is
+/// out of range (t_end finite and > 0, or >= 0 with allow_zero_t_end; dt and
+/// tol finite and > 0). Needs no scene: the check right after the parse.
+void check_step_flags(const StepFlags& flags, bool allow_zero_t_end);
+
 /// The final time: --t-end, else [run] t_end; throws UsageError if neither.
 /// `allow_zero`: t_end = 0 is a valid run (simulate) or not (studies).
 double resolve_t_end(const std::optional<double>& flag, const system::Scene& scene, bool allow_zero);

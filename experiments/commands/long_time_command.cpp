@@ -12,6 +12,11 @@
 // row for that step is written, /diagnostics status "interrupted by signal",
 // the files are kept as <out>.partial (said on stderr), exit status 130
 // (SIGINT) or 143 (SIGTERM).
+//
+// --resume goes on from the last checkpoint in <out>.partial, bit for bit as
+// if the run had never stopped (long_time/long_time_resume.hpp; RESULTS.md,
+// "long-time --resume"). With a scheme that can be resumed, rows reach the
+// file with the checkpoints, at most every --flush-seconds.
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,6 +30,7 @@
 #include <sstream>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/commands/long_time/long_time_resume.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/run_parameters.hpp"
@@ -50,9 +56,11 @@ struct LongTimeOptions {
   std::optional<double> tol;
   std::optional<double> t_end;
   int samples = 20;
+  double flush_seconds = 2.0;
   std::string out;
   bool force = false;
   bool quiet = false;
+  bool resume = false;
   std::string command_line;
 };
 
@@ -63,6 +71,7 @@ class SampleSchedule {
  public:
   SampleSchedule(int per_decade, std::int64_t last) : per_decade_(per_decade), last_(last) {}
   std::int64_t first() const { return 0; }
+  std::int64_t last() const { return last_; }
   /// The next sample step after `step`.
   std::int64_t next(std::int64_t step) {
     for (;;) {
@@ -130,18 +139,19 @@ class Progress {
 class LongTimeObserver final : public integrators::Observer {
  public:
   LongTimeObserver(const system::SceneInvariants& invariants, ResultsFile& file, std::vector<std::string> names,
-                   SampleSchedule schedule, std::int64_t last_step, double t0, double t_end, Progress& progress)
+                   int per_decade, std::int64_t last_step, double t0, double t_end, Progress& progress)
       : invariants_(invariants),
         file_(file),
         names_(std::move(names)),
-        schedule_(schedule),
+        schedule_(per_decade, last_step),
         last_step_(last_step),
         t0_(t0),
         t_end_(t_end),
         progress_(progress),
         current_(names_.size(), 0.0),
         window_max_(names_.size(), 0.0),
-        run_max_(names_.size(), 0.0) {
+        run_max_(names_.size(), 0.0),
+        per_decade_(per_decade) {
     next_sample_ = schedule_.first();
   }
 
@@ -170,6 +180,26 @@ class LongTimeObserver final : public integrators::Observer {
   }
   void on_stop() override { stopping_ = true; }
 
+  /// Rows are flushed with the checkpoints (LongTimeCheckpoints), not here.
+  void flush_with_checkpoints() { checkpointing_ = true; }
+  /// A resumed run: where the run was at checkpoint c, whose initial state was `initial`.
+  void resume_at(const RunCheckpoint& c, const system::State& initial) {
+    initial_ = invariants_.evaluate(initial);
+    have_initial_ = true;
+    window_max_ = c.window_max;
+    run_max_ = c.run_max;
+    step_ = c.loop.step;
+    time_ = c.loop.t;
+    emitted_ = true;
+    schedule_ = SampleSchedule(per_decade_, schedule_.last());
+    next_sample_ = schedule_.next(step_);
+  }
+  /// The command's part of a checkpoint.
+  void fill(RunCheckpoint& c) const {
+    c.window_max = window_max_;
+    c.run_max = run_max_;
+  }
+
   /// Emits a row for the last observed step unless it is already a sample.
   void finish() {
     if (step_ >= 0 && !emitted_) emit();
@@ -194,7 +224,7 @@ class LongTimeObserver final : public integrators::Observer {
     emitted_ = true;
   }
   void housekeeping() {
-    file_.flush_if_due();
+    if (!checkpointing_) file_.flush_if_due();
     const double fraction = last_step_ > 0 ? static_cast<double>(step_) / static_cast<double>(last_step_)
                                            : (time_ - t0_) / (t_end_ - t0_);
     progress_.update(fraction, step_);
@@ -215,6 +245,8 @@ class LongTimeObserver final : public integrators::Observer {
   double time_ = 0.0;
   bool emitted_ = false;
   bool stopping_ = false;
+  bool checkpointing_ = false;
+  int per_decade_;
 };
 
 /// The one parseable line (and the files written) of a finished run.
@@ -241,10 +273,65 @@ ResultAttributes long_time_diagnostics(const integrators::RunStats& stats, doubl
   return a;
 }
 
+/// The checks that need no scene (CommandLine::parse runs them first).
+void check_long_time_flags(const LongTimeOptions& o) {
+  (void)scheme_by_name(o.scheme, "--scheme");
+  if (o.samples < 1) throw UsageError("--samples: must be >= 1 (samples per decade of steps)");
+  if (!(o.flush_seconds > 0.0) || !std::isfinite(o.flush_seconds))
+    throw UsageError("--flush-seconds: must be a finite number > 0");
+  check_step_flags({o.dt, o.tol, o.t_end}, /*allow_zero_t_end=*/false);
+}
+
+/// The results file: new, or (--resume) reopened at its last checkpoint.
+ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene,
+                            const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
+                            std::int64_t last_step, const std::vector<Column>& columns, std::size_t error_columns) {
+  ResultsFileOptions options;
+  options.table = "series";
+  options.flush_interval_seconds = o.flush_seconds;
+  const std::string fingerprint = long_time_fingerprint(scene, scheme, cfg, o.samples, columns);
+  if (o.resume) {
+    if (!scheme.resumable)
+      throw UsageError("--resume: scheme '" + scheme.name +
+                       "' keeps memory between steps that lgi cannot save yet; run it again without --resume");
+    ResumedResults r = reopen_for_resume(o.out, o.force, columns, options, fingerprint, error_columns);
+    if (!r.file) {
+      if (!o.quiet)
+        std::cerr << "lgi: " << o.out << ".partial holds no checkpoint (a run killed as it started): starting "
+                  << "again from step 0\n";
+      LongTimeOptions fresh = o;
+      fresh.resume = false;
+      fresh.force = true;  // the partial files are replaced; the finished ones were checked above
+      return open_results(fresh, scene, scheme, cfg, last_step, columns, error_columns);
+    }
+    // An intact checkpoint of this run lies inside it (a damaged one cannot pass its hash, but says so here too).
+    if (const auto& c = r.checkpoint;
+        c && (c->loop.step < 1 || (last_step > 0 && c->loop.step >= last_step) || !(c->loop.t > cfg.t0) ||
+              !(c->loop.t < cfg.t_end) || !std::isfinite(c->loop.h)))
+      throw OutputFileError("cannot resume results '" + r.file->partial_path() +
+                            "': its checkpoint does not fit this run (damaged)");
+    if (!o.quiet)
+      std::cerr << "lgi: resuming " << r.file->partial_path()
+                << (r.checkpoint ? " from step " + std::to_string(r.checkpoint->loop.step) + ", t = " +
+                                       format_general(r.checkpoint->loop.t, 10)
+                                 : std::string(" from step 0 (no checkpoint in it yet)"))
+                << '\n';
+    return r;
+  }
+  ResumedResults r;
+  r.file = std::make_unique<ResultsFile>(o.out, o.force, columns, options);
+  ResultAttributes params = run_parameters(scene, scheme, cfg, o.command_line);
+  params.text["subcommand"] = "long-time";
+  params.integer["samples_per_decade"] = o.samples;
+  r.file->write_parameters(params);
+  create_resume_record(*r.file, fingerprint);
+  return r;
+}
+
 int long_time(const LongTimeOptions& o) {
   const system::Scene scene = read_scene(o.scene);
   const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
-  if (o.samples < 1) throw UsageError("--samples: must be >= 1 (samples per decade of steps)");
+  check_long_time_flags(o);
   // The command line, then the scene's [run] (step_settings.hpp).
   integrators::RunConfig cfg = resolve_run_config({o.dt, o.tol, o.t_end}, scene, *scheme, /*allow_zero_t_end=*/false);
   cfg.save_every = 1;
@@ -261,18 +348,31 @@ int long_time(const LongTimeOptions& o) {
   for (const auto& n : names) columns.push_back({n, ColumnType::real, ""});
   for (const auto& n : names) columns.push_back({n + "_window_max", ColumnType::real, ""});
 
-  ResultsFileOptions file_options;
-  file_options.table = "series";
-  ResultsFile file(o.out, o.force, columns, file_options);
-  ResultAttributes params = run_parameters(scene, *scheme, cfg, o.command_line);
-  params.text["subcommand"] = "long-time";
-  params.integer["samples_per_decade"] = o.samples;
-  file.write_parameters(params);
+  ResumedResults opened = open_results(o, scene, *scheme, cfg, last_step, columns, names.size());
+  ResultsFile& file = *opened.file;
+  const std::optional<RunCheckpoint>& from = opened.checkpoint;
 
   Progress progress(!o.quiet && ::isatty(STDERR_FILENO) == 1);
-  LongTimeObserver observer(invariants, file, names, SampleSchedule(o.samples, last_step), last_step, cfg.t0,
-                            cfg.t_end, progress);
+  LongTimeObserver observer(invariants, file, names, o.samples, last_step, cfg.t0, cfg.t_end, progress);
   OutputTimingObserver timed(observer);
+  const double cpu_before = from ? from->cpu_seconds : 0.0, output_before = from ? from->output_seconds : 0.0;
+  const double cpu_start = integrators::detail::cpu_now();
+  LongTimeCheckpoints checkpoints(
+      file, o.flush_seconds,
+      [&](RunCheckpoint& c) {
+        observer.fill(c);
+        c.cpu_seconds = cpu_before + (integrators::detail::cpu_now() - cpu_start);
+        c.output_seconds = output_before + timed.output_seconds();
+      },
+      opened.next_sequence);
+  if (scheme->resumable) {
+    cfg.checkpoints = &checkpoints;
+    observer.flush_with_checkpoints();
+  }
+  if (from) {
+    checkpoints.resume_from = &from->loop;
+    observer.resume_at(*from, scene.initial);
+  }
 
   system::State state = scene.initial;
   integrators::RunStats stats;
@@ -289,14 +389,17 @@ int long_time(const LongTimeOptions& o) {
   }
   progress.done();
   observer.finish();
+  stats.cpu_seconds += cpu_before;
 
   Diagnostics diag;
-  const ResultAttributes diag_attributes = long_time_diagnostics(stats, timed.output_seconds(), file.rows(), diag);
+  const ResultAttributes diag_attributes =
+      long_time_diagnostics(stats, output_before + timed.output_seconds(), file.rows(), diag);
   if (!stats.ok) {
     file.abandon(diag_attributes);
     std::cerr << "lgi: " << scheme->name << " on " << scene.file << ": " << stats.status
               << (interrupted ? " at step " + std::to_string(stats.steps) : std::string())
-              << "; results so far kept in " << file.partial_path() << " and " << file.csv_partial_path() << '\n';
+              << "; results so far kept in " << file.partial_path() << " and " << file.csv_partial_path()
+              << (scheme->resumable ? " (--resume goes on from the last checkpoint)" : "") << '\n';
     return interrupted ? interrupted_exit_status() : exit_run_failed;
   }
   file.finish(diag_attributes);
@@ -316,12 +419,20 @@ Subcommand add_long_time_subcommand(CLI::App& app, const CommandContext& context
   sub->add_option("--samples", o->samples, "Samples per decade of steps (plus the first and the last step)")
       ->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
+  sub->add_flag("--resume", o->resume,
+                "Go on from the last checkpoint in <out>.partial, left by a run with the same arguments that was "
+                "killed or stopped: the same rows, bit for bit, as a run never stopped");
+  sub->add_option("--flush-seconds", o->flush_seconds,
+                  "Rows (and the checkpoint --resume goes on from) reach the file at least this often")
+      ->capture_default_str();
   add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
   sub->footer(exit_status_help);
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_with_write_failures_as_run_errors([&] { return long_time(*o); });
-          }};
+          },
+          [o] { check_long_time_flags(*o); }};
 }
 
 }  // namespace lgi::experiments

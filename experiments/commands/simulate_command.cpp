@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "experiments/cli/cardan_simulation.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -35,11 +36,15 @@ struct SimulateOptions {
   std::string command_line;
 };
 
+SimulationRequest request_of(const SimulateOptions& o) {
+  return {o.dt, o.tol, o.t_end, o.save_every, o.retry_halving, o.out, o.force, o.quiet, o.command_line};
+}
+
 int simulate(const SimulateOptions& o) {
   const system::Scene scene = read_scene(o.scene);
+  if (is_cardan_scene(scene) || is_cardan_scheme(o.scheme)) return simulate_cardan(scene, o.scheme, request_of(o));
   const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
-  const SimulationRequest request{o.dt,  o.tol,   o.t_end, o.save_every, o.retry_halving,
-                                  o.out, o.force, o.quiet, o.command_line};
+  const SimulationRequest request = request_of(o);
   const integrators::RunConfig cfg = simulation_config(request, scene, scheme);
   SimulationOutcome outcome;
   {
@@ -78,9 +83,14 @@ Subcommand add_simulate_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--out", o->out, "Output trajectory file (HDF5, H5MD layout)")->required();
   add_force_quiet_flags(*sub, *o, "Overwrite an existing output file");
   sub->footer(exit_status_help);
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_with_write_failures_as_run_errors([&] { return simulate(*o); });
+          },
+          [o] {
+            if (!is_cardan_scheme(o->scheme))  // a T^3 scheme (docs/cardan.md): checked with its scene
+              check_simulation_flags(request_of(*o), scheme_by_name(o->scheme, "--scheme"));
           }};
 }
 

@@ -93,10 +93,14 @@ void write_parameters(H5& h5, const SingularityOptions& o, double tol, double dt
   for (const auto& [k, v] : hdf5::default_provenance(utc)) h5.text(pg.get(), k.c_str(), v);
 }
 
-int singularity_command(const SingularityOptions& o) {
+void check_flags(const SingularityOptions& o) {
   if (o.out.empty()) throw UsageError("--out: an output file is required");
   if (o.tol && !(*o.tol > 0.0 && std::isfinite(*o.tol))) throw UsageError("--tol: must be a finite number > 0");
   if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a finite number > 0");
+}
+
+int singularity_command(const SingularityOptions& o) {
+  check_flags(o);
   const std::string csv = results_csv_path(o.out);
   struct stat st {};
   for (const std::string& path : {o.out, csv})
@@ -171,10 +175,12 @@ Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& conte
   sub->add_flag("--force", o->force, "Overwrite existing output files");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
   sub->footer(exit_status_help);
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return singularity_command(*o);
-          }};
+          },
+          [o] { check_flags(*o); }};
 }
 
 }  // namespace lgi::experiments

@@ -123,10 +123,15 @@ void write_parameters(ResultsFile& file, const StressOptions& o, const std::vect
   file.write_parameters(p);
 }
 
-int stress_command(const StressOptions& o) {
-  const std::vector<const SchemeInfo*> schemes = selected_schemes(o.schemes);
+double checked_budget(const StressOptions& o) {
   const double budget = o.budget.value_or(o.quick ? 2.0 : 10.0);
   if (!(budget > 0.0) || !std::isfinite(budget)) throw UsageError("--budget: must be a finite number > 0");
+  return budget;
+}
+
+int stress_command(const StressOptions& o) {
+  const std::vector<const SchemeInfo*> schemes = selected_schemes(o.schemes);
+  const double budget = checked_budget(o);
 
   std::vector<Variant> variants = build_suite({o.quick, shipped_scenes_dir(o.scenes_dir)});
   for (auto& v : variants) v.criterion.text = criterion_text(v.criterion);
@@ -182,9 +187,14 @@ Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context) {
                   "CPU seconds allowed per run before it is stopped and counted as failed (default: 10, --quick: 2)");
   sub->add_flag("--quiet", o->quiet, "Print nothing but errors");
   sub->footer(exit_status_help);
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_with_write_failures_as_run_errors([&] { return stress_command(*o); });
+          },
+          [o] {
+            (void)selected_schemes(o->schemes);
+            (void)checked_budget(*o);
           }};
 }
 

@@ -1,4 +1,4 @@
-// lgi sweep --spec FILE.toml --out FILE.h5 [--threads N] [--resume] [--quiet] [--force]
+// lgi sweep --spec FILE.toml --out FILE.h5 [--threads N] [--simd ISA] [--resume] [--quiet] [--force]
 // Many trajectories of one scheme on a family of scenes and initial states
 // (experiments/SWEEPS.md): the spec and its scene are read and checked, the
 // trajectories are cut into chunks of consecutive indices, the chunks run on
@@ -24,6 +24,7 @@
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/trajectory_observer.hpp"
+#include "integrators/ensemble/ensemble.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -32,6 +33,7 @@ namespace {
 struct SweepOptions {
   std::string spec, out;
   int threads = 0;
+  std::string simd = "auto";  // the ensemble path (docs/ensemble.md)
   bool resume = false, quiet = false, force = false;
   std::string command_line;
 };
@@ -68,6 +70,29 @@ const integrators::SchemeInfo& sweep_scheme(const SweepSpec& spec) {
   }
 }
 
+/// --simd: the instruction set of the ensemble path (auto: the widest this
+/// CPU has; off: one trajectory at a time). The rows are the same for any.
+void select_simd(const std::string& simd) {
+  namespace ensemble = integrators::ensemble;
+  if (simd == "auto") return ensemble::set_sweep_isa(ensemble::best_isa());
+  if (simd == "off") return ensemble::set_sweep_isa(std::nullopt);
+  const auto isa = ensemble::parse_isa(simd);
+  std::string available;
+  for (const auto a : ensemble::available_isas()) available += std::string(", ") + ensemble::isa_name(a);
+  if (!isa) throw UsageError("--simd: unknown '" + simd + "' (auto, off" + available + ")");
+  if (!ensemble::isa_available(*isa))
+    throw UsageError("--simd: " + simd + " is not available on this CPU (auto, off" + available + ")");
+  ensemble::set_sweep_isa(*isa);
+}
+
+/// What the ensemble path used: "avx512 (16 lanes)", or "off".
+std::string simd_used() {
+  const auto isa = integrators::ensemble::sweep_isa();
+  if (!isa) return "off";
+  return std::string(integrators::ensemble::isa_name(*isa)) + " (" +
+         std::to_string(integrators::ensemble::isa_lanes(*isa)) + " lanes)";
+}
+
 std::string fingerprint(const SweepSpec& spec, const system::Scene& scene, const integrators::SchemeInfo& scheme) {
   return std::string("lgi ") + build_info::version + "\nscheme " + scheme.name + "\n--- spec\n" + spec.text +
          "\n--- scene\n" + scene.toml_text;
@@ -86,6 +111,7 @@ SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& sce
   if (cfg.tol > 0.0) a.numbers.push_back({"tol", cfg.tol});
   a.provenance = {{"command_line", o.command_line},
                   {"threads", std::to_string(run.threads)},
+                  {"simd", simd_used()},
                   {"ranks", std::to_string(run.ranks)},
                   {"resumed", o.resume ? "yes" : "no"},
                   {"utc_start", run.utc_start},
@@ -110,6 +136,7 @@ std::unique_ptr<SweepPartialFile> open_partial_file(const SweepOptions& o, const
 }
 
 int run_sweep(const SweepOptions& o) {
+  select_simd(o.simd);
   const SweepSpec spec = read_sweep_spec(o.spec);
   const system::Scene scene = read_scene(spec.scene_path);
   const integrators::SchemeInfo& scheme = sweep_scheme(spec);
@@ -200,6 +227,10 @@ Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
       ->required();
   sub->add_option("--out", o->out, "Output file (HDF5); <out>.partial while it runs")->required();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--simd", o->simd,
+                  "Trajectories in SIMD lanes where the scheme has an ensemble kernel (docs/ensemble.md): auto, off "
+                  "(one at a time), sse2, avx2, avx512; the results are the same bit for bit")
+      ->capture_default_str();
   sub->add_flag("--resume", o->resume, "Finish an interrupted sweep from <out>.partial (same spec and arguments)");
   sub->add_flag("--force", o->force, "Replace an existing output file");
   sub->add_flag("--quiet", o->quiet, "No progress line and no summary");

@@ -69,7 +69,8 @@ struct Job {
   std::optional<double> dt, tol;
 };
 
-std::vector<Job> plan(const WorkPrecisionOptions& o) {
+/// The checks of the lists that need no scene; returns the schemes.
+std::vector<const integrators::SchemeInfo*> checked_lists(const WorkPrecisionOptions& o) {
   if (o.schemes.empty()) throw UsageError("--schemes: empty list (give A,B,...; lgi schemes lists them)");
   std::vector<const integrators::SchemeInfo*> schemes;
   std::set<std::string> seen;
@@ -85,7 +86,11 @@ std::vector<Job> plan(const WorkPrecisionOptions& o) {
     if (!(t > 0.0 && std::isfinite(t)))
       throw UsageError("--tol: every tolerance must be a finite number > 0, got " + format_general(t, 6));
   if (o.repeat < 1) throw UsageError("--repeat: must be >= 1");
+  return schemes;
+}
 
+std::vector<Job> plan(const WorkPrecisionOptions& o) {
+  const std::vector<const integrators::SchemeInfo*> schemes = checked_lists(o);
   std::vector<Job> jobs;
   for (const auto* s : schemes) {
     if (s->properties.adaptive) {
@@ -404,9 +409,14 @@ Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& co
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
   sub->footer(exit_status_help);
-  return {sub, [o, context] {
+  return {sub,
+          [o, context] {
             o->command_line = context.command_line;
             return run_with_write_failures_as_run_errors([&] { return work_precision(*o); });
+          },
+          [o] {
+            (void)checked_lists(*o);
+            check_step_flags({std::nullopt, std::nullopt, o->t_end}, /*allow_zero_t_end=*/false);
           }};
 }
 

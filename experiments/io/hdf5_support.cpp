@@ -143,6 +143,51 @@ void write_int32_array(hid_t obj, const char* name, const std::vector<std::int32
 
 // ---- groups and files ------------------------------------------------------------------
 
+std::optional<std::string> read_string_attribute(hid_t obj, const char* name) {
+  if (H5Aexists(obj, name) <= 0) return std::nullopt;
+  Handle a(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose);
+  Handle type(a.valid() ? H5Aget_type(a.get()) : H5I_INVALID_HID, H5Tclose);
+  Handle space(a.valid() ? H5Aget_space(a.get()) : H5I_INVALID_HID, H5Sclose);
+  if (!type.valid() || !space.valid() || H5Tget_class(type.get()) != H5T_STRING ||
+      H5Sget_simple_extent_type(space.get()) != H5S_SCALAR)
+    return std::nullopt;
+  const htri_t variable = H5Tis_variable_str(type.get());
+  if (variable < 0) return std::nullopt;
+  Handle memory(H5Tcopy(H5T_C_S1), H5Tclose);
+  const H5T_cset_t cset = H5Tget_cset(type.get());  // HDF5 converts no character set into another
+  if (!memory.valid() || cset < 0 || H5Tset_cset(memory.get(), cset) < 0) return std::nullopt;
+  if (variable > 0) {
+    char* text = nullptr;
+    if (H5Tset_size(memory.get(), H5T_VARIABLE) < 0 || H5Aread(a.get(), memory.get(), &text) < 0) return std::nullopt;
+    std::optional<std::string> out;
+    if (text != nullptr) out = std::string(text);
+    H5free_memory(text);
+    return out;
+  }
+  const std::size_t size = H5Tget_size(type.get());
+  if (size == 0 || size > (std::size_t{1} << 26)) return std::nullopt;  // 64 MB: no attribute of lgi's is near
+  std::string text(size + 1, '\0');
+  if (H5Tset_size(memory.get(), size + 1) < 0 || H5Tset_strpad(memory.get(), H5T_STR_NULLTERM) < 0 ||
+      H5Aread(a.get(), memory.get(), text.data()) < 0)
+    return std::nullopt;
+  text.resize(std::strlen(text.c_str()));
+  return text;
+}
+
+std::optional<std::string> read_string_attribute(const std::string& path, const std::string& object,
+                                                 const char* name, bool* readable) {
+  const QuietHdf5Errors quiet;
+  if (readable) *readable = false;
+  if (H5Fis_hdf5(path.c_str()) <= 0) return std::nullopt;
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.valid()) return std::nullopt;
+  if (readable) *readable = true;
+  if (H5Lexists(file.get(), object.c_str(), H5P_DEFAULT) <= 0) return std::nullopt;
+  Handle o(H5Oopen(file.get(), object.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!o.valid()) return std::nullopt;
+  return read_string_attribute(o.get(), name);
+}
+
 Handle create_group(hid_t loc, const std::string& path, const Fail& fail) {
   Handle g(H5Gcreate2(loc, path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
   if (!g.valid()) fail("cannot create group " + path);

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,6 +98,18 @@ void write_int_attribute(hid_t obj, const char* name, hid_t file_type, std::int6
 void write_double_attribute(hid_t obj, const char* name, double value, const Fail& fail);
 /// 1-D H5T_IEEE_F64LE attribute; an empty vector gets a null dataspace.
 void write_double_array(hid_t obj, const char* name, const std::vector<double>& values, const Fail& fail);
+
+/// A scalar string attribute `name` of obj (variable or fixed length, read
+/// with a memory type of HDF5's choosing, never the file's); std::nullopt if
+/// it is absent, not a string, not scalar, or unreadable. For files made by
+/// others: any bytes in them end here, not in a crash.
+std::optional<std::string> read_string_attribute(hid_t obj, const char* name);
+/// The same attribute of the object `object` ("/resume") in the file at
+/// `path`, opened read-only (nothing in the file changes); std::nullopt if
+/// the file, the object or the attribute is missing or unreadable. Throws
+/// nothing; `readable` (if given) says whether the file opened as HDF5.
+std::optional<std::string> read_string_attribute(const std::string& path, const std::string& object,
+                                                 const char* name, bool* readable = nullptr);
 
 /// Creates the group `path` (absolute, or relative to loc; its parent must exist).
 Handle create_group(hid_t loc, const std::string& path, const Fail& fail);

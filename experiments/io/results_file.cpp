@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "experiments/io/hdf5_support.hpp"
+#include "experiments/io/results_file_impl.hpp"
 
 namespace lgi::experiments {
 
@@ -27,6 +28,8 @@ using hdf5::hdf5_error_detail;
 using hdf5::open_or_create_group;
 using hdf5::QuietHdf5Errors;
 using hdf5::write_vlen_string;
+using results_detail::index_columns;
+using results_detail::valid_name;
 
 namespace {
 
@@ -34,27 +37,6 @@ static_assert(std::is_same_v<hid_t, std::int64_t>, "results_file.hpp passes hid_
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-bool valid_name(const std::string& n) {
-  return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos;
-}
-
-/// Checks the column and table names and the options; fills `index` (name -> column).
-void index_columns(const std::vector<Column>& columns, const ResultsFileOptions& options,
-                   std::map<std::string, std::size_t>& index) {
-  if (columns.empty()) throw std::invalid_argument("results table: no columns");
-  for (std::size_t i = 0; i < columns.size(); ++i) {
-    if (!valid_name(columns[i].name))
-      throw std::invalid_argument("results table: bad column name '" + columns[i].name + "'");
-    if (!index.emplace(columns[i].name, i).second)
-      throw std::invalid_argument("results table: column '" + columns[i].name + "' given twice");
-  }
-  if (!valid_name(options.table) || options.table == "h5md" || options.table == "parameters" ||
-      options.table == "diagnostics")
-    throw std::invalid_argument("results table: bad table name '" + options.table + "'");
-  if (options.block_rows == 0 || options.chunk_rows == 0)
-    throw std::invalid_argument("results file: block_rows and chunk_rows must be positive");
 }
 
 /// Refuses before touching anything, then creates both .partial files empty.
@@ -128,23 +110,6 @@ void ResultRow::set(const std::string& column, const std::string& value) {
 }
 
 // ---- the file ---------------------------------------------------------------------------
-
-struct ResultsFile::Impl {
-  // Declaration order: datasets close before groups, groups before the file.
-  Handle file;
-  Handle table;
-  Handle diagnostics;
-  std::vector<Handle> columns;
-  Handle string_type;
-  std::FILE* csv = nullptr;
-  ~Impl() {
-    columns.clear();
-    diagnostics.reset();
-    table.reset();
-    file.reset();
-    if (csv) std::fclose(csv);
-  }
-};
 
 void ResultsFile::fail(const std::string& what) const {
   std::string msg = "cannot write results '" + partial_path_ + "': " + what;
@@ -231,6 +196,10 @@ void ResultsFile::create_table() {
 
 ResultsFile::~ResultsFile() {
   if (!open_) return;
+  if (untouched_) {  // a reopened file never used: leave it as it was
+    impl_.reset();
+    return;
+  }
   try {
     ResultAttributes a;
     a.text["status"] = write_failed_ ? "failed: " + write_error_ : std::string("interrupted");

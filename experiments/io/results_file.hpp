@@ -23,6 +23,14 @@
 // outright leaves readable .partial files up to the last flush, status
 // "running".
 //
+// Resume (lgi long-time --resume): ResultsFile(path, force, columns, options,
+// ResultsFile::Reopen{}) opens the .partial files an interrupted run left,
+// checks that they hold this table (every column with its type, the CSV
+// header), and keep_rows(n) drops what came after the run's last checkpoint;
+// appending then goes on. A run's checkpoint is a fixed-size record
+// (create_record / write_record / read_record), written in place: its
+// writes change raw data only, never the file's metadata.
+//
 // Every failure to create, write or publish throws OutputFileError (declared
 // in h5md_writer.hpp) with one line naming the file; a write that fails once
 // the files exist throws OutputWriteError (the commands exit 1 on it). A
@@ -31,6 +39,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -94,6 +103,13 @@ class ResultsFile {
   /// and !force, or if the directory is missing or not writable. Throws
   /// std::invalid_argument for empty, duplicate or malformed column names.
   ResultsFile(const std::string& path, bool force, std::vector<Column> columns, ResultsFileOptions options = {});
+  /// Reopens <path>.partial and its CSV twin left by an interrupted run (top
+  /// of this file). OutputFileError naming the file and what is wrong if
+  /// they are missing, not HDF5, or do not hold this table; rows() is the
+  /// number of rows complete in both. Nothing is changed until keep_rows()
+  /// (destroyed before it, the files are closed as they were).
+  struct Reopen {};
+  ResultsFile(const std::string& path, bool force, std::vector<Column> columns, ResultsFileOptions options, Reopen);
   ResultsFile(const ResultsFile&) = delete;
   ResultsFile& operator=(const ResultsFile&) = delete;
   ~ResultsFile();
@@ -122,6 +138,19 @@ class ResultsFile {
   /// files. A no-op once closed.
   void abandon(const ResultAttributes& diagnostics);
 
+  /// Resume: keeps the first n rows (0 <= n <= rows()) of both files, drops
+  /// the others, and sets /diagnostics status back to "running".
+  void keep_rows(std::int64_t n);
+  /// A scalar text attribute of /<group>; std::nullopt if absent or not text.
+  std::optional<std::string> text_attribute(const std::string& group, const std::string& name) const;
+  /// A record of `bytes` zero bytes at /<group>/<name> (the group is created if missing).
+  void create_record(const std::string& group, const std::string& name, std::size_t bytes);
+  /// Writes `data` at `offset` into the record, then flushes the file.
+  void write_record(const std::string& group, const std::string& name, std::size_t offset,
+                    const std::vector<unsigned char>& data);
+  /// The record's bytes; empty if it is absent or not a record (1-D, 8-bit unsigned).
+  std::vector<unsigned char> read_record(const std::string& group, const std::string& name) const;
+
   const std::string& path() const { return path_; }
   const std::string& partial_path() const { return partial_path_; }
   const std::string& csv_path() const { return csv_path_; }
@@ -132,6 +161,8 @@ class ResultsFile {
   struct Impl;
   void create_csv(const std::string& csv_partial);  // construction: CSV header
   void create_table();                              // construction: one dataset per column
+  void reopen_table();                              // Reopen: the columns, checked; rows found
+  void reopen_csv(const std::string& csv_partial);  // Reopen: the header, checked; rows counted
   void write_block();
   void write_attributes(std::int64_t group, const ResultAttributes& a);
   void close_files();
@@ -154,6 +185,8 @@ class ResultsFile {
   std::vector<ResultRow> buffer_;
   std::int64_t written_ = 0;
   std::chrono::steady_clock::time_point last_flush_{};
+  std::vector<long> csv_row_ends_;  // Reopen: byte offset after the header and after each row of the CSV
+  bool untouched_ = false;          // Reopen, before keep_rows(): destroyed, it closes and writes nothing
 };
 
 }  // namespace lgi::experiments

@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/scene_term_tables.hpp"
 #include "experiments/io/scene_toml.hpp"
 #include "integrators/system/inertia.hpp"
@@ -50,11 +51,11 @@ constexpr double triangle_slack = 1e-12;
 constexpr std::array<std::string_view, 4> attitude_keys = {"quaternion", "euler_zxz", "rotation_vector", "matrix"};
 constexpr std::array<std::string_view, 3> motion_keys = {"angular_velocity", "angular_momentum", "euler_zxz_rates"};
 constexpr std::array<std::string_view, 3> inertia_keys = {"inertia", "inertia_cm", "inertia_tensor"};
-/// The tables a scene file may have: [body], the torque terms', [initial], [run].
+/// The tables a scene file may have: [body], the torque terms', [suspension], [initial], [run].
 std::vector<std::string_view> table_names() {
   std::vector<std::string_view> names = {"body"};
   names.insert(names.end(), SceneTermTables::names.begin(), SceneTermTables::names.end());
-  names.insert(names.end(), {"initial", "run"});
+  names.insert(names.end(), {"suspension", "initial", "run"});
   return names;
 }
 
@@ -153,6 +154,7 @@ BodyInfo read_body(const Table& body, Scene& s) {
 void read_initial(const Table& initial, Scene& s) {
   std::vector<std::string_view> keys(attitude_keys.begin(), attitude_keys.end());
   keys.insert(keys.end(), motion_keys.begin(), motion_keys.end());
+  keys.insert(keys.end(), cardan_initial_keys.begin(), cardan_initial_keys.end());
   initial.check_keys(keys);
 
   const auto attitude = initial.one_of(attitude_keys, "attitude");
@@ -253,12 +255,15 @@ Scene parse_scene(std::string_view toml_text, const std::string& path_for_messag
   // The tables' own types first, so that "gravity = 9.81" is reported as such.
   const Table body = sub_table(root, "body");
   const auto term_tables = SceneTermTables::find(root);
+  const Table suspension = sub_table(root, "suspension");
   const Table initial = sub_table(root, "initial");
   const Table run = sub_table(root, "run");
 
   read_body(body, s);
   SceneTermTables::read(term_tables, s);
+  read_suspension(suspension, s);  // docs/cardan.md §6
   read_initial(initial, s);
+  read_cardan_initial(initial, s);
   read_run(run, s);
   return s;
 }

@@ -48,16 +48,10 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   H5Pset_sieve_buf_size(fapl.get(), 0);
   file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
   if (!file_.valid()) throw OutputFileError(path + ": cannot open the partial sweep to resume it");
-  std::string stored;
-  {
+  std::optional<std::string> stored;
+  if (H5Lexists(file_.get(), "/partial", H5P_DEFAULT) > 0) {
     Handle g(H5Gopen2(file_.get(), "/partial", H5P_DEFAULT), H5Gclose);
-    Handle a(g.valid() ? H5Aopen(g.get(), "fingerprint", H5P_DEFAULT) : H5I_INVALID_HID, H5Aclose);
-    Handle t(a.valid() ? H5Aget_type(a.get()) : H5I_INVALID_HID, H5Tclose);
-    char* text = nullptr;
-    if (t.valid() && H5Aread(a.get(), t.get(), &text) >= 0 && text) {
-      stored = text;
-      H5free_memory(text);
-    }
+    if (g.valid()) stored = hdf5::read_string_attribute(g.get(), "fingerprint");
   }
   if (stored != fingerprint)
     throw OutputFileError(path + ": --resume: this partial sweep was started with a different spec, scene, scheme or "
@@ -87,17 +81,17 @@ void SweepPartialFile::read_progress() {
   auto fail_fn = [this](const std::string& what) { fail(what); };
   const SweepHdf5 h5(fail_fn);
   const std::int64_t n = layout_.count;
+  const std::string not_partial =
+      path_ + ": --resume: not a partial sweep of " + std::to_string(n) + " trajectories (or a damaged one)";
+  if (H5Lexists(file_.get(), "/sweep", H5P_DEFAULT) <= 0) throw OutputFileError(not_partial);
   Handle sweep(H5Gopen2(file_.get(), "/sweep", H5P_DEFAULT), H5Gclose);
-  if (!sweep.valid() || h5.rows_of(sweep.get(), "status") != n)
-    throw OutputFileError(path_ + ": --resume: not a partial sweep of " + std::to_string(n) + " trajectories");
+  if (!sweep.valid() || h5.rows_of(sweep.get(), "status") != n) throw OutputFileError(not_partial);
   std::vector<std::int64_t> status(static_cast<std::size_t>(n)), first(static_cast<std::size_t>(n)),
       count(static_cast<std::size_t>(n)), samples(static_cast<std::size_t>(n));
   h5.read_rows(sweep.get(), "status", H5T_NATIVE_INT64, 0, n, 1, status.data());
   h5.read_rows(sweep.get(), "event_first", H5T_NATIVE_INT64, 0, n, 1, first.data());
   h5.read_rows(sweep.get(), "event_count", H5T_NATIVE_INT64, 0, n, 1, count.data());
   h5.read_rows(sweep.get(), "sample_count", H5T_NATIVE_INT64, 0, n, 1, samples.data());
-  for (std::size_t i = 0; i < count.size(); ++i) count[i] += samples[i];  // block rows of the trajectory
-  done_.assign(static_cast<std::size_t>(n), 0);
   // Blocks that exist; the last block's use is the furthest crossing of a completed row in it.
   for (int k = 0;; ++k) {
     const std::int64_t rows = h5.rows_of(file_.get(), "/partial/events_" + std::to_string(k));
@@ -105,8 +99,18 @@ void SweepPartialFile::read_progress() {
     block_capacity_.push_back(rows);
   }
   const std::int64_t last = static_cast<std::int64_t>(block_capacity_.size()) - 1;
+  constexpr std::int64_t in_block = (std::int64_t{1} << block_shift) - 1;
+  done_.assign(static_cast<std::size_t>(n), 0);
   for (std::size_t i = 0; i < status.size(); ++i) {
     if (status[i] < 0) continue;
+    // A completed row's crossings and samples lie inside one existing block (a damaged file's need not).
+    const std::int64_t block = first[i] >> block_shift;
+    if (count[i] < 0 || samples[i] < 0 || count[i] > in_block || samples[i] > in_block - count[i] ||
+        (count[i] + samples[i] > 0 &&
+         (first[i] < 0 || block > last ||
+          (first[i] & in_block) > block_capacity_[static_cast<std::size_t>(block)] - count[i] - samples[i])))
+      throw OutputFileError(not_partial);
+    count[i] += samples[i];  // block rows of the trajectory
     done_[i] = 1;
     if (status[i] != 0) ++failures_;
     if (first[i] >= 0 && (first[i] >> block_shift) == last)

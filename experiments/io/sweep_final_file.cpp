@@ -22,8 +22,10 @@ namespace {
 /// (samples) columns, appended in batches to extendible chunked datasets.
 class EventColumns {
  public:
-  EventColumns(hid_t group, bool crossings, const hdf5::Fail& fail)
-      : group_(group), crossings_(crossings), fail_(fail) {
+  /// `rows`: how many rows there will be (the chunks are no longer than that, at most 16384).
+  EventColumns(hid_t group, bool crossings, std::int64_t rows, const hdf5::Fail& fail)
+      : group_(group), crossings_(crossings), chunk_rows_(static_cast<hsize_t>(std::clamp<std::int64_t>(rows, 1, 16384))),
+        fail_(fail) {
     create("index", H5T_STD_I64LE, 1);
     if (crossings_) {
       create("event", H5T_STD_I32LE, 1);
@@ -76,7 +78,7 @@ class EventColumns {
   void create(const char* name, hid_t type, int width) {
     Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     H5Pset_obj_track_times(dcpl.get(), false);
-    const hsize_t chunk[2] = {16384, static_cast<hsize_t>(width)};
+    const hsize_t chunk[2] = {chunk_rows_, static_cast<hsize_t>(width)};
     H5Pset_chunk(dcpl.get(), width > 1 ? 2 : 1, chunk);
     const hsize_t dims[2] = {0, static_cast<hsize_t>(width)}, max[2] = {H5S_UNLIMITED, static_cast<hsize_t>(width)};
     Handle s(H5Screate_simple(width > 1 ? 2 : 1, dims, max), H5Sclose);
@@ -94,6 +96,7 @@ class EventColumns {
   }
   hid_t group_;
   bool crossings_;
+  hsize_t chunk_rows_;
   const hdf5::Fail& fail_;
   std::int64_t rows_ = 0;
 };
@@ -239,12 +242,17 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
   hdf5::write_fixed_strings(events_group.get(), "names",
                             layout_.event_names.empty() ? std::vector<std::string>{""} : layout_.event_names, false,
                             fail_out);
-  EventColumns events(events_group.get(), true, fail_out);
+  std::int64_t crossing_rows = 0, sample_rows = 0;
+  for (std::size_t i = 0; i < crossings.size(); ++i) {  // only to size the chunks: no more than 16384 matters
+    crossing_rows = std::min<std::int64_t>(crossing_rows + crossings[i], 16384);
+    sample_rows = std::min<std::int64_t>(sample_rows + samples[i], 16384);
+  }
+  EventColumns events(events_group.get(), true, crossing_rows, fail_out);
   Handle trajectory_group;
   std::unique_ptr<EventColumns> trajectory;
   if (layout_.trajectories) {
     trajectory_group = hdf5::create_group(file.get(), "/trajectory", fail_out);
-    trajectory = std::make_unique<EventColumns>(trajectory_group.get(), false, fail_out);
+    trajectory = std::make_unique<EventColumns>(trajectory_group.get(), false, sample_rows, fail_out);
   }
   const RowOffsets at = copy_event_rows(in, file_.get(), first, crossings, samples, events, trajectory.get());
   out.write_whole(dst.get(), "event_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, at.events.data());

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "experiments/io/hdf5_support.hpp"
@@ -96,8 +97,19 @@ class SweepHdf5 {
     Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
     if (!d.valid()) return -1;
     Handle s(H5Dget_space(d.get()), H5Sclose);
+    // The sweep's datasets have 1 or 2 dimensions; a file that says otherwise is not one of them.
+    const int rank = s.valid() ? H5Sget_simple_extent_ndims(s.get()) : -1;
+    if (rank < 1 || rank > 2) return -1;
     hsize_t dims[2] = {0, 0};
-    H5Sget_simple_extent_dims(s.get(), dims, nullptr);
+    if (H5Sget_simple_extent_dims(s.get(), dims, nullptr) != rank ||
+        dims[0] > static_cast<hsize_t>(std::numeric_limits<std::int64_t>::max()))
+      return -1;
+    // Every value is stored (lgi writes its datasets whole, or allocates them at
+    // creation): rows beyond the file's bytes are a damaged file, not memory to allocate.
+    Handle t(H5Dget_type(d.get()), H5Tclose);
+    const std::size_t value_bytes = t.valid() ? H5Tget_size(t.get()) : 0;
+    const hsize_t width = rank == 2 ? dims[1] : 1;
+    if (value_bytes == 0 || (width > 0 && dims[0] > H5Dget_storage_size(d.get()) / value_bytes / width)) return -1;
     return static_cast<std::int64_t>(dims[0]);
   }
 

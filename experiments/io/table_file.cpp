@@ -1,5 +1,6 @@
 #include "experiments/io/table_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -40,37 +41,58 @@ void write_csv(const std::string& path, const std::vector<TableColumn>& columns,
   if (!out.flush()) throw OutputFileError("cannot write '" + path + "'");
 }
 
-}  // namespace
+std::size_t rows_of(const TableColumn& c) {
+  const std::size_t n = c.integer ? c.whole.size() : c.real.size();
+  return n / static_cast<std::size_t>(std::max(c.width, 1));
+}
 
-void write_table_file(const std::string& path, bool force, const std::string& group,
-                      const std::vector<TableColumn>& columns, const std::map<std::string, std::string>& parameters) {
-  const std::string csv = results_csv_path(path);
-  refuse_existing(path, force);
-  refuse_existing(csv, force);
-  const std::size_t rows = columns.empty() ? 0
-                           : static_cast<std::size_t>(columns[0].integer ? columns[0].whole.size() : columns[0].real.size()) /
-                                 static_cast<std::size_t>(columns[0].width);
-  const std::string partial = path + ".partial", csv_partial = csv + ".partial";
-  {
-    const hdf5::QuietHdf5Errors quiet;
-    auto fail = [&partial](const std::string& what) {
-      throw OutputFileError(partial + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
-    };
-    hdf5::Handle file = hdf5::create_file(partial, fail);
-    hdf5::Handle table = hdf5::create_group(file.get(), "/" + group, fail);
-    const sweep_hdf5::SweepHdf5 h5(fail);
-    for (const auto& c : columns) {
-      const auto n = static_cast<std::int64_t>(rows);
+/// Every group and /parameters into `partial` (an HDF5 file created here).
+void write_groups(const std::string& partial, const std::vector<TableGroup>& groups,
+                  const std::map<std::string, std::string>& parameters) {
+  const hdf5::QuietHdf5Errors quiet;
+  auto fail = [&partial](const std::string& what) {
+    throw OutputFileError(partial + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
+  };
+  hdf5::Handle file = hdf5::create_file(partial, fail);
+  const sweep_hdf5::SweepHdf5 h5(fail);
+  for (const auto& g : groups) {
+    hdf5::Handle table = hdf5::create_group(file.get(), "/" + g.name, fail);
+    for (const auto& c : g.columns) {
+      const auto n = static_cast<std::int64_t>(rows_of(c));
       if (c.integer) h5.write_whole(table.get(), c.name, H5T_STD_I64LE, H5T_NATIVE_INT64, n, c.width, c.whole.data());
       else h5.write_whole(table.get(), c.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, c.width, c.real.data());
     }
-    hdf5::Handle params = hdf5::create_group(file.get(), "/parameters", fail);
-    for (const auto& [k, v] : parameters) hdf5::write_vlen_string(params.get(), k.c_str(), v, false, fail);
-    if (file.reset() < 0) fail("cannot close");
+    for (const auto& [k, v] : g.attributes) hdf5::write_vlen_string(table.get(), k.c_str(), v, false, fail);
   }
+  hdf5::Handle params = hdf5::create_group(file.get(), "/parameters", fail);
+  for (const auto& [k, v] : parameters) hdf5::write_vlen_string(params.get(), k.c_str(), v, false, fail);
+  if (file.reset() < 0) fail("cannot close");
+}
+
+}  // namespace
+
+void write_table_file(const std::string& path, bool force, const std::string& group,
+                      const std::vector<TableColumn>& columns, const std::map<std::string, std::string>& parameters,
+                      const std::vector<TableGroup>& extra_groups) {
+  const std::string csv = results_csv_path(path);
+  refuse_existing(path, force);
+  refuse_existing(csv, force);
+  const std::size_t rows = columns.empty() ? 0 : rows_of(columns[0]);
+  const std::string partial = path + ".partial", csv_partial = csv + ".partial";
+  std::vector<TableGroup> groups = {{group, columns}};
+  groups.insert(groups.end(), extra_groups.begin(), extra_groups.end());
+  write_groups(partial, groups, parameters);
   write_csv(csv_partial, columns, rows);
   hdf5::publish(partial, path, force, "the table is");
   hdf5::publish(csv_partial, csv, force, "the table is");
+}
+
+void write_groups_file(const std::string& path, bool force, const std::vector<TableGroup>& groups,
+                       const std::map<std::string, std::string>& parameters) {
+  refuse_existing(path, force);
+  const std::string partial = path + ".partial";
+  write_groups(partial, groups, parameters);
+  hdf5::publish(partial, path, force, "the table is");
 }
 
 }  // namespace lgi::experiments

@@ -7,7 +7,7 @@ are bit for bit the first records of an uninterrupted run, and its
 /diagnostics status is "running" (no file claims to be complete). Each run is
 sized to last far longer than the kill moment, so a loaded machine only
 changes how many records were flushed, never the verdict.
-(long-time has no --resume: a killed long-time run is started again.)"""
+(A killed long-time run goes on with --resume: test_long_time_resume.py.)"""
 import os
 import random
 import signal

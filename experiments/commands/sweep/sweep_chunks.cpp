@@ -132,12 +132,16 @@ bool run_chunk(SweepRunner& runner, std::int64_t first, std::int64_t rows, const
   clear_rows(chunk);
   chunk.first = first;
   const double cpu0 = integrators::detail::cpu_now();
-  TrajectoryRow row;
-  for (std::int64_t i = first; i < first + rows; ++i) {
-    runner.run(i, chunk.events, &stop, row);
-    if (row.interrupted) return false;
-    if (i == first) reserve_rows(chunk, rows, row);
-    append_row(chunk, row);
+  for (std::int64_t i = first; i < first + rows;) {
+    // One trajectory, or several in one ensemble (SweepRunner::run_next; the same rows either way).
+    const int n = runner.run_next(i, first + rows - i, chunk.events, &stop);
+    for (int j = 0; j < n; ++j) {
+      const TrajectoryRow& row = runner.row(j);
+      if (row.interrupted) return false;
+      if (i == first && j == 0) reserve_rows(chunk, rows, row);
+      append_row(chunk, row);
+    }
+    i += n;
   }
   // The chunk's thread CPU time, shared among its trajectories in proportion
   // to their monotonic-clock times (SweepRunner::run).

@@ -1,0 +1,96 @@
+// lgi long-time --resume: checkpoints and reopening (long_time_resume.hpp).
+#include "experiments/commands/long_time/long_time_resume.hpp"
+
+#include <cstdio>
+
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/hdf5_support.hpp"
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+constexpr const char* resume_group = "resume";
+constexpr const char* record_name = "checkpoint";
+
+/// Every bit of x: a hexadecimal float.
+std::string exact(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%a", x);
+  return buf;
+}
+
+}  // namespace
+
+std::string long_time_fingerprint(const system::Scene& scene, const integrators::SchemeInfo& scheme,
+                                  const integrators::RunConfig& cfg, int samples, const std::vector<Column>& columns) {
+  std::string f = "lgi long-time checkpoints 1\nlgi " + std::string(build_info::version) + "; " +
+                  build_info::compiler + "; " + build_info::cxx_flags + "; " + build_info::build_type +
+                  "\nscheme " + scheme.name + "\nt0 " + exact(cfg.t0) + " t_end " + exact(cfg.t_end) + " dt " +
+                  exact(cfg.dt) + " tol " + exact(cfg.tol) + "\nsamples " + std::to_string(samples) + "\ncolumns";
+  for (const Column& c : columns) f += " " + c.name;
+  return f + "\nscene\n" + scene.toml_text;
+}
+
+void create_resume_record(ResultsFile& file, const std::string& fingerprint) {
+  ResultAttributes a;
+  a.text["fingerprint"] = fingerprint;
+  file.write_group(resume_group, a);
+  file.create_record(resume_group, record_name, 2 * checkpoint_slot_bytes);
+}
+
+ResumedResults reopen_for_resume(const std::string& out, bool force, const std::vector<Column>& columns,
+                                 const ResultsFileOptions& options, const std::string& fingerprint,
+                                 std::size_t error_columns) {
+  const std::string partial = out + ".partial", csv = results_csv_path(out);
+  if (!hdf5::path_exists(partial))
+    throw UsageError("--resume: there is no " + partial + " to resume" +
+                     (hdf5::path_exists(out) ? " (" + out + " is complete)" : ""));
+  for (const std::string& p : {out, csv})
+    if (!force && hdf5::path_exists(p)) throw UsageError("--out: " + p + " exists (--force replaces it)");
+  ResumedResults r;
+  bool readable = false;
+  const std::optional<std::string> stored =
+      hdf5::read_string_attribute(partial, std::string("/") + resume_group, "fingerprint", &readable);
+  if (!readable)
+    throw OutputFileError("cannot resume results '" + partial + "': not an HDF5 file (damaged); remove it");
+  if (!stored) return r;  // nothing to go on from
+  if (*stored != fingerprint)
+    throw UsageError("--resume: " + partial +
+                     " was started with another scene, scheme, step, t_end, --samples or lgi build; remove it or "
+                     "run without --resume");
+  r.file = std::make_unique<ResultsFile>(out, force, columns, options, ResultsFile::Reopen{});
+  if (r.file->text_attribute(resume_group, "fingerprint") != fingerprint)  // changed since it was read
+    throw OutputFileError("cannot resume results '" + partial + "': its fingerprint cannot be read (damaged)");
+  r.checkpoint = newest_checkpoint(r.file->read_record(resume_group, record_name), error_columns, r.file->rows(),
+                                   r.next_sequence);
+  r.file->keep_rows(r.checkpoint ? r.checkpoint->rows : 0);
+  return r;
+}
+
+LongTimeCheckpoints::LongTimeCheckpoints(ResultsFile& file, double interval_seconds,
+                                         std::function<void(RunCheckpoint&)> fill, std::uint64_t next_sequence)
+    : file_(file),
+      interval_(interval_seconds),
+      fill_(std::move(fill)),
+      sequence_(next_sequence),
+      last_(std::chrono::steady_clock::now()) {}
+
+bool LongTimeCheckpoints::due(std::int64_t /*step*/) {
+  return std::chrono::steady_clock::now() - last_ >= interval_;
+}
+
+void LongTimeCheckpoints::save(const integrators::LoopCheckpoint& checkpoint) {
+  file_.flush();  // the rows first: a checkpoint never counts rows that are not in the file
+  RunCheckpoint c;
+  c.rows = file_.rows();
+  c.loop = checkpoint;
+  fill_(c);
+  const std::size_t slot = static_cast<std::size_t>(sequence_ % 2) * checkpoint_slot_bytes;
+  file_.write_record(resume_group, record_name, slot, encode_checkpoint(c, sequence_));
+  ++sequence_;
+  last_ = std::chrono::steady_clock::now();
+}
+
+}  // namespace lgi::experiments

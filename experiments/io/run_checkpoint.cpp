@@ -1,0 +1,148 @@
+// Checkpoint slots (run_checkpoint.hpp). The bytes decoded here come from a
+// file that may be torn or damaged: every length and count is checked before
+// it is used (fuzz/fuzz_h5_readers.cpp).
+#include "experiments/io/run_checkpoint.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+
+namespace lgi::experiments {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "checkpoint slots are little-endian as stored");
+
+constexpr char magic[8] = {'l', 'g', 'i', 'c', 'k', 'p', 't', '1'};
+constexpr std::size_t header_bytes = 32;
+
+std::uint64_t fnv1a(std::span<const unsigned char> bytes, std::uint64_t h = 14695981039346656037ull) {
+  for (unsigned char b : bytes) h = (h ^ b) * 1099511628211ull;
+  return h;
+}
+
+/// The slot's hash covers its sequence number and length as well as the
+/// payload, so a damaged header byte is caught like a damaged payload byte.
+std::uint64_t slot_hash(std::uint64_t sequence, std::uint64_t length, std::span<const unsigned char> payload) {
+  unsigned char head[16];
+  std::memcpy(head, &sequence, 8);
+  std::memcpy(head + 8, &length, 8);
+  return fnv1a(payload, fnv1a(head));
+}
+
+class Writer {
+ public:
+  template <class T>
+  void put(T x) {
+    static_assert(sizeof(T) == 8);
+    unsigned char b[8];
+    std::memcpy(b, &x, 8);
+    bytes.insert(bytes.end(), b, b + 8);
+  }
+  void put_all(std::span<const double> xs) {
+    put(static_cast<std::int64_t>(xs.size()));
+    for (double x : xs) put(x);
+  }
+  std::vector<unsigned char> bytes;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::span<const unsigned char> b) : b_(b) {}
+  template <class T>
+  bool get(T& x) {
+    static_assert(sizeof(T) == 8);
+    if (b_.size() - at_ < 8) return false;
+    std::memcpy(&x, b_.data() + at_, 8);
+    at_ += 8;
+    return true;
+  }
+  /// A count, then that many numbers (at most what is left).
+  bool get_all(std::vector<double>& xs) {
+    std::int64_t n = 0;
+    if (!get(n) || n < 0 || static_cast<std::uint64_t>(n) > (b_.size() - at_) / 8) return false;
+    xs.resize(static_cast<std::size_t>(n));
+    for (double& x : xs) (void)get(x);
+    return true;
+  }
+  bool end() const { return at_ == b_.size(); }
+
+ private:
+  std::span<const unsigned char> b_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+std::vector<unsigned char> encode_checkpoint(const RunCheckpoint& c, std::uint64_t sequence) {
+  Writer p;
+  const integrators::LoopCheckpoint& l = c.loop;
+  p.put(c.rows);
+  p.put(l.step);
+  p.put(l.t);
+  p.put(l.h);
+  for (int i = 0; i < 9; ++i) p.put(l.state.R.data()[i]);
+  for (int i = 0; i < 3; ++i) p.put(l.state.Pi(i));
+  p.put(l.work.rhs_evaluations);
+  p.put(l.work.rejected_steps);
+  p.put(l.work.newton_iterations_max);
+  p.put(l.work.newton_failures);
+  p.put(c.cpu_seconds);
+  p.put(c.output_seconds);
+  p.put_all(c.window_max);
+  for (double x : c.run_max) p.put(x);
+  p.put_all(l.memory);
+  if (c.run_max.size() != c.window_max.size()) throw std::invalid_argument("checkpoint: run_max and window_max differ");
+  if (header_bytes + p.bytes.size() > checkpoint_slot_bytes) throw std::length_error("checkpoint: too large for a slot");
+  Writer slot;
+  slot.bytes.assign(magic, magic + 8);
+  slot.put(sequence);
+  slot.put(static_cast<std::uint64_t>(p.bytes.size()));
+  slot.put(slot_hash(sequence, p.bytes.size(), p.bytes));
+  slot.bytes.insert(slot.bytes.end(), p.bytes.begin(), p.bytes.end());
+  slot.bytes.resize(checkpoint_slot_bytes, 0);
+  return slot.bytes;
+}
+
+std::optional<std::pair<RunCheckpoint, std::uint64_t>> decode_checkpoint(std::span<const unsigned char> slot,
+                                                                         std::size_t error_columns) {
+  if (slot.size() < header_bytes || std::memcmp(slot.data(), magic, 8) != 0) return std::nullopt;
+  Reader h(slot.subspan(8, 24));
+  std::uint64_t sequence = 0, length = 0, hash = 0;
+  (void)h.get(sequence);
+  (void)h.get(length);
+  (void)h.get(hash);
+  if (sequence == 0 || length > slot.size() - header_bytes) return std::nullopt;
+  const auto payload = slot.subspan(header_bytes, static_cast<std::size_t>(length));
+  if (slot_hash(sequence, length, payload) != hash) return std::nullopt;
+  RunCheckpoint c;
+  integrators::LoopCheckpoint& l = c.loop;
+  Reader p(payload);
+  bool ok = p.get(c.rows) && p.get(l.step) && p.get(l.t) && p.get(l.h);
+  for (int i = 0; i < 9 && ok; ++i) ok = p.get(l.state.R.data()[i]);
+  for (int i = 0; i < 3 && ok; ++i) ok = p.get(l.state.Pi(i));
+  ok = ok && p.get(l.work.rhs_evaluations) && p.get(l.work.rejected_steps) && p.get(l.work.newton_iterations_max) &&
+       p.get(l.work.newton_failures) && p.get(c.cpu_seconds) && p.get(c.output_seconds) && p.get_all(c.window_max);
+  if (!ok || c.window_max.size() != error_columns) return std::nullopt;
+  c.run_max.resize(error_columns);
+  for (double& x : c.run_max) ok = ok && p.get(x);
+  ok = ok && p.get_all(l.memory) && p.end();
+  if (!ok || c.rows < 0 || l.step < 1) return std::nullopt;
+  return std::pair{std::move(c), sequence};
+}
+
+std::optional<RunCheckpoint> newest_checkpoint(std::span<const unsigned char> record, std::size_t error_columns,
+                                               std::int64_t max_rows, std::uint64_t& next_sequence) {
+  std::optional<std::pair<RunCheckpoint, std::uint64_t>> best;
+  next_sequence = 1;
+  for (std::size_t at = 0; at + checkpoint_slot_bytes <= record.size(); at += checkpoint_slot_bytes) {
+    auto c = decode_checkpoint(record.subspan(at, checkpoint_slot_bytes), error_columns);
+    if (c && c->second < UINT64_MAX) next_sequence = std::max(next_sequence, c->second + 1);
+    if (c && c->first.rows <= max_rows && (!best || c->second > best->second)) best = std::move(c);
+  }
+  if (!best) return std::nullopt;
+  return std::move(best->first);
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,138 @@
+"""lgi long-time --resume (issue 15; RESULTS.md, "long-time --resume"): a run
+killed with SIGKILL (or stopped by SIGINT) at moments drawn from a fixed-seed
+generator, then resumed with the same arguments and --resume, ends with the
+files of an uninterrupted run: every /series value bit for bit, the CSV twin
+byte for byte, and the same /diagnostics counters. The cases cover a
+fixed-step scheme without memory (rkmk4), an adaptive one that carries its
+FSAL stage and controller state (rkmk-dp54) and one whose start() sets up
+from the initial state (split-exact); one run is killed twice. A scheme that
+cannot be resumed, a missing partial file and changed arguments are refused
+with exit 2 and one line."""
+import os
+import random
+import signal
+import subprocess
+import time
+
+import h5py
+import pytest
+
+LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "experiments", "scenes")
+FREE = os.path.join(SCENES, "free_body_hlw.toml")
+TOP = os.path.join(SCENES, "heavy_top_trindade_1.toml")
+FLUSH = ["--flush-seconds", "0.1"]  # checkpoints every 0.1 s (and every 4096 steps at most)
+
+CASES = {
+    "rkmk4": ["--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-4", "--t-end", "200", "--samples", "40"],
+    "rkmk-dp54": ["--scene", TOP, "--scheme", "rkmk-dp54", "--tol", "1e-12", "--t-end", "300", "--samples", "40"],
+    "split-exact": ["--scene", TOP, "--scheme", "split-exact", "--dt", "1e-3", "--t-end", "150"],
+}
+RNG = random.Random(1515)  # fixed seed: the same moments on every run
+# (case, signals, fractions of the uninterrupted run's wall time at which they are sent)
+RUNS = [("rkmk4", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]) for _ in range(3)]
+RUNS += [("rkmk-dp54", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]),
+         ("split-exact", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]),
+         ("rkmk4", [signal.SIGKILL, signal.SIGKILL], [RNG.uniform(0.2, 0.4), RNG.uniform(0.2, 0.4)]),
+         ("rkmk-dp54", [signal.SIGINT], [RNG.uniform(0.25, 0.7)])]
+COUNTERS = ["steps", "rejected_steps", "rhs_evaluations", "newton_iterations_max", "newton_failures", "samples",
+            "t_final", "status"]
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def lgi(*args):
+    return subprocess.run([LGI, "long-time", *args], capture_output=True, text=True, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def references(tmp_path_factory):
+    """Each case run once, uninterrupted: its files and its wall time."""
+    d = tmp_path_factory.mktemp("uninterrupted")
+    out = {}
+    for name, args in CASES.items():
+        path = str(d / f"{name}.h5")
+        start = time.monotonic()
+        r = lgi(*args, *FLUSH, "--out", path, "--quiet")
+        assert r.returncode == 0, r.stderr
+        out[name] = (path, time.monotonic() - start)
+    return out
+
+
+def cut(args, out, sig, seconds, resume):
+    """Starts the run (resumed or not) and sends `sig` `seconds` after it started writing.
+    Returns False if the run finished first."""
+    p = subprocess.Popen([LGI, "long-time", *args, *FLUSH, "--out", out, "--quiet", *(["--resume"] if resume else [])],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        end = time.monotonic() + 120
+        while not os.path.exists(out + ".partial") and p.poll() is None and time.monotonic() < end:
+            time.sleep(0.005)
+        time.sleep(seconds)
+        if p.poll() is not None:
+            assert p.returncode == 0
+            return False
+        p.send_signal(sig)
+    finally:
+        if p.poll() is None and sig != signal.SIGINT:
+            p.kill()
+        p.wait(timeout=120)
+    assert p.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 130), p.returncode
+    return True
+
+
+def assert_same_files(out, ref):
+    with h5py.File(out, "r") as f, h5py.File(ref, "r") as g:
+        assert sorted(f["series"]) == sorted(g["series"])
+        for k in g["series"]:
+            assert f["series"][k][()].tobytes() == g["series"][k][()].tobytes(), k
+        for k in COUNTERS:
+            assert text(f["diagnostics"].attrs[k]) == text(g["diagnostics"].attrs[k]), k
+    csv, ref_csv = out[:-3] + ".csv", ref[:-3] + ".csv"
+    with open(csv, "rb") as a, open(ref_csv, "rb") as b:
+        assert a.read() == b.read()
+
+
+@pytest.mark.parametrize("k", range(len(RUNS)))
+def test_resume_matches_uninterrupted(tmp_path, references, k):
+    name, signals, fractions = RUNS[k]
+    ref, wall = references[name]
+    out = str(tmp_path / "run.h5")
+    resumed_from = []
+    for i, (sig, fraction) in enumerate(zip(signals, fractions)):
+        if not cut(CASES[name], out, sig, fraction * wall, resume=i > 0):
+            break  # a fast machine: the run finished before the signal
+    if os.path.exists(out + ".partial"):
+        r = lgi(*CASES[name], *FLUSH, "--out", out, "--resume")
+        assert r.returncode == 0, r.stderr
+        assert "resuming" in r.stderr, r.stderr
+        resumed_from = r.stderr
+    assert not os.path.exists(out + ".partial")
+    assert_same_files(out, ref)
+    if resumed_from and fractions[0] * wall > 0.5:
+        assert "from step 0" not in resumed_from, "no checkpoint after 0.5 s of a run that checkpoints every 0.1 s"
+
+
+def one_line(err):
+    assert err.endswith("\n") and err.count("\n") == 1, repr(err)
+    return err
+
+
+def test_resume_refusals(tmp_path):
+    out = str(tmp_path / "r.h5")
+    short = ["--scene", FREE, "--dt", "1e-3", "--t-end", "1"]
+    r = lgi(*short, "--scheme", "rkmk4", "--out", out, "--resume")
+    assert r.returncode == 2 and "there is no" in one_line(r.stderr)
+    # A baseline keeps its chart's coordinates between steps and does not save them.
+    r = lgi(*short, "--scheme", "quat/rk4", "--out", out, "--resume")
+    assert r.returncode == 2 and "--resume" in one_line(r.stderr)
+    # A partial file of another run (another step) is refused, and left as it was.
+    assert cut(["--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-4", "--t-end", "1e4"], out, signal.SIGKILL, 0.3,
+               resume=False)
+    before = open(out + ".partial", "rb").read()
+    r = lgi("--scene", FREE, "--scheme", "rkmk4", "--dt", "2e-4", "--t-end", "1e4", "--out", out, "--resume")
+    assert r.returncode == 2 and "another" in one_line(r.stderr)
+    assert open(out + ".partial", "rb").read() == before
