@@ -5,7 +5,8 @@
 # scripts/build_paper.sh; every number comes from lgi runs made here.
 #
 # Usage: scripts/paper_atlas.sh --lgi PATH --data DIR --figs DIR --gen DIR --mode quick|full
-# Writes DIR(data)/atlas/*.h5, figures bifurcation_*, poincare_* in --figs, and
+# Writes DIR(data)/atlas/*.h5, figures bifurcation_*, appelrot_*, poincare_*, region_*,
+# poisson_sphere_potentials and chaos_map_* in --figs, and
 # --gen/atlas_equilibria.tex, --gen/atlas_megno.tex, --gen/atlas_commands.tex.
 set -euo pipefail
 
@@ -76,7 +77,31 @@ for sc in "$scenes/kovalevskaya.toml" "$atlas/richter_s100.toml" "$scenes/genera
   sec_files+=("$atlas/poincare/$stem.h5")
 done
 
+# ── accessible regions, energy-surface topologies, the Appelrot diagram, the chaos map ─
+mkdir -p "$atlas/region" "$atlas/chaos"
+run region --scene "$scenes/free_body_hlw.toml" --l 1 --h 0.6 --out "$atlas/region/euler.h5"
+run region --scene "$scenes/lagrange_top_oblate.toml" --l 1 --h 1 --out "$atlas/region/lagrange.h5"
+run region --scene "$scenes/general_top_richter.toml" --l 2 --h 2.2 --out "$atlas/region/general.h5"
+if [ "$mode" = quick ]; then cells=41; else cells=121; fi
+run region --scene "$scenes/lagrange_top_oblate.toml" --cells --l-range "0:3:$cells" --h-range "-1.2:3:$cells" \
+  --out "$atlas/region/lagrange_top_oblate.h5"
+run bifurcation --scene "$scenes/kovalevskaya.toml" --appelrot 0,1,2 --out "$atlas/bifurcation/kovalevskaya_appelrot.h5"
+if [ "$mode" = quick ]; then
+  chaos_grid=(--l-range 0:3:5 --h-range -0.5:4:6 --ics 6 --t-end 150)
+else
+  chaos_grid=(--l-range 0:3:13 --h-range -0.5:4:19 --ics 20 --t-end 400)
+fi
+run chaos-map --scene "$scenes/general_top_richter.toml" "${chaos_grid[@]}" --threads 2 \
+  --out "$atlas/chaos/general_top_richter.h5"
+
 # ── figures and tables ───────────────────────────────────────────────────────
+"$PY" "$plots/region.py" --out "$figs" --combine poisson_sphere_potentials "$atlas/region/euler.h5" \
+  "$atlas/region/lagrange.h5" "$atlas/region/general.h5" || die "region.py failed"
+"$PY" "$plots/region.py" --out "$figs" "$atlas/region/lagrange_top_oblate.h5" || die "region.py --cells failed"
+"$PY" "$plots/bifurcation.py" --out "$figs" "$atlas/bifurcation/kovalevskaya_appelrot.h5" \
+  || die "bifurcation.py --appelrot failed"
+"$PY" "$plots/chaos_map.py" --out "$figs" --branches "$atlas/bifurcation/general_top_richter.h5" \
+  "$atlas/chaos/general_top_richter.h5" || die "chaos_map.py failed"
 "$PY" "$plots/bifurcation.py" --out "$figs" "${bif_files[@]}" || die "bifurcation.py failed"
 "$PY" "$plots/poincare.py" --out "$figs" "${sec_files[@]}" || die "poincare.py failed"
 "$PY" "$plots/poincare.py" --out "$figs/megno" --colour megno "$atlas/poincare/general_top_richter.h5" \
