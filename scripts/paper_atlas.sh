@@ -6,8 +6,8 @@
 #
 # Usage: scripts/paper_atlas.sh --lgi PATH --data DIR --figs DIR --gen DIR --mode quick|full
 # Writes DIR(data)/atlas/*.h5, figures bifurcation_*, appelrot_*, poincare_*, region_*,
-# poisson_sphere_potentials and chaos_map_* in --figs, and
-# --gen/atlas_equilibria.tex, --gen/atlas_megno.tex, --gen/atlas_commands.tex.
+# poisson_sphere_potentials, chaos_map_* and actions_integrable in --figs, and
+# --gen/atlas_equilibria.tex, --gen/atlas_megno.tex, --gen/atlas_cardan.tex, --gen/atlas_commands.tex.
 set -euo pipefail
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -94,7 +94,24 @@ fi
 run chaos-map --scene "$scenes/general_top_richter.toml" "${chaos_grid[@]}" --threads 2 \
   --out "$atlas/chaos/general_top_richter.h5"
 
+# ── the top in a Cardan suspension on T^3 (docs/cardan.md) and the actions of the integrable tops ─
+mkdir -p "$atlas/cardan" "$atlas/actions"
+cardan_summary="$atlas/cardan/summary.txt"
+: > "$cardan_summary"
+for stem in cardan_lagrange_upright cardan_lagrange_horizontal cardan_trindade_1_massless; do
+  for scheme in cardan-midpoint cardan-dg cardan-rk4; do
+    args=(simulate --scene "$scenes/$stem.toml" --scheme "$scheme" --out "$atlas/cardan/${stem}_$scheme.h5")
+    echo "lgi ${args[*]}" | sed "s|$root/||g; s|$atlas/||g" >> "$commands"
+    line=$("$lgi" "${args[@]}" --force) || die "lgi simulate failed: lgi ${args[*]}"
+    echo "scene=$stem $line" >> "$cardan_summary"
+  done
+done
+run actions --scene "$scenes/lagrange_top_cigar.toml" --h 2 --grid 41 --out "$atlas/actions/lagrange_top_cigar.h5"
+run actions --scene "$scenes/free_body_hlw.toml" --h 1 --grid 41 --out "$atlas/actions/free_body_hlw.h5"
+
 # ── figures and tables ───────────────────────────────────────────────────────
+"$PY" "$plots/actions.py" --out "$figs" --name actions_integrable "$atlas/actions/lagrange_top_cigar.h5" \
+  "$atlas/actions/free_body_hlw.h5" || die "actions.py failed"
 "$PY" "$plots/region.py" --out "$figs" --combine poisson_sphere_potentials "$atlas/region/euler.h5" \
   "$atlas/region/lagrange.h5" "$atlas/region/general.h5" || die "region.py failed"
 "$PY" "$plots/region.py" --out "$figs" "$atlas/region/lagrange_top_oblate.h5" || die "region.py --cells failed"
@@ -110,4 +127,4 @@ mv "$figs/megno/poincare_general_top_richter.pdf" "$figs/poincare_megno_general_
 mv "$figs/megno/poincare_general_top_richter.png" "$figs/poincare_megno_general_top_richter.png"
 rmdir "$figs/megno" 2>/dev/null || true
 "$PY" "$plots/atlas_tables.py" --out "$gen" --equilibria "${eq_files[@]}" --sections "${sec_files[@]}" \
-  --commands "$commands" || die "atlas_tables.py failed"
+  --commands "$commands" --cardan "$cardan_summary" || die "atlas_tables.py failed"
