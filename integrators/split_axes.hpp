@@ -35,12 +35,13 @@
 // supports (every term with frozen_torque and damping: gravity, spring and
 // damper, drive, magnet; system/terms/frozen_kick_term.hpp); compositions
 // run a damper backward over part of a step (composition.hpp).
+#include "integrators/outer_rotation_splitting.hpp"
 #include "integrators/rotation_flows.hpp"
 #include "integrators/scheme_interface.hpp"
 
 namespace lgi::integrators {
 
-class SplitAxes {
+class SplitAxes : public OuterRotationSplitting<SplitAxes> {
  public:
   static constexpr SchemeFacts facts{
       .order = 2,
@@ -51,21 +52,8 @@ class SplitAxes {
                      .conserves_vertical_momentum = true},
       .reference = "Dullweber, Leimkuhler & McLachlan, J. Chem. Phys. 107 (1997) 5840-5851; axis ordering: "
                    "Fasso, J. Comput. Phys. 189 (2003) 527-538"};
-  // Resume (scheme_interface.hpp): start() depends on the inertia only; a step carries nothing.
-  static constexpr bool memoryless_steps = true;
 
-  template <class Model>
-  void start(const Model& model, const State& /*initial*/, double /*t0*/) {
-    set_up(model.inertia);
-  }
-
-  // The outer/inner face that composition.hpp uses to merge neighbouring
-  // outer rotations A_s (flows of one Hamiltonian compose additively).
-  template <class Model>
-  void outer(const Model& model, State& s, double /*t*/, double length, WorkCounters& /*work*/) {
-    if (!ready_) set_up(model.inertia);
-    axes_.flow(s, s_, c_s_, length);
-  }
+  // The part between the outer rotations (outer_rotation_splitting.hpp).
   template <class Model>
   StepStatus inner(const Model& model, State& s, double t, double h, WorkCounters& work) {
     if (!ready_) set_up(model.inertia);
@@ -78,15 +66,8 @@ class SplitAxes {
     return {};
   }
 
-  template <class Model>
-  StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    outer(model, s, t, 0.5 * h, work);
-    inner(model, s, t, h, work);
-    outer(model, s, t + h, 0.5 * h, work);
-    return {};
-  }
-
  private:
+  friend class OuterRotationSplitting<SplitAxes>;
   void set_up(const system::Inertia& inertia) {
     axes_ = rotation_flows::PrincipalAxisFlows(inertia);
     const auto order = rotation_flows::ascending_axes(inertia.principal);
@@ -99,10 +80,8 @@ class SplitAxes {
     ready_ = true;
   }
 
-  rotation_flows::PrincipalAxisFlows axes_;
-  int s_ = 0, m_ = 1, l_ = 2;             // axes of the smallest, intermediate, largest moment
-  double c_s_ = 1.0, c_m_ = 1.0, c_l_ = 1.0;  // 1/I of each
-  bool ready_ = false;
+  int m_ = 1, l_ = 2;             // axes of the intermediate and the largest moment
+  double c_m_ = 1.0, c_l_ = 1.0;  // 1/I of each
 };
 
 }  // namespace lgi::integrators

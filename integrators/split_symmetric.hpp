@@ -34,12 +34,13 @@
 // a sincos), 3 plane rotations (2 in a composition, where neighbouring A_s
 // merge), 2 kicks; a coefficient that is exactly 0 (equal moments) skips its
 // rotation. Supports what split-exact's kick supports.
+#include "integrators/outer_rotation_splitting.hpp"
 #include "integrators/rotation_flows.hpp"
 #include "integrators/scheme_interface.hpp"
 
 namespace lgi::integrators {
 
-class SplitSymmetric {
+class SplitSymmetric : public OuterRotationSplitting<SplitSymmetric> {
  public:
   static constexpr SchemeFacts facts{
       .order = 2,
@@ -50,20 +51,8 @@ class SplitSymmetric {
                      .conserves_vertical_momentum = true},
       .reference = "Touma & Wisdom, Astron. J. 107 (1994) 1189-1202 (symmetric top plus remainder); Fasso, "
                    "J. Comput. Phys. 189 (2003) 527-538"};
-  // Resume (scheme_interface.hpp): start() depends on the inertia only; a step carries nothing.
-  static constexpr bool memoryless_steps = true;
 
-  template <class Model>
-  void start(const Model& model, const State& /*initial*/, double /*t0*/) {
-    set_up(model.inertia);
-  }
-
-  // The outer/inner face of composition.hpp: neighbouring A_s merge.
-  template <class Model>
-  void outer(const Model& model, State& s, double /*t*/, double length, WorkCounters& /*work*/) {
-    if (!ready_) set_up(model.inertia);
-    axes_.flow(s, s_, c_s_, length);
-  }
+  // The part between the outer rotations (outer_rotation_splitting.hpp).
   template <class Model>
   StepStatus inner(const Model& model, State& s, double t, double h, WorkCounters& work) {
     if (!ready_) set_up(model.inertia);
@@ -75,15 +64,8 @@ class SplitSymmetric {
     return {};
   }
 
-  template <class Model>
-  StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    outer(model, s, t, 0.5 * h, work);
-    inner(model, s, t, h, work);
-    outer(model, s, t + h, 0.5 * h, work);
-    return {};
-  }
-
  private:
+  friend class OuterRotationSplitting<SplitSymmetric>;
   void set_up(const system::Inertia& inertia) {
     axes_ = rotation_flows::PrincipalAxisFlows(inertia);
     const auto order = rotation_flows::ascending_axes(inertia.principal);
@@ -96,11 +78,9 @@ class SplitSymmetric {
     ready_ = true;
   }
 
-  rotation_flows::PrincipalAxisFlows axes_;
-  int s_ = 0, l_ = 2;                // axes of the smallest and the largest moment
-  double inverse_m_ = 1.0;           // 1/I_m
-  double c_s_ = 0.0, c_l_ = 0.0;     // 1/I_s − 1/I_m ≥ 0, 1/I_l − 1/I_m ≤ 0
-  bool ready_ = false;
+  int l_ = 2;               // the axis of the largest moment
+  double inverse_m_ = 1.0;  // 1/I_m
+  double c_l_ = 0.0;        // 1/I_l − 1/I_m ≤ 0 (c_s_ = 1/I_s − 1/I_m ≥ 0)
 };
 
 }  // namespace lgi::integrators

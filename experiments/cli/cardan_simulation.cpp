@@ -136,15 +136,7 @@ SimulationOutcome run_cardan_simulation(const system::Scene& scene, const std::s
   if (outcome.stats.interrupted) outcome.stats.status = integrators::interrupted_status;
   outcome.diagnostics = diagnostics_of_run(outcome.stats, 0.0);
   outcome.error_summary = observer.summary();
-  if (!outcome.stats.ok) {
-    outcome.failure_message = torus->name + " on " + scene.file + ": " + outcome.stats.status;
-    if (writer) {
-      writer->abandon(outcome.diagnostics);
-      outcome.failure_message += "; partial trajectory kept in " + writer->partial_path();
-    }
-    return outcome;
-  }
-  if (writer) writer->finish(outcome.diagnostics);
+  close_simulation(outcome, torus->name, scene.file, writer ? &*writer : nullptr);
   return outcome;
 }
 

@@ -69,6 +69,19 @@ void check_scheme_supports(const integrators::SchemeInfo& scheme, const system::
     throw RunError(why + "; scene " + scene.file + " is not one");
 }
 
+void close_simulation(SimulationOutcome& outcome, const std::string& scheme_name, const std::string& scene_file,
+                      TrajectoryWriter* writer) {
+  if (outcome.stats.ok) {
+    if (writer) writer->finish(outcome.diagnostics);
+    return;
+  }
+  outcome.failure_message = scheme_name + " on " + scene_file + ": " + outcome.stats.status;
+  if (writer) {
+    writer->abandon(outcome.diagnostics);
+    outcome.failure_message += "; partial trajectory kept in " + writer->partial_path();
+  }
+}
+
 SimulationOutcome run_simulation(const system::Scene& scene, const integrators::SchemeInfo& scheme,
                                  const integrators::RunConfig& cfg, const SimulationRequest& request,
                                  SampleSink* sink, const std::atomic<bool>* stop) {
@@ -91,15 +104,7 @@ SimulationOutcome run_simulation(const system::Scene& scene, const integrators::
   outcome.stats = scheme.run(model, state, c, timed);
   outcome.diagnostics = diagnostics_of(outcome.stats, timed.output_seconds());
   outcome.error_summary = observer.invariant_error_summary();
-  if (!outcome.stats.ok) {
-    outcome.failure_message = scheme.name + " on " + scene.file + ": " + outcome.stats.status;
-    if (writer) {
-      writer->abandon(outcome.diagnostics);
-      outcome.failure_message += "; partial trajectory kept in " + writer->partial_path();
-    }
-    return outcome;
-  }
-  if (writer) writer->finish(outcome.diagnostics);
+  close_simulation(outcome, scheme.name, scene.file, writer ? &*writer : nullptr);
   return outcome;
 }
 

@@ -48,6 +48,13 @@ struct SimulationOutcome {
   std::string failure_message;  // empty if ok, else the line lgi prints after "lgi: "
 };
 
+/// Ends a run that has its stats and diagnostics: a failed run gets its
+/// message ("<scheme> on <scene file>: <status>") and its writer abandoned
+/// (the .partial kept and named), a run that succeeded its writer finished.
+/// `writer` may be null (no output file).
+void close_simulation(SimulationOutcome& outcome, const std::string& scheme_name, const std::string& scene_file,
+                      TrajectoryWriter* writer);
+
 /// Runs the scheme from the scene's initial state with `cfg` (from
 /// simulation_config), writing request.out if not empty and handing every
 /// sample to `sink` if not null. `stop` is RunConfig::stop (may be null). A
