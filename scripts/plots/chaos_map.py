@@ -45,6 +45,7 @@ def main():
                   (m["lyapunov_max"], "largest Lyapunov exponent", "viridis", 0.0, None))
         for ax, (value, label, cmap, vmin, vmax) in zip(axes, panels):
             shown = np.ma.masked_invalid(np.where(m["status"] == 0, value, np.nan))
+            ax.grid(False)  # pcolormesh under a grid is deprecated (Matplotlib 3.5)
             mesh = ax.pcolormesh(edges(l), edges(h), shown.T, cmap=cmap, vmin=vmin, vmax=vmax, shading="flat")
             fig.colorbar(mesh, ax=ax, label=label)
             ax.plot(l, m["h_min"], color="k", ls="--", lw=0.8)

@@ -121,11 +121,15 @@ def main():
         cols = min(3, len(singles))
         rows = (len(singles) + cols - 1) // cols
         fig, axes = c.plt.subplots(rows, cols, figsize=(3.0 * cols, 2.5 * rows), squeeze=False)
-        for ax, (path, data) in zip(axes.ravel(), singles):
+        labels = [c.scene_label(data[2]) for _, data in singles]
+        for ax, (path, data), label in zip(axes.ravel(), singles, labels):
             draw_single(ax, *data)
+            if len(set(labels)) > 1:  # panels of different scenes: each names its own
+                ax.set_title(f"{label}\n{ax.get_title()}", fontsize=8)
         for ax in axes.ravel()[len(singles):]:
             ax.axis("off")
-        fig.suptitle(c.scene_label(singles[0][1][2]), fontsize=9)
+        if len(set(labels)) == 1:
+            fig.suptitle(labels[0], fontsize=9)
         fig.tight_layout()
         c.save(fig, args.out, args.combine)
     else:
