@@ -7,7 +7,8 @@ Usage: memcheck_simulate.py LGI [--quick]
             (scene reading, the registry, the loop, the H5MD writer) in seconds
   default   one scheme of every family that `lgi schemes --json` lists (the
             first that applies to the scene, on the free body; on a heavy top
-            for families whose schemes need torques to differ), about 20 steps each
+            for families whose schemes need torques to differ, and for the
+            Euler-angle charts, whose singular set holds the free body's start), about 20 steps each
 
 Each run is `valgrind --tool=memcheck --error-exitcode=99 --leak-check=full
 --errors-for-leak-kinds=definite lgi simulate ...`; a run fails on exit status
@@ -36,6 +37,10 @@ def schemes_by_family(lgi):
         listed = json.loads(subprocess.run([lgi, "schemes", "--json", "--scene", scene], capture_output=True,
                                            text=True, check=True).stdout)
         for s in listed:
+            # The free body starts at the identity, on the Euler-angle chart's singular set (theta = 0),
+            # where euler-zxz/* refuse to start: the charts run on the heavy top, which starts off it.
+            if scene == FREE and s["name"].startswith("euler-zxz/"):
+                continue
             out.setdefault(s["family"], (s, scene))
     return out
 
