@@ -119,6 +119,7 @@ class Rk4Stepper {
  public:
   using Vector = typename Coords::Vector;
   static constexpr bool adaptive = false;
+  static constexpr bool dense_output = false;  // every stepper states it (chart_scheme.hpp's constraints read it)
   static constexpr const char* name = "rk4";
   explicit Rk4Stepper(double /*tol*/ = 0.0) {}
   template <class Sys>
