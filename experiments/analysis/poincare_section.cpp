@@ -6,6 +6,7 @@
 #include <sstream>
 #include <variant>
 
+#include "experiments/analysis/seeded_random.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "integrators/system/model.hpp"
 #include "integrators/tangent_flow.hpp"
@@ -16,13 +17,6 @@ namespace {
 
 Vec3 center_of_mass(const system::Scene& scene) {
   return scene.declared<system::GravityTerm>() ? scene.center_of_mass.value_or(Vec3::Zero()) : Vec3::Zero();
-}
-
-/// SplitMix64's finaliser (G. Steele, D. Lea, C. Flood, OOPSLA 2014).
-std::uint64_t mix(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -102,10 +96,10 @@ double minimum_energy(const HeavyTopBody& body, double l) {
 OrbitIndicators orbit_indicators(const system::Scene& scene, const system::State& x0, double t_end, double dt,
                                  std::uint64_t seed, std::int64_t index) {
   integrators::Vec6 v;
-  std::uint64_t state = mix(seed ^ mix(static_cast<std::uint64_t>(index) ^ 0x7a1e5c0ffee15ULL));
+  std::uint64_t state = splitmix64_mix(seed ^ splitmix64_mix(static_cast<std::uint64_t>(index) ^ 0x7a1e5c0ffee15ULL));
   for (int k = 0; k < 6; ++k) {
     state += 0x9e3779b97f4a7c15ULL;
-    v(k) = 2.0 * static_cast<double>(mix(state) >> 11) * 0x1.0p-53 - 1.0;
+    v(k) = 2.0 * static_cast<double>(splitmix64_mix(state) >> 11) * 0x1.0p-53 - 1.0;
   }
   const system::AnyModel model = system::make_model(scene);
   return std::visit(

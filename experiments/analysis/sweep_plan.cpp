@@ -1,5 +1,7 @@
 #include "experiments/analysis/sweep_plan.hpp"
 
+#include "experiments/analysis/seeded_random.hpp"
+
 #include <toml++/toml.h>
 
 #include <cmath>
@@ -18,29 +20,6 @@ namespace {
 
 using lie::Mat3;
 using lie::Vec3;
-
-/// SplitMix64's output function (Steele, Lea & Flood 2014).
-std::uint64_t mix(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-/// The draws of trajectory `index` for one entry (`stream`): a SplitMix64
-/// sequence started from a hash of (seed, index, stream).
-class CounterRng {
- public:
-  CounterRng(std::uint64_t seed, std::int64_t index, std::uint64_t stream)
-      : state_(mix(seed ^ mix(static_cast<std::uint64_t>(index) ^ mix(stream + 0x632be59bd9b4e019ULL)))) {}
-  /// Uniform in [0, 1), 53 random bits.
-  double uniform() {
-    state_ += 0x9e3779b97f4a7c15ULL;
-    return static_cast<double>(mix(state_) >> 11) * 0x1.0p-53;
-  }
-
- private:
-  std::uint64_t state_;
-};
 
 constexpr std::uint64_t level_set_stream = 1u << 20;
 

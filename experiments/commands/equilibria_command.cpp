@@ -14,6 +14,7 @@
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
+#include "experiments/commands/cardan_atlas.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
@@ -29,8 +30,9 @@ struct EquilibriaOptions {
   std::vector<double> appelrot;  // lgi bifurcation --appelrot: the Kovalevskaya (h, k) diagram at these l
   std::string appelrot_h;
   int samples = 400;
+  std::optional<double> omega_max;  // the Cardan top's diagram (docs/cardan.md §9)
   bool force = false, quiet = false;
-  std::string command_line;
+  std::string command_line, subcommand = "equilibria";
 };
 
 HeavyTopBody heavy_top(const system::Scene& scene) {
@@ -102,6 +104,13 @@ std::vector<TableGroup> appelrot(const EquilibriaOptions& o, const system::Scene
 
 int run_equilibria(const EquilibriaOptions& o) {
   const system::Scene scene = read_scene(o.scene);
+  if (scene.suspension) {
+    check_flags(o);
+    if (!o.appelrot.empty()) throw UsageError("--appelrot: " + scene.file + " is a Cardan top, not a Kovalevskaya top");
+    return run_cardan_equilibria(scene, {o.l, o.samples, o.omega_max, o.out, o.command_line, o.subcommand, o.force,
+                                         o.quiet});
+  }
+  if (o.omega_max) throw UsageError("--omega-max: only for a Cardan top (a scene with [suspension])");
   const HeavyTopBody body = heavy_top(scene);
   check_flags(o);
   const EquilibriumSet set = o.l ? equilibria_at(body, *o.l) : equilibrium_branches(body, o.samples);
@@ -135,7 +144,9 @@ Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& contex
       "equilibria",
       "Relative equilibria (permanent rotations) of a heavy top and their stability: at one momentum l (--l), or "
       "every branch sampled with its folds (experiments/EQUILIBRIA.md)");
-  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a free body")->required();
+  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, a free body, or a Cardan top with a "
+                                       "vertical outer axis (docs/cardan.md)")->required();
+  sub->add_option("--omega-max", o->omega_max, "Cardan top without --l: omega in [-W, W]");
   sub->add_option("--l", o->l, "The momentum l = Pi.Gamma: every equilibrium there, polished to round-off");
   sub->add_option("--samples", o->samples, "Points per branch without --l")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
@@ -154,8 +165,12 @@ Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& conte
       "bifurcation",
       "The (l, h) bifurcation diagram of a heavy top: every branch of relative equilibria sampled, with its "
       "stability and folds (the table of lgi equilibria without --l; figure: scripts/plots/bifurcation.py)");
-  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a free body")->required();
-  sub->add_option("--samples", o->samples, "Points per branch")->capture_default_str();
+  o->subcommand = "bifurcation";
+  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, a free body, or a Cardan top with a "
+                                       "vertical outer axis")->required();
+  sub->add_option("--samples", o->samples, "Points per branch (Cardan top: values of omega)")->capture_default_str();
+  sub->add_option("--omega-max", o->omega_max,
+                  "Cardan top: the diagram for omega in [-W, W] (default: 3 sqrt(max|grad V| / min M11))");
   sub->add_option("--appelrot", o->appelrot,
                   "Kovalevskaya top: the (h, k) diagram at these l (comma-separated): Appelrot curves, the "
                   "equilibria's (h, k) and the range of k (groups /appelrot*)")

@@ -23,6 +23,8 @@
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/write_failures.hpp"
+#include "experiments/commands/cardan_atlas.hpp"
+#include "experiments/analysis/cardan_section.hpp"
 #include "experiments/commands/sweep/sweep_chunks.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
@@ -35,7 +37,7 @@ namespace lgi::experiments {
 namespace {
 
 struct PoincareOptions {
-  std::string scene, out = "poincare.h5", axis, section = "richter", scheme = "split-exact@yoshida4";
+  std::string scene, out = "poincare.h5", axis, section = "richter", scheme;  // scheme: empty is the default of the system
   double l = 0.0, h = 0.0, t_end = 0.0;
   std::optional<double> dt;
   std::int64_t ics = 0, max_events = 100000;
@@ -51,6 +53,9 @@ std::string number(double x) {
   return b;
 }
 
+constexpr const char* default_so3_scheme = "split-exact@yoshida4";
+std::string so3_scheme(const PoincareOptions& o) { return o.scheme.empty() ? default_so3_scheme : o.scheme; }
+
 /// The equivalent `lgi sweep` spec (kept in /parameters spec_toml; the axis
 /// of a non-coordinate section axis is set on the parsed spec).
 std::string spec_text(const PoincareOptions& o, const std::string& scene_path, double dt, SectionKind kind,
@@ -58,7 +63,7 @@ std::string spec_text(const PoincareOptions& o, const std::string& scene_path, d
   int component = 1;
   for (int k = 0; k < 3; ++k)
     if (e(k) == 1.0) component = k + 1;
-  std::string t = "name = \"lgi poincare\"\nscene = \"" + scene_path + "\"\nscheme = \"" + o.scheme +
+  std::string t = "name = \"lgi poincare\"\nscene = \"" + scene_path + "\"\nscheme = \"" + so3_scheme(o) +
                   "\"\ndt = " + number(dt) + "\nt_end = " + number(o.t_end) + "\nseed = " + std::to_string(o.seed) +
                   "\nsamples = " + std::to_string(o.ics) + "\nmax_events = " + std::to_string(o.max_events) +
                   "\n\n[level_set]\nh = " + number(o.h) + "\nl = " + number(o.l) + "\n\n[[event]]\n";
@@ -92,7 +97,8 @@ void check_flags(const PoincareOptions& o) {
     throw UsageError("--section: \"" + o.section + "\": expected richter, gamma, gamma1, gamma2 or gamma3");
   if (o.section.size() == 6 && !o.axis.empty())
     throw UsageError("--axis: --section " + o.section + " sets the axis e" + o.section.substr(5) + " already");
-  const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
+  if (o.scheme.starts_with("cardan-")) return check_cardan_section_scheme(o.scheme);
+  const integrators::SchemeInfo& scheme = scheme_by_name(so3_scheme(o), "--scheme");
   if (scheme.properties.adaptive || !scheme.locates_events)
     throw UsageError("--scheme: " + scheme.name + ": lgi poincare takes a fixed-step Lie-group scheme that locates "
                                                   "events (the tangent flow takes the same steps)");
@@ -155,7 +161,7 @@ void add_indicator_columns(const std::string& path, const PoincareOptions& o, co
 SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, const system::Scene& scene,
                            const integrators::RunConfig& cfg, const Vec3& e, const ChunkRunStats& run) {
   SweepAttributes a;
-  a.parameters = {{"subcommand", "poincare"},     {"scheme", o.scheme},
+  a.parameters = {{"subcommand", "poincare"},     {"scheme", so3_scheme(o)},
                   {"section", o.section},         {"spec_toml", spec.text},
                   {"scene_file", scene.file},     {"scene_toml", scene.toml_text},
                   {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
@@ -181,10 +187,29 @@ std::unique_ptr<SweepPartialFile> fresh_partial_file(const PoincareOptions& o, c
   return std::make_unique<SweepPartialFile>(partial, layout, print);
 }
 
+/// A Cardan top (docs/cardan.md §9): its own section, orbits and file.
+int run_cardan(const PoincareOptions& o, const system::Scene& scene) {
+  check_flags(o);
+  if (!o.axis.empty()) throw UsageError("--axis: the Cardan top's section is fixed (S = -sin q2 dq2/dt = 0)");
+  if (o.section != "richter") throw UsageError("--section: the Cardan top's section is fixed (S = -sin q2 dq2/dt = 0)");
+  CardanPoincareRequest r;
+  r.l = o.l, r.h = o.h, r.t_end = o.t_end, r.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
+  r.ics = o.ics, r.max_events = o.max_events, r.seed = o.seed;
+  r.scheme = o.scheme.empty() ? "cardan-rk4" : o.scheme;
+  r.out = o.out, r.command_line = o.command_line;
+  r.threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
+  r.lyapunov = o.lyapunov, r.megno = o.megno, r.force = o.force, r.quiet = o.quiet;
+  if (!r.force && hdf5::path_exists(r.out)) throw UsageError("--out: " + r.out + " exists (--force replaces it)");
+  return run_cardan_poincare(scene, r);
+}
+
 int run_poincare(const PoincareOptions& o) {
   if (SweepRanks::world().size() > 1) throw UsageError("lgi poincare runs on one MPI rank (use --threads)");
   const system::Scene scene = read_scene(o.scene);
-  const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
+  if (scene.suspension) return run_cardan(o, scene);
+  if (o.scheme.starts_with("cardan-"))
+    throw UsageError("--scheme: " + o.scheme + " integrates the Cardan top; " + scene.file + " has no [suspension]");
+  const integrators::SchemeInfo& scheme = scheme_by_name(so3_scheme(o), "--scheme");
   check_options(o, scene);
   const SectionKind kind = o.section.starts_with("gamma") ? SectionKind::gamma : SectionKind::richter;
   // --section gammaK: Γ_K = 0, the axis e_K.
@@ -244,7 +269,8 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
                                  "Poincare sections of a heavy top on the level set (l, h): Richter's section "
                                  "d(Gamma.e)/dt = 0, crossings located by the sweep engine, MEGNO and Lyapunov "
                                  "exponents from the tangent flow (experiments/POINCARE.md)");
-  sub->add_option("--scene", o->scene, "Scene file (a heavy top: gravity alone, or a free body)")->required();
+  sub->add_option("--scene", o->scene, "Scene file (a heavy top: gravity alone, a free body, or a Cardan top: "
+                                       "docs/cardan.md)")->required();
   sub->add_option("--l", o->l, "l = Pi.Gamma, the vertical angular momentum")->required();
   sub->add_option("--h", o->h, "h, the energy")->required();
   sub->add_option("--ics", o->ics, "Initial conditions (orbits) drawn on the level set")->required();
@@ -255,7 +281,8 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--section", o->section,
                   "richter (d(Gamma.e)/dt = 0), gamma (Gamma.e = 0, e a body axis) or gamma1, gamma2, gamma3 "
                   "(Gamma_k = 0)")->capture_default_str();
-  sub->add_option("--scheme", o->scheme, "Fixed-step scheme (lgi schemes)")->capture_default_str();
+  sub->add_option("--scheme", o->scheme,
+                  "Fixed-step scheme (lgi schemes; default split-exact@yoshida4, and cardan-rk4 for a Cardan top)");
   sub->add_option("--dt", o->dt, "Step (default: the scene's [run] dt)");
   sub->add_option("--seed", o->seed, "Seed of the level-set draws and of the tangent vectors")->capture_default_str();
   sub->add_option("--max-events", o->max_events, "Crossings kept per orbit")->capture_default_str();

@@ -1,0 +1,80 @@
+#pragma once
+// The Poincaré section of the Cardan top on T³ (docs/cardan.md §9; seed 003,
+// "Topology of surface of section", T³-dynamics) and the orbits `lgi
+// poincare` runs for it.
+//
+// The section. With a vertical outer axis, the body's axis e3 has the height
+// Γ·e3 = cos q2, and Richter's section S = d(Γ·e3)/dt = 0 becomes
+//   S = −sin q2 · q̇2 = 0.
+// It has two kinds of points:
+// - q̇2 = 0: one point of the shape torus (q2, q3) (the "Poisson torus") per
+//   crossing, on one of two copies told apart by the sign of q̇3
+//   (piece +1, −1);
+// - sin q2 = 0 (q2 = 0 or π, the body's axis on the outer axis): at such a
+//   configuration every velocity lies in S = 0, so these crossings fill two
+//   cylinders S¹ × (0, π) of (q3, ψ), ψ the direction of the shape velocity,
+//   ψ = atan2(q̇3, q̇2) (piece 2 at q2 = 0, piece 3 at q2 = π).
+// The cylinders' edges ψ = ±π/2 (q̇2 = 0) are glued to the two torus copies
+// along the circles q2 ∈ {0, π}, where three sheets meet: the surface is not
+// a manifold (seed 003), but it shows every orbit at (h, ℓ).
+//
+// Initial states on {q1 = 0, H = h, p1 = ℓ}: the shape r = (q2, q3) uniform
+// on T² among {U_ℓ(r) ≤ h} (rejection, analysis/cardan_equilibria.hpp), then
+// the shape velocity u = (q̇2, q̇3) uniform in angle on the ellipse
+// ½ uᵀ S u = h − U_ℓ(r), S the Schur complement of M₁₁ in M, and
+// q̇1 = (ℓ − M₁₂ q̇2 − M₁₃ q̇3)/M₁₁ (so p1 = ℓ). Seeded per orbit.
+//
+// Crossings are located on the scheme's own step map, as the SO(3) events
+// (integrators/events.hpp): Illinois regula falsi on θ for steps θh from
+// the state before the crossing.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "integrators/system/cardan.hpp"
+
+namespace lgi::experiments {
+
+struct CardanCrossing {
+  double t = 0.0;
+  system::TorusState x{};
+  int piece = 1;           // +1, −1: the torus copies (sign of q̇3); 2, 3: the cylinders at q2 = 0, π
+  double x_coord = 0.0;    // q3 in [0, 2π)
+  double y_coord = 0.0;    // pieces ±1: q2 in [0, 2π); pieces 2, 3: ψ in (−π, π]
+  int direction = 1;       // the sign of dS/dt
+};
+
+struct CardanOrbitRequest {
+  std::string scheme = "cardan-rk4";  // a fixed-step scheme of the T³ registry
+  double t_end = 0.0, dt = 0.0;
+  std::int64_t max_crossings = 100000;
+  bool indicators = false;
+  std::uint64_t seed = 0;
+};
+
+struct CardanOrbit {
+  int status = 0;  // 0 ok, 1 the run stopped, 2 no initial state, 3 too many crossings
+  std::string reason;
+  std::int64_t steps = 0;
+  double cpu_seconds = 0.0;
+  system::TorusState initial{}, final{};
+  double max_energy_error = 0.0;    // max |H − H0| / max(|H0|, T0), T0 the initial kinetic energy
+  double max_momentum_error = 0.0;  // max |p1 − p1(0)| / |p1(0)|
+  std::vector<CardanCrossing> crossings;
+  double lyapunov = 0.0, megno = 0.0;
+};
+
+/// Throws UsageError naming --scheme unless `name` is a fixed-step T³ scheme.
+void check_cardan_section_scheme(const std::string& name);
+
+/// The initial state of orbit `index` (top of this file); false if the level
+/// set at q1 = 0 was not hit in 10⁵ draws.
+bool draw_cardan_level_point(const system::CardanTop& top, double l, double h, std::uint64_t seed,
+                             std::int64_t index, system::TorusState& x);
+
+/// One orbit: its crossings and, on request, its indicators
+/// (integrators/torus/torus_tangent_flow.hpp, a separate pass).
+CardanOrbit cardan_orbit(const system::CardanTop& top, const system::TorusState& x0, const CardanOrbitRequest& r,
+                         std::int64_t index);
+
+}  // namespace lgi::experiments
