@@ -53,6 +53,8 @@ std::string support_refusal(SceneSupport support, const system::AnyModel& model)
       if (!std::visit([](const auto& m) { return m.is_conservative(); }, model))
         return "needs torques from a potential (no damping, no [drive])";
       return {};
+    case SceneSupport::cardan_only:
+      return "integrates the Cardan top on T^3 and needs a scene with a [suspension] table (docs/cardan.md)";
   }
   return {};
 }

@@ -28,6 +28,7 @@ enum class SceneSupport {
   any,
   free_body_only,     // needs the free body (the exact flow, DMV without splitting)
   conservative_only,  // torques from a potential only: no damping, no drive
+  cardan_only,        // the Cardan top on T³ (integrators/torus/, docs/cardan.md): never an SO(3) scene
 };
 
 struct SchemeFacts {

@@ -6,8 +6,9 @@
 #
 # Usage: scripts/paper_atlas.sh --lgi PATH --data DIR --figs DIR --gen DIR --mode quick|full
 # Writes DIR(data)/atlas/*.h5, figures bifurcation_*, appelrot_*, poincare_*, region_*,
-# poisson_sphere_potentials, chaos_map_* and actions_integrable in --figs, and
-# --gen/atlas_equilibria.tex, --gen/atlas_megno.tex, --gen/atlas_cardan.tex, --gen/atlas_commands.tex.
+# poisson_sphere_potentials, chaos_map_*, actions_integrable and poincare_section_cardan_euler_* in --figs,
+# and --gen/atlas_equilibria.tex, --gen/atlas_megno.tex, --gen/atlas_cardan.tex, --gen/atlas_cardan_megno.tex,
+# --gen/atlas_commands.tex.
 set -euo pipefail
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -106,12 +107,35 @@ for stem in cardan_lagrange_upright cardan_lagrange_horizontal cardan_trindade_1
     echo "scene=$stem $line" >> "$cardan_summary"
   done
 done
+# seed 003's six examples ("Rigid bodies in T^3"): MEGNO of orbits on the level (p1, h) of each
+# scene's initial state, and the T^3 sections (docs/cardan.md section 9) of the Euler pair.
+if [ "$mode" = quick ]; then c_ics=3 c_t=100 s_ics=10 s_t=150; else c_ics=16 c_t=600 s_ics=40 s_t=300; fi
+cardan_secs=()
+for stem in cardan_lagrange_upright cardan_lagrange_horizontal cardan_euler_symmetric_up cardan_euler_tilted \
+            cardan_general_horizontal cardan_general_asymmetric_up; do
+  case "$stem" in cardan_lagrange_*) cdt=0.001 ;; *) cdt=0.005 ;; esac
+  "$lgi" simulate --scene "$scenes/$stem.toml" --scheme cardan-rk4 --t-end "$cdt" --dt "$cdt" \
+    --out "$atlas/cardan/level_$stem.h5" --force --quiet || die "lgi simulate failed on $stem"
+  read -r cl ch < <("$PY" -c 'import sys, h5py
+o = h5py.File(sys.argv[1], "r")["observables"]
+print(repr(float(o["cardan_momentum_1"]["value"][0])), repr(float(o["energy"]["value"][0])))' \
+    "$atlas/cardan/level_$stem.h5") || die "no level of $stem"
+  run poincare --scene "$scenes/$stem.toml" --l "$cl" --h "$ch" --ics "$c_ics" --t-end "$c_t" --dt "$cdt" --megno \
+    --lyapunov --out "$atlas/cardan/megno_$stem.h5"
+  cardan_secs+=("$atlas/cardan/megno_$stem.h5")
+done
+for stem in cardan_euler_symmetric_up cardan_euler_tilted; do
+  run poincare --scene "$scenes/$stem.toml" --l 2.85 --h 6.96 --ics "$s_ics" --t-end "$s_t" --dt 0.005 --megno \
+    --out "$atlas/cardan/section_$stem.h5"
+done
 run actions --scene "$scenes/lagrange_top_cigar.toml" --h 2 --grid 41 --out "$atlas/actions/lagrange_top_cigar.h5"
 run actions --scene "$scenes/free_body_hlw.toml" --h 1 --grid 41 --out "$atlas/actions/free_body_hlw.h5"
 
 # ── figures and tables ───────────────────────────────────────────────────────
 "$PY" "$plots/actions.py" --out "$figs" --name actions_integrable "$atlas/actions/lagrange_top_cigar.h5" \
   "$atlas/actions/free_body_hlw.h5" || die "actions.py failed"
+"$PY" "$plots/poincare.py" --out "$figs" --colour megno "$atlas/cardan/section_cardan_euler_symmetric_up.h5" \
+  "$atlas/cardan/section_cardan_euler_tilted.h5" || die "poincare.py (Cardan) failed"
 "$PY" "$plots/region.py" --out "$figs" --combine poisson_sphere_potentials "$atlas/region/euler.h5" \
   "$atlas/region/lagrange.h5" "$atlas/region/general.h5" || die "region.py failed"
 "$PY" "$plots/region.py" --out "$figs" "$atlas/region/lagrange_top_oblate.h5" || die "region.py --cells failed"
@@ -127,4 +151,5 @@ mv "$figs/megno/poincare_general_top_richter.pdf" "$figs/poincare_megno_general_
 mv "$figs/megno/poincare_general_top_richter.png" "$figs/poincare_megno_general_top_richter.png"
 rmdir "$figs/megno" 2>/dev/null || true
 "$PY" "$plots/atlas_tables.py" --out "$gen" --equilibria "${eq_files[@]}" --sections "${sec_files[@]}" \
-  --commands "$commands" --cardan "$cardan_summary" || die "atlas_tables.py failed"
+  --commands "$commands" --cardan "$cardan_summary" --cardan-sections "${cardan_secs[@]}" \
+  || die "atlas_tables.py failed"

@@ -122,7 +122,7 @@ TEST_CASE("lgi schemes and lgi scenes list the registry and the shipped scenes",
   CHECK(j.out.find("\"name\": \"rkmk4\", \"order\": 4") != std::string::npos);
   const auto sc = run_lgi("scenes " + scenes);
   CHECK(sc.status == 0);
-  CHECK(line_count(sc.out) == 22);
+  CHECK(line_count(sc.out) == 26);
   CHECK(sc.out.find("kovalevskaya.toml") != std::string::npos);
   CHECK(sc.out.find("kovalevskaya_k") != std::string::npos);
 }

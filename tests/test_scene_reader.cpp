@@ -52,7 +52,8 @@ TEST_CASE("every shipped scene parses", "[scene]") {
       "general_top_richter.toml",    "lagrange_top_cigar.toml",         "lagrange_top_oblate.toml",
       "lagrange_top_disk.toml",    "stiff_damped_spring.toml",
       "heavy_top_hlw.toml",          "cardan_trindade_1_massless.toml", "cardan_lagrange_upright.toml",
-      "cardan_lagrange_horizontal.toml"};
+      "cardan_lagrange_horizontal.toml", "cardan_euler_symmetric_up.toml", "cardan_euler_tilted.toml",
+      "cardan_general_asymmetric_up.toml", "cardan_general_horizontal.toml"};
   std::set<std::string> found;
   for (const auto& entry : std::filesystem::directory_iterator(scenes_dir)) {
     if (entry.path().extension() != ".toml") continue;

@@ -1,5 +1,6 @@
 #include "experiments/cli/cardan_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -7,6 +8,7 @@
 #include "experiments/cli/interrupt_guard.hpp"
 
 #include "experiments/cli/run_parameters.hpp"
+#include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/step_settings.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
@@ -27,18 +29,6 @@ TrajectoryLayout cardan_layout() {
   for (int k = 1; k <= 3; ++k)
     layout.scalar_invariants.push_back({"cardan_momentum_" + std::to_string(k), "kg m+2 s-1"});
   return layout;
-}
-
-/// The SO(3) registry's view of a T³ scheme, for the shared settings rules and provenance.
-integrators::SchemeInfo as_scheme_info(const TorusSchemeInfo& s) {
-  integrators::SchemeInfo info;
-  info.name = s.name;
-  info.order = s.order;
-  info.family = s.family;
-  info.properties = s.properties;
-  info.reference = s.reference;
-  info.notes = s.notes;
-  return info;
 }
 
 /// Samples → the H5MD writer; keeps the energy and p1 errors for the summary line.
@@ -117,7 +107,8 @@ SimulationOutcome run_cardan_simulation(const system::Scene& scene, const std::s
   if (!torus)
     throw RunError("scheme '" + scheme_name + "' integrates SO(3) states; scene " + scene.file +
                    " has a [suspension] (state on T^3): use cardan-midpoint, cardan-dg, cardan-rk4 or cardan-dp54");
-  const integrators::SchemeInfo info = as_scheme_info(*torus);
+  const integrators::SchemeInfo& info = *std::find_if(
+      torus_scheme_infos().begin(), torus_scheme_infos().end(), [&](const auto& i) { return i.name == torus->name; });
   integrators::RunConfig cfg = simulation_config(request, scene, info);
   cfg.stop = stop;
   if (cfg.retry_halving > 0) throw UsageError("--retry-halving: not available for the Cardan schemes");

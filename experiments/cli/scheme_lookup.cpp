@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "experiments/errors/exit_status.hpp"
+#include "integrators/torus/torus_registry.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -44,13 +45,39 @@ struct Candidate {
 
 }  // namespace
 
+const std::vector<integrators::SchemeInfo>& torus_scheme_infos() {
+  static const std::vector<integrators::SchemeInfo> infos = [] {
+    std::vector<integrators::SchemeInfo> out;
+    for (const auto& s : integrators::torus::torus_scheme_registry()) {
+      integrators::SchemeInfo info;
+      info.name = s.name;
+      info.order = s.order;
+      info.family = s.family;
+      info.properties = s.properties;
+      info.reference = s.reference;
+      info.notes = s.notes;
+      info.support = integrators::SceneSupport::cardan_only;
+      out.push_back(std::move(info));
+    }
+    return out;
+  }();
+  return infos;
+}
+
+std::vector<const integrators::SchemeInfo*> listed_schemes() {
+  std::vector<const integrators::SchemeInfo*> out;
+  for (const auto& s : integrators::scheme_registry()) out.push_back(&s);
+  for (const auto& s : torus_scheme_infos()) out.push_back(&s);
+  return out;
+}
+
 std::vector<std::string> nearest_scheme_names(std::string_view typed) {
   // A name further than a third of its length (at least 2 edits) is not "near".
   const std::size_t limit = std::max<std::size_t>(2, typed.size() / 3);
   std::vector<Candidate> candidates;
-  for (const auto& s : integrators::scheme_registry()) {
-    const std::size_t d = name_distance(typed, s.name);
-    if (d <= limit) candidates.push_back({d, s.name, s.properties.baseline});
+  for (const integrators::SchemeInfo* s : listed_schemes()) {
+    const std::size_t d = name_distance(typed, s->name);
+    if (d <= limit) candidates.push_back({d, s->name, s->properties.baseline});
   }
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.name.size() < b.name.size();

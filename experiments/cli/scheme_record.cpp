@@ -13,6 +13,7 @@ const char* scheme_support_text(integrators::SceneSupport s) {
   switch (s) {
     case integrators::SceneSupport::free_body_only: return "free bodies";
     case integrators::SceneSupport::conservative_only: return "conservative";
+    case integrators::SceneSupport::cardan_only: return "Cardan tops";
     case integrators::SceneSupport::any: break;
   }
   return "all scenes";

@@ -67,6 +67,9 @@ void check_scheme_supports(const integrators::SchemeInfo& scheme, const system::
                            const system::AnyModel& model) {
   if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
     throw RunError(why + "; scene " + scene.file + " is not one");
+  if (scene.suspension)  // the SO(3) run path: a Cardan scene goes to run_cardan_simulation (cardan_simulation.hpp)
+    throw RunError("scheme '" + scheme.name + "' integrates SO(3) states; scene " + scene.file +
+                   " has a [suspension] (a Cardan top on T^3): use a cardan-* scheme with lgi simulate");
 }
 
 void close_simulation(SimulationOutcome& outcome, const std::string& scheme_name, const std::string& scene_file,

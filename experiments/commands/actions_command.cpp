@@ -170,6 +170,7 @@ void check_flags(const ActionsOptions& o) {
 
 int run_actions(const ActionsOptions& o) {
   const system::Scene scene = read_scene(o.scene);
+  refuse_cardan_scene(scene, "actions");
   const HeavyTopBody body = heavy_top(scene);
   check_flags(o);
   const std::vector<Row> rows = o.h ? energy_surface(scene, body, o) : single_torus(scene, body, o);

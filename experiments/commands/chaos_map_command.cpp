@@ -205,6 +205,7 @@ int run_chaos_map(const ChaosMapOptions& o) {
   check_flags(o);
   if (SweepRanks::world().size() > 1) throw UsageError("lgi chaos-map runs on one MPI rank (use --threads)");
   const system::Scene scene = read_scene(o.scene);
+  refuse_cardan_scene(scene, "chaos-map");
   const HeavyTopBody body = heavy_top_of(scene, "chaos-map");
   const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");

@@ -330,6 +330,7 @@ ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene
 
 int long_time(const LongTimeOptions& o) {
   const system::Scene scene = read_scene(o.scene);
+  refuse_cardan_scene(scene, "long-time");
   const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
   check_long_time_flags(o);
   // The command line, then the scene's [run] (step_settings.hpp).

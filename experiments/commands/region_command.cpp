@@ -211,6 +211,7 @@ int run_cells(const RegionOptions& o, const system::Scene& scene, const HeavyTop
 int run_region(const RegionOptions& o) {
   check_flags(o);
   const system::Scene scene = read_scene(o.scene);
+  refuse_cardan_scene(scene, "region");
   const HeavyTopBody body = heavy_top_of(scene, "region");
   return o.cells ? run_cells(o, scene, body) : run_single(o, scene, body);
 }

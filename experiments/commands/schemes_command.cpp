@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/scheme_record.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/scene_reader.hpp"
@@ -67,12 +68,13 @@ struct SceneFilter {
   system::AnyModel model;
   bool has_torque = false;
   std::string file;
+  bool cardan = false;  // a [suspension] scene: only the T³ schemes apply
 };
 
 std::optional<SceneFilter> scene_filter(const std::string& path) {
   if (path.empty()) return std::nullopt;
   const system::Scene scene = read_scene(path);
-  SceneFilter f{system::make_model(scene), false, scene.file};
+  SceneFilter f{system::make_model(scene), false, scene.file, scene.suspension.has_value()};
   f.has_torque = std::visit([](const auto& m) { return std::decay_t<decltype(m)>::has_torque; }, f.model);
   return f;
 }
@@ -82,10 +84,11 @@ int order_on(const SchemeInfo& s, bool has_torque) { return scheme_order_on(s, h
 std::vector<const SchemeInfo*> selected(const SchemesOptions& o, const std::optional<SceneFilter>& scene) {
   std::vector<const SchemeInfo*> out;
   const std::string family = lower(o.family);
-  for (const auto& s : integrators::scheme_registry()) {
-    if (!family.empty() && lower(s.family).find(family) == std::string::npos && lower(kind_of(s)) != family) continue;
-    if (scene && !integrators::unsupported_reason(s, scene->model).empty()) continue;
-    out.push_back(&s);
+  for (const SchemeInfo* s : listed_schemes()) {
+    if (!family.empty() && lower(s->family).find(family) == std::string::npos && lower(kind_of(*s)) != family) continue;
+    const bool t3 = s->support == integrators::SceneSupport::cardan_only;
+    if (scene && (scene->cardan ? !t3 : !integrators::unsupported_reason(*s, scene->model).empty())) continue;
+    out.push_back(s);
   }
   return out;
 }
@@ -156,7 +159,7 @@ void print_table(const std::vector<const SchemeInfo*>& schemes, const std::optio
                  "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top)\n";
   else
     std::cout << "properties: sympl(ectic), sym(metric), impl(icit), adapt(ive); conserved exactly where an invariant:\n"
-                 "  H energy, |Pi|, m spatial momentum (free body), Pi.G = Pi.Gamma (heavy top)\n"
+                 "  H energy, |Pi|, m spatial momentum (free body), Pi.G = Pi.Gamma (heavy top; p1 of a Cardan top)\n"
                  "--long: full names, references and notes\n";
 }
 

@@ -139,6 +139,7 @@ int run_sweep(const SweepOptions& o) {
   select_simd(o.simd);
   const SweepSpec spec = read_sweep_spec(o.spec);
   const system::Scene scene = read_scene(spec.scene_path);
+  refuse_cardan_scene(scene, "sweep");
   const integrators::SchemeInfo& scheme = sweep_scheme(spec);
   const integrators::RunConfig cfg = sweep_run_config(spec, scene, scheme);
   if (!spec.events.empty() && !scheme.locates_events)

@@ -326,6 +326,7 @@ std::vector<Job> resolved_jobs(const WorkPrecisionOptions& o, const system::Scen
 
 int work_precision(const WorkPrecisionOptions& o) {
   const system::Scene scene = read_scene(o.scene);
+  refuse_cardan_scene(scene, "work-precision");
   WorkPrecisionOptions resolved;
   const std::vector<Job> jobs = resolved_jobs(o, scene, resolved);
   const double t_end = resolve_t_end(o.t_end, scene, /*allow_zero=*/false);

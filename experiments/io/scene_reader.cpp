@@ -268,6 +268,13 @@ Scene parse_scene(std::string_view toml_text, const std::string& path_for_messag
   return s;
 }
 
+void refuse_cardan_scene(const Scene& scene, const std::string& command) {
+  if (scene.suspension)
+    throw InputError(scene.file + ": [suspension]: lgi " + command +
+                     " works on SO(3) and does not take a Cardan top (simulate, equilibria, bifurcation and poincare "
+                     "do; docs/cardan.md)");
+}
+
 Scene read_scene(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot read scene file: is a directory");

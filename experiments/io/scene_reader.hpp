@@ -21,6 +21,10 @@ namespace lgi::experiments {
 /// file throws InputError naming the file.
 lgi::system::Scene read_scene(const std::string& path);
 
+/// Throws InputError naming the file and [suspension] if `scene` is a Cardan
+/// top: `command` integrates SO(3) states only (docs/cardan.md §7).
+void refuse_cardan_scene(const lgi::system::Scene& scene, const std::string& command);
+
 /// Parses and validates a scene from its TOML text; `path_for_messages` is
 /// the file name used in error messages and stored in Scene::file.
 lgi::system::Scene parse_scene(std::string_view toml_text, const std::string& path_for_messages);

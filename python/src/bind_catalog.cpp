@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/scheme_record.hpp"
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/scene_reader.hpp"
@@ -45,7 +46,7 @@ py::dict scheme_dict(const integrators::SchemeInfo& s) {
 
 py::list schemes() {
   py::list out;
-  for (const auto& s : integrators::scheme_registry()) out.append(scheme_dict(s));
+  for (const integrators::SchemeInfo* s : experiments::listed_schemes()) out.append(scheme_dict(*s));
   return out;
 }
 

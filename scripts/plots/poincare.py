@@ -10,12 +10,47 @@ angle theta on the sheet +1 and 2 pi - theta on the sheet -1, one dot per
 crossing, coloured by orbit (default) or by the orbit's MEGNO <Y> (2: regular,
 above: chaotic; needs a file made with --megno). A file of the gamma section
 (--section gamma) is drawn as phi against theta (the angle of Pi from the axis).
+A file of a Cardan top (docs/cardan.md section 9: /events piece, x, y) is drawn
+as the seed's four pieces: the two copies of the shape torus (q3, q2), told
+apart by the sign of dq3/dt, and the two cylinders (q3, psi) at q2 = 0 and pi,
+psi the direction of the shape velocity.
 """
 import os
 
 import numpy as np
 
 import lgi_plot_common as c
+
+
+PIECES = ((1, "torus copy $\\dot q_3 > 0$", "$q_2$"), (-1, "torus copy $\\dot q_3 < 0$", "$q_2$"),
+          (2, "cylinder $q_2 = 0$", "$\\psi$"), (3, "cylinder $q_2 = \\pi$", "$\\psi$"))
+
+
+def draw_cardan(f, path, args):
+    """The four pieces of the T^3 section, coloured by orbit or MEGNO."""
+    ev = {k: np.asarray(f["events"][k][()]) for k in ("index", "piece", "x", "y")}
+    megno = np.asarray(f["sweep"]["megno"][()]) if "megno" in f["sweep"] else None
+    par = c.attrs(f["parameters"])
+    if args.colour == "megno" and megno is None:
+        c.die(f"{path}: no /sweep/megno (run lgi poincare with --megno)")
+    fig, axes = c.plt.subplots(2, 2, figsize=(7.0, 6.0))
+    for ax, (piece, title, ylabel) in zip(axes.flat, PIECES):
+        m = ev["piece"] == piece
+        if args.colour == "megno":
+            col = np.clip(megno[ev["index"][m]], 0.0, 8.0)
+            ax.scatter(ev["x"][m], ev["y"][m], c=col, s=0.4, cmap="viridis", vmin=0.0, vmax=8.0, linewidths=0)
+        else:
+            ax.scatter(ev["x"][m], ev["y"][m], c=ev["index"][m] % 20, s=0.4, cmap="tab20", vmin=0, vmax=19,
+                       linewidths=0)
+        ax.set_xlim(0, 2 * np.pi)
+        ax.set_ylim((0, 2 * np.pi) if piece in (1, -1) else (-np.pi, np.pi))
+        ax.set_title(f"{title}: {int(m.sum())} crossings", fontsize=8)
+        ax.set_xlabel("$q_3$")
+        ax.set_ylabel(ylabel)
+    fig.suptitle(f"{c.scene_label(par)}: $p_1$ = {float(par.get('l', 0)):g}, h = {float(par.get('h', 0)):g}", fontsize=8)
+    fig.tight_layout()
+    stem = os.path.splitext(os.path.basename(path))[0]
+    c.save(fig, args.out, f"poincare_{stem}")
 
 
 def main():
@@ -27,6 +62,9 @@ def main():
         c.die("give at least one file written by lgi poincare")
     for path in args.files:
         with c.h5py.File(path, "r") as f:
+            if "events" in f and "piece" in f["events"]:
+                draw_cardan(f, path, args)
+                continue
             if "events" not in f or "phi" not in f["events"]:
                 c.die(f"{path}: no /events/phi (not a file written by lgi poincare)")
             ev = {k: np.asarray(f["events"][k][()]) for k in ("index", "phi", "theta", "sheet")}
