@@ -4,14 +4,17 @@
 // reduced coordinates are (θ, φ, p_θ, p_φ) with the canonical one-form
 // λ = p_θ dθ + p_φ dφ, and along the flow p_θ θ̇ + p_φ φ̇ = 2T − ℓψ̇.
 // Section: p_θ = 0 crossed upwards, i.e. g = Π1Γ2 − Π2Γ1 rising
-// (p_θ = g/sinθ). Cycle a is the section curve C, cycle b one return of the
-// flow closed by the arc of C back by the rotation number ρ. Then
-//   I_a = (1/2π)∮_C λ                      (Fourier fit of C in the angle α_k = kρ),
-//   ω_b = 2π/T̄, ω_a = 2πρ/T̄,  I_a ω_a + I_b ω_b = ⟨2T − ℓψ̇⟩   (time average),
+// (p_θ = g/sinθ). Cycle a is one of the k circles C of the section (every
+// k-th point), fitted as a Fourier series of (Π, Γ) in α_j = jρ with ρ refined
+// to make the fit smooth; cycle b is k returns of the flow closed by the arc
+// of C back by ρ. Then
+//   I_a = (1/2π)∮_C λ = (1/2π)∮_C Π3 (Γ2 dΓ1 − Γ1 dΓ2)/(Γ1² + Γ2²)   (p_θ = 0 on C),
+//   ω_b = 2π/(k T̄), ω_a = 2πρ/(k T̄),  I_a ω_a + I_b ω_b = ⟨2T − ℓψ̇⟩   (time average),
 // with ρ, T̄ and the time average as weighted Birkhoff averages.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <vector>
@@ -29,6 +32,7 @@ constexpr double pi = std::numbers::pi;
 
 struct SectionPoint4 {
   double t = 0.0, theta = 0.0, phi = 0.0, p_theta = 0.0, p_phi = 0.0;
+  Vec3 Pi = Vec3::Zero(), Gamma = Vec3::Zero();  // the curve is fitted in these (no chart pole)
 };
 
 SectionPoint4 section_coordinates(double t, const system::State& s) {
@@ -40,6 +44,8 @@ SectionPoint4 section_coordinates(double t, const system::State& s) {
   p.phi = std::atan2(gamma.x(), gamma.y());
   p.p_theta = (s.Pi.x() * gamma.y() - s.Pi.y() * gamma.x()) / sin_theta;
   p.p_phi = s.Pi.z();
+  p.Pi = s.Pi;
+  p.Gamma = gamma;
   return p;
 }
 
@@ -100,66 +106,131 @@ double rotation_number(const std::vector<SectionPoint4>& pts) {
   auto angle = [&](Eigen::Index k) {
     return winds ? pts[static_cast<std::size_t>(k)].phi : std::atan2(Y.row(k).dot(e2), Y.row(k).dot(e1));
   };
+  // Increments lifted about their circular mean, not into (−π, π]: near ρ = ½ they straddle
+  // ±π, and wrapped values alias (+π − ε and −π + ε average to about 0).
   std::vector<double> increments;
-  for (Eigen::Index k = 1; k < n; ++k) increments.push_back(std::remainder(angle(k) - angle(k - 1), 2.0 * pi));
+  double ci = 0.0, si = 0.0;
+  for (Eigen::Index k = 1; k < n; ++k) {
+    increments.push_back(std::remainder(angle(k) - angle(k - 1), 2.0 * pi));
+    ci += std::cos(increments.back()), si += std::sin(increments.back());
+  }
+  const double centre = std::atan2(si, ci);
+  for (double& d : increments) d = centre + std::remainder(d - centre, 2.0 * pi);
   return birkhoff_average(increments) / (2.0 * pi);
 }
 
-/// (1/2π)∮_C λ from a least-squares Fourier fit of C in α_k = kρ mod 1
-/// (φ lifted along C, minus its winding 2πwα); sets the fit residual and w.
-double section_curve_action(const std::vector<SectionPoint4>& pts, double rho, int harmonics, double& residual,
-                            int& winding) {
+/// A least-squares Fourier fit of the section curve C in α_j = jρ mod 1, in the Cartesian
+/// (Π, Γ) rather than the chart's (θ, φ, p_φ): near the chart's pole θ = 0 the curve
+/// stays smooth in (Π, Γ) while φ swings by up to π over a few points.
+struct CurveFit {
+  Eigen::MatrixXd coef;  // (2M + 1) × 6: the series of Π1, Π2, Π3, Γ1, Γ2, Γ3
+  double residual = 0.0, rms = 0.0;
+  double gap = 0.0;  // largest gap between the α_j (fraction of the circle)
+  int M = 0;
+};
+
+CurveFit fit_section_curve(const std::vector<SectionPoint4>& pts, double rho, int harmonics) {
+  CurveFit f;
   const std::size_t n = pts.size();
-  std::vector<double> alpha(n);
-  for (std::size_t k = 0; k < n; ++k) alpha[k] = static_cast<double>(k) * rho - std::floor(static_cast<double>(k) * rho);
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return alpha[a] < alpha[b]; });
-  std::vector<double> lifted(n);
-  double phi = pts[order[0]].phi;
-  lifted[order[0]] = phi;
-  for (std::size_t j = 1; j < n; ++j) {
-    phi += std::remainder(pts[order[j]].phi - pts[order[j - 1]].phi, 2.0 * pi);
-    lifted[order[j]] = phi;
+  // Near a resonance ρ ≈ p/q the α_j fill q short arcs only, and a series whose shortest
+  // wavelength 1/M is below twice the largest gap is not determined by the points (an alias
+  // ρ fits anything): M is cut to 1/(2 gap), and fewer than 4 resolvable harmonics reject ρ.
+  std::vector<double> alpha(n), sorted(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double kr = static_cast<double>(k) * rho;
+    sorted[k] = alpha[k] = kr - std::floor(kr);
   }
-  phi += std::remainder(pts[order[0]].phi - pts[order[n - 1]].phi, 2.0 * pi);
-  winding = static_cast<int>(std::lround((phi - lifted[order[0]]) / (2.0 * pi)));
-  const int M = std::max(1, std::min(harmonics, static_cast<int>(n) / 4));
-  const Eigen::Index rows = static_cast<Eigen::Index>(n), cols = 2 * M + 1;
-  Eigen::MatrixXd D(rows, cols), V(rows, 3);
+  std::sort(sorted.begin(), sorted.end());
+  f.gap = sorted.front() + 1.0 - sorted.back();
+  for (std::size_t j = 1; j < n; ++j) f.gap = std::max(f.gap, sorted[j] - sorted[j - 1]);
+  const int resolvable = f.gap > 0.0 ? static_cast<int>(std::floor(0.5 / f.gap)) : harmonics;
+  f.M = std::max(1, std::min({harmonics, static_cast<int>(n) / 4, resolvable}));
+  if (resolvable < 4) {
+    f.residual = f.rms = std::numeric_limits<double>::infinity();
+    return f;
+  }
+  const Eigen::Index rows = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd D(rows, 2 * f.M + 1), V(rows, 6);
   for (Eigen::Index k = 0; k < rows; ++k) {
-    const std::size_t i = static_cast<std::size_t>(k);
+    const double a = alpha[static_cast<std::size_t>(k)];
     D(k, 0) = 1.0;
-    for (int m = 1; m <= M; ++m) {
-      D(k, 2 * m - 1) = std::cos(2.0 * pi * m * alpha[i]);
-      D(k, 2 * m) = std::sin(2.0 * pi * m * alpha[i]);
+    for (int m = 1; m <= f.M; ++m) {
+      D(k, 2 * m - 1) = std::cos(2.0 * pi * m * a);
+      D(k, 2 * m) = std::sin(2.0 * pi * m * a);
     }
-    V.row(k) << pts[i].theta, pts[i].p_theta, lifted[i] - 2.0 * pi * winding * alpha[i];
+    const auto& p = pts[static_cast<std::size_t>(k)];
+    V.row(k) << p.Pi.transpose(), p.Gamma.transpose();
   }
-  const Eigen::MatrixXd coef = D.colPivHouseholderQr().solve(V);
-  const Eigen::MatrixXd fit = D * coef;
-  residual = (fit - V).cwiseAbs().maxCoeff();
-  // p_φ is fitted too (it varies along C for a general top).
-  Eigen::VectorXd pphi(rows);
-  for (Eigen::Index k = 0; k < rows; ++k) pphi(k) = pts[static_cast<std::size_t>(k)].p_phi;
-  const Eigen::VectorXd cp = D.colPivHouseholderQr().solve(pphi);
-  residual = std::max(residual, (D * cp - pphi).cwiseAbs().maxCoeff());
-  // ∫_0^1 (p_θ θ' + p_φ φ') dα on 8M + 8 equispaced points: exact for these trigonometric polynomials.
-  const int q = 8 * M + 8;
-  double sum = 0.0;
+  f.coef = D.colPivHouseholderQr().solve(V);
+  const Eigen::MatrixXd e = D * f.coef - V;
+  f.residual = e.cwiseAbs().maxCoeff();
+  f.rms = e.norm() / std::sqrt(static_cast<double>(e.size()));
+  return f;
+}
+
+/// ρ refined so that the points lie on one smooth curve in α = jρ: the rms of the fit is
+/// minimised on shrinking grids about the Birkhoff estimate (few harmonics first, whose
+/// basin in ρ is wider). The conjugacy to the rotation makes the true ρ the minimiser
+/// (cf. A. Luque & J. Villanueva, "Numerical computation of rotation numbers of
+/// quasi-periodic planar curves", Physica D 238 (2009) 2025).
+double refine_rotation_number(const std::vector<SectionPoint4>& pts, double rho, int harmonics) {
+  double width = 1e-4;  // the Birkhoff estimate is good to ~1e-6; wider brackets meet resonant aliases
+  for (int stage = 0; width > 1e-12; ++stage, width /= 5.0) {
+    const int M = stage == 0 ? 3 : stage == 1 ? 8 : harmonics;
+    double best = fit_section_curve(pts, rho, M).rms, arg = rho;
+    for (int j = -10; j <= 10; ++j) {
+      const double r = rho + width * j / 10.0, e = j == 0 ? best : fit_section_curve(pts, r, M).rms;
+      if (e < best) best = e, arg = r;
+    }
+    rho = arg;
+  }
+  return rho;
+}
+
+/// (1/2π)∮_C λ on the fitted curve. On C p_θ = 0, so λ = p_θ dθ + p_φ dφ with
+/// dθ = −dΓ3/sinθ, dφ = (Γ2 dΓ1 − Γ1 dΓ2)/sin²θ, p_θ sinθ = Π1Γ2 − Π2Γ1, p_φ = Π3;
+/// the periodic trapezoid rule on q points (geometric convergence; q large since the
+/// integrand is steep where C passes near the pole). Sets the winding of φ along C.
+double section_curve_action(const CurveFit& f, int& winding) {
+  const int q = std::max(4096, 16 * f.M);
+  double sum = 0.0, turns = 0.0;
   for (int j = 0; j < q; ++j) {
     const double a = static_cast<double>(j) / q;
-    double theta_d = 0.0, phi_d = 2.0 * pi * winding, p_theta = coef(0, 1), p_phi = cp(0);
-    for (int m = 1; m <= M; ++m) {
-      const double c = std::cos(2.0 * pi * m * a), s = std::sin(2.0 * pi * m * a), f = 2.0 * pi * m;
-      theta_d += f * (-coef(2 * m - 1, 0) * s + coef(2 * m, 0) * c);
-      phi_d += f * (-coef(2 * m - 1, 2) * s + coef(2 * m, 2) * c);
-      p_theta += coef(2 * m - 1, 1) * c + coef(2 * m, 1) * s;
-      p_phi += cp(2 * m - 1) * c + cp(2 * m) * s;
+    Eigen::VectorXd x = f.coef.row(0).transpose(), dx = Eigen::VectorXd::Zero(6);
+    for (int m = 1; m <= f.M; ++m) {
+      const double c = std::cos(2.0 * pi * m * a), s = std::sin(2.0 * pi * m * a), w = 2.0 * pi * m;
+      x += c * f.coef.row(2 * m - 1).transpose() + s * f.coef.row(2 * m).transpose();
+      dx += w * (-s * f.coef.row(2 * m - 1).transpose() + c * f.coef.row(2 * m).transpose());
     }
-    sum += p_theta * theta_d + p_phi * phi_d;
+    const double s2 = x(3) * x(3) + x(4) * x(4), phi_d = (x(4) * dx(3) - x(3) * dx(4)) / s2;
+    sum += (x(0) * x(4) - x(1) * x(3)) * (-dx(5)) / s2 + x(2) * phi_d;
+    turns += phi_d;
   }
+  winding = static_cast<int>(std::lround(turns / q / (2.0 * pi)));
   return sum / q / (2.0 * pi);
+}
+
+/// The section of a torus cut by Σ in k circles that the return map permutes: every
+/// k-th point lies on one circle, which the k-th return map rotates by ρ_k.
+struct CircleFit {
+  int k = 1;
+  double rho = 0.0;
+  CurveFit fit;
+};
+
+CircleFit fit_section_circles(const std::vector<SectionPoint4>& pts, const NumericalTorusOptions& options) {
+  CircleFit best;
+  best.fit.residual = std::numeric_limits<double>::infinity();
+  for (int k = 1; k <= 3; ++k) {
+    std::vector<SectionPoint4> circle;
+    for (std::size_t j = 0; j < pts.size(); j += static_cast<std::size_t>(k)) circle.push_back(pts[j]);
+    if (circle.size() < 64) break;
+    const double rho = refine_rotation_number(circle, rotation_number(circle), options.harmonics);
+    CircleFit c{k, rho, fit_section_curve(circle, rho, options.harmonics)};
+    if (k == 1 || c.fit.residual < best.fit.residual) best = c;
+    if (best.fit.residual < options.max_fit_residual) break;
+  }
+  return best;
 }
 
 }  // namespace
@@ -199,21 +270,32 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
     if (pts.size() > 1) returns.push_back(pts.back().t - pts[pts.size() - 2].t);
   }
   r.return_time = birkhoff_average(returns);
-  double rho = rotation_number(pts);
-  double I_a = section_curve_action(pts, rho, options.harmonics, r.fit_residual, r.winding);
+  double spread = 0.0;
+  for (const auto& p : pts) spread = std::max(spread, (p.Gamma - pts.front().Gamma).norm() + (p.Pi - pts.front().Pi).norm());
+  if (spread < 1e-6) {
+    r.status = "the section is one point (a periodic orbit, not a 2-torus)";
+    return r;
+  }
+  const CircleFit c = fit_section_circles(pts, options);
+  r.fit_residual = c.fit.residual;
+  if (!std::isfinite(r.fit_residual)) {
+    r.status = "the section points leave gaps in the angle kρ (near a resonance: more crossings)";
+    return r;
+  }
+  double I_a = section_curve_action(c.fit, r.winding), rho = c.rho;
   if (I_a < 0.0) I_a = -I_a, rho = -rho;  // orient cycle a so that its action is ≥ 0
   rho -= std::round(rho);
-  r.rotation_number = rho;
+  r.rotation_number = rho;  // of the k-th return map on one circle
   r.action_a = I_a;
-  r.omega_b = 2.0 * pi / r.return_time;
+  r.omega_b = 2.0 * pi / (c.k * r.return_time);  // cycle b: k returns, closed by an arc of the circle
   r.omega_a = rho * r.omega_b;
   r.mean_pq = recorder.mean_pq(r.l);
   r.action_b = (r.mean_pq - I_a * r.omega_a) / r.omega_b;
-  // A section curve that is not one smooth circle in the angle kρ (the section cuts the torus
-  // in several circles, or the chart's pole is near) shows as a large fit residual.
+  // A section that is not k smooth circles permuted by the return map (an arc whose ends are
+  // tangencies of the flow to Σ, a resonant or degenerate torus) shows as a large fit residual.
   r.ok = r.fit_residual < options.max_fit_residual;
-  r.status = r.ok ? "ok" : "the section curve is not one smooth circle (fit residual " +
-                               std::to_string(r.fit_residual) + ")";
+  r.status = r.ok ? "ok (" + std::to_string(c.k) + " circle" + (c.k > 1 ? "s)" : ")")
+                  : "the section is not k smooth circles (fit residual " + std::to_string(r.fit_residual) + ")";
   return r;
 }
 
