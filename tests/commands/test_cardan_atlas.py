@@ -133,5 +133,7 @@ def test_cardan_refusals(tmp_path):
     refused(lgi(*base, "--h", "0", "--section", "gamma", check=False), "--section")
     refused(lgi(*base, "--h", "0", "--scheme", "rkmk4", check=False), "--scheme")
     refused(lgi(*base, "--h", "0", "--scheme", "cardan-dp54", check=False), "--scheme")
+    refused(lgi("work-precision", "--scene", UPRIGHT, "--schemes", "rkmk4", "--dt", "0.01", "--out",
+                str(tmp_path / "w.h5"), check=False), "[suspension]", "work-precision")
     refused(lgi("equilibria", "--scene", GENERAL, "--l", "1", "--omega-max", "2", "--out", str(tmp_path / "y.h5"),
                 check=False), "--omega-max")
