@@ -240,6 +240,16 @@ if has_sub long-time; then
 else
   missing_note long_time "This \\texttt{lgi} has no \\texttt{long-time} subcommand: the figure is absent."
 fi
+# Brouwer's law: dmv on the book, 10^6 steps (quick) or 10^8 (full), for the round-off figure.
+roundoff_file=""
+if has_sub long-time && has_scheme dmv; then
+  if [ "$mode" = quick ]; then ro_t_end=1e4; else ro_t_end=1e6; fi
+  roundoff_file="$data/lt/roundoff_dzhanibekov_book_axis2_dmv.h5"
+  "$lgi" long-time --scene "$scenes/dzhanibekov_book_axis2.toml" --scheme dmv --dt 0.01 --t-end "$ro_t_end" \
+    --out "$roundoff_file" --force --quiet >>"$log" 2>&1 || { tail -5 "$log" >&2; die "lgi long-time (round-off) failed"; }
+else
+  missing_note round_off "This \\texttt{lgi} has no \\texttt{long-time} or no \\texttt{dmv}: the round-off figure is absent."
+fi
 say "long-time done ($(( $(date +%s) - t_start )) s)"
 
 # ── stress and singularity ───────────────────────────────────────────────────
@@ -290,6 +300,7 @@ if [ "$mode" = quick ]; then frames=40; else frames=140; fi
 plot animate.py --frames "$frames" "$data/traj/book_axis2_$lie_scheme.h5" "$data/traj/prism_$lie_scheme.h5"
 [ ${#wp_files[@]} -gt 0 ] && plot work_precision.py "${wp_files[@]}"
 [ ${#lt_files[@]} -gt 0 ] && plot long_time.py "${lt_files[@]}"
+[ -n "$roundoff_file" ] && plot round_off.py "$roundoff_file"
 [ -n "$singularity_file" ] && plot singularity.py "$singularity_file"
 wait_plots
 
