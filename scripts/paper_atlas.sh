@@ -130,10 +130,13 @@ for stem in cardan_euler_symmetric_up cardan_euler_tilted; do
 done
 run actions --scene "$scenes/lagrange_top_cigar.toml" --h 2 --grid 41 --out "$atlas/actions/lagrange_top_cigar.h5"
 run actions --scene "$scenes/free_body_hlw.toml" --h 1 --grid 41 --out "$atlas/actions/free_body_hlw.h5"
+# The Kovalevskaya top has no closed form here: its tori at h = 2 found from the flow (docs/actions.md §3).
+if [ "$mode" = quick ]; then kl=-1,-0.5,0,0.5,1 kt=4; else kl=-1.5,-1.25,-1,-0.75,-0.5,-0.25,0,0.25,0.5,0.75,1,1.25,1.5 kt=12; fi
+run actions --scene "$scenes/kovalevskaya.toml" --h 2 --l "$kl" --tori "$kt" --out "$atlas/actions/kovalevskaya.h5"
 
 # ── figures and tables ───────────────────────────────────────────────────────
 "$PY" "$plots/actions.py" --out "$figs" --name actions_integrable "$atlas/actions/lagrange_top_cigar.h5" \
-  "$atlas/actions/free_body_hlw.h5" || die "actions.py failed"
+  "$atlas/actions/free_body_hlw.h5" "$atlas/actions/kovalevskaya.h5" || die "actions.py failed"
 "$PY" "$plots/poincare.py" --out "$figs" --colour megno "$atlas/cardan/section_cardan_euler_symmetric_up.h5" \
   "$atlas/cardan/section_cardan_euler_tilted.h5" || die "poincare.py (Cardan) failed"
 "$PY" "$plots/region.py" --out "$figs" --combine poisson_sphere_potentials "$atlas/region/euler.h5" \

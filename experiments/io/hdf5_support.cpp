@@ -96,6 +96,16 @@ void write_vlen_string(hid_t obj, const char* name, const std::string& value, bo
   write_attribute(obj, name, type.get(), type.get(), space.get(), &p, fail);
 }
 
+void write_fixed_string(hid_t obj, const char* name, const std::string& value, const Fail& fail) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), std::max<std::size_t>(1, value.size())) < 0 ||
+      H5Tset_strpad(type.get(), H5T_STR_NULLPAD) < 0 || H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0)
+    fail("cannot make a string type");
+  Handle space = scalar_space(fail);
+  const std::string padded = value.empty() ? std::string(1, '\0') : value;
+  write_attribute(obj, name, type.get(), type.get(), space.get(), padded.data(), fail);
+}
+
 void write_fixed_strings(hid_t obj, const char* name, const std::vector<std::string>& values, bool scalar,
                          const Fail& fail) {
   std::size_t width = 1;
@@ -143,7 +153,17 @@ void write_int32_array(hid_t obj, const char* name, const std::vector<std::int32
 
 // ---- groups and files ------------------------------------------------------------------
 
-std::optional<std::string> read_string_attribute(hid_t obj, const char* name) {
+namespace {
+std::optional<std::string> read_string(hid_t obj, const char* name, bool allow_variable);
+}
+
+std::optional<std::string> read_string_attribute(hid_t obj, const char* name) { return read_string(obj, name, true); }
+std::optional<std::string> read_fixed_string_attribute(hid_t obj, const char* name) {
+  return read_string(obj, name, false);
+}
+
+namespace {
+std::optional<std::string> read_string(hid_t obj, const char* name, bool allow_variable) {
   if (H5Aexists(obj, name) <= 0) return std::nullopt;
   Handle a(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose);
   Handle type(a.valid() ? H5Aget_type(a.get()) : H5I_INVALID_HID, H5Tclose);
@@ -152,7 +172,7 @@ std::optional<std::string> read_string_attribute(hid_t obj, const char* name) {
       H5Sget_simple_extent_type(space.get()) != H5S_SCALAR)
     return std::nullopt;
   const htri_t variable = H5Tis_variable_str(type.get());
-  if (variable < 0) return std::nullopt;
+  if (variable < 0 || (variable > 0 && !allow_variable)) return std::nullopt;
   Handle memory(H5Tcopy(H5T_C_S1), H5Tclose);
   const H5T_cset_t cset = H5Tget_cset(type.get());  // HDF5 converts no character set into another
   if (!memory.valid() || cset < 0 || H5Tset_cset(memory.get(), cset) < 0) return std::nullopt;
@@ -173,9 +193,11 @@ std::optional<std::string> read_string_attribute(hid_t obj, const char* name) {
   text.resize(std::strlen(text.c_str()));
   return text;
 }
+}  // namespace
 
-std::optional<std::string> read_string_attribute(const std::string& path, const std::string& object,
-                                                 const char* name, bool* readable) {
+namespace {
+std::optional<std::string> read_string_at(const std::string& path, const std::string& object, const char* name,
+                                          bool* readable, bool allow_variable) {
   const QuietHdf5Errors quiet;
   if (readable) *readable = false;
   if (H5Fis_hdf5(path.c_str()) <= 0) return std::nullopt;
@@ -185,7 +207,17 @@ std::optional<std::string> read_string_attribute(const std::string& path, const 
   if (H5Lexists(file.get(), object.c_str(), H5P_DEFAULT) <= 0) return std::nullopt;
   Handle o(H5Oopen(file.get(), object.c_str(), H5P_DEFAULT), H5Oclose);
   if (!o.valid()) return std::nullopt;
-  return read_string_attribute(o.get(), name);
+  return read_string(o.get(), name, allow_variable);
+}
+}  // namespace
+
+std::optional<std::string> read_string_attribute(const std::string& path, const std::string& object,
+                                                 const char* name, bool* readable) {
+  return read_string_at(path, object, name, readable, true);
+}
+std::optional<std::string> read_fixed_string_attribute(const std::string& path, const std::string& object,
+                                                       const char* name, bool* readable) {
+  return read_string_at(path, object, name, readable, false);
 }
 
 Handle create_group(hid_t loc, const std::string& path, const Fail& fail) {

@@ -87,6 +87,9 @@ void write_attribute(hid_t obj, const char* name, hid_t file_type, hid_t memory_
                      const Fail& fail);
 /// Scalar variable-length string attribute.
 void write_vlen_string(hid_t obj, const char* name, const std::string& value, bool ascii, const Fail& fail);
+/// Scalar fixed-length (UTF-8, null-padded) string attribute: for what a
+/// resume reads back (read_fixed_string_attribute).
+void write_fixed_string(hid_t obj, const char* name, const std::string& value, const Fail& fail);
 /// Fixed-length, null-terminated UTF-8 string attributes: scalar for one
 /// value, rank 1 for several (H5MD 1.1 asks fixed length for the /h5md
 /// metadata and box/boundary).
@@ -104,12 +107,21 @@ void write_double_array(hid_t obj, const char* name, const std::vector<double>& 
 /// it is absent, not a string, not scalar, or unreadable. For files made by
 /// others: any bytes in them end here, not in a crash.
 std::optional<std::string> read_string_attribute(hid_t obj, const char* name);
+/// Only a fixed-length string attribute; std::nullopt for a variable-length
+/// one, which is never read. The resume paths use it on the fingerprints
+/// lgi writes as fixed-length strings (write_fixed_string): reading a
+/// variable-length string goes through HDF5's global heap, and libhdf5 1.10
+/// can loop forever on a damaged heap (H5HG_read; fuzz/fuzz_h5_readers.cpp).
+std::optional<std::string> read_fixed_string_attribute(hid_t obj, const char* name);
 /// The same attribute of the object `object` ("/resume") in the file at
 /// `path`, opened read-only (nothing in the file changes); std::nullopt if
 /// the file, the object or the attribute is missing or unreadable. Throws
 /// nothing; `readable` (if given) says whether the file opened as HDF5.
 std::optional<std::string> read_string_attribute(const std::string& path, const std::string& object,
                                                  const char* name, bool* readable = nullptr);
+/// The same, fixed-length strings only (read_fixed_string_attribute).
+std::optional<std::string> read_fixed_string_attribute(const std::string& path, const std::string& object,
+                                                       const char* name, bool* readable = nullptr);
 
 /// Creates the group `path` (absolute, or relative to loc; its parent must exist).
 Handle create_group(hid_t loc, const std::string& path, const Fail& fail);

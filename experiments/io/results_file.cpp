@@ -211,6 +211,7 @@ ResultsFile::~ResultsFile() {
 void ResultsFile::write_attributes(std::int64_t group, const ResultAttributes& a) {
   auto fail_fn = [this](const std::string& what) { fail(what); };
   for (const auto& [k, v] : a.text) write_vlen_string(group, k.c_str(), v, false, fail_fn);
+  for (const auto& [k, v] : a.fixed_text) hdf5::write_fixed_string(group, k.c_str(), v, fail_fn);
   for (const auto& [k, v] : a.number) hdf5::write_double_attribute(group, k.c_str(), v, fail_fn);
   for (const auto& [k, v] : a.integer) hdf5::write_int_attribute(group, k.c_str(), H5T_STD_I64LE, v, fail_fn);
   for (const auto& [k, v] : a.number_array) hdf5::write_double_array(group, k.c_str(), v, fail_fn);

@@ -60,6 +60,7 @@ struct Column {
 /// numbers float64; integers int64; arrays 1-D float64.
 struct ResultAttributes {
   std::map<std::string, std::string> text;
+  std::map<std::string, std::string> fixed_text;  // fixed-length strings: what a resume reads back (hdf5_support.hpp)
   std::map<std::string, double> number;
   std::map<std::string, std::int64_t> integer;
   std::map<std::string, std::vector<double>> number_array;
@@ -141,7 +142,8 @@ class ResultsFile {
   /// Resume: keeps the first n rows (0 <= n <= rows()) of both files, drops
   /// the others, and sets /diagnostics status back to "running".
   void keep_rows(std::int64_t n);
-  /// A scalar text attribute of /<group>; std::nullopt if absent or not text.
+  /// A scalar fixed-length text attribute of /<group> (ResultAttributes::fixed_text); std::nullopt if
+  /// absent, not text or variable-length (never read: hdf5_support.hpp, read_fixed_string_attribute).
   std::optional<std::string> text_attribute(const std::string& group, const std::string& name) const;
   /// A record of `bytes` zero bytes at /<group>/<name> (the group is created if missing).
   void create_record(const std::string& group, const std::string& name, std::size_t bytes);

@@ -165,7 +165,7 @@ std::optional<std::string> ResultsFile::text_attribute(const std::string& group,
   if (H5Lexists(impl_->file.get(), path.c_str(), H5P_DEFAULT) <= 0) return std::nullopt;
   Handle g(H5Oopen(impl_->file.get(), path.c_str(), H5P_DEFAULT), H5Oclose);
   if (!g.valid()) return std::nullopt;
-  return hdf5::read_string_attribute(g.get(), name.c_str());
+  return hdf5::read_fixed_string_attribute(g.get(), name.c_str());
 }
 
 void ResultsFile::create_record(const std::string& group, const std::string& name, std::size_t bytes) {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/hdf5_inspection.hpp"
 #include "experiments/io/sweep_hdf5.hpp"
 
 namespace lgi::experiments {
@@ -34,7 +35,7 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   file_ = hdf5::create_file(path, fail_fn, 0);  // rows go to the file as they are written
   create_columns();
   Handle partial = hdf5::create_group(file_.get(), "/partial", fail_fn);
-  hdf5::write_vlen_string(partial.get(), "fingerprint", fingerprint, false, fail_fn);
+  hdf5::write_fixed_string(partial.get(), "fingerprint", fingerprint, fail_fn);
   done_.assign(static_cast<std::size_t>(layout.count), 0);
   if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
 }
@@ -43,6 +44,9 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
                                    bool /*resume*/)
     : path_(path), layout_(layout) {
   const hdf5::QuietHdf5Errors quiet;
+  if (H5Fis_hdf5(path.c_str()) > 0)
+    if (const std::string why = hdf5::inspect_in_child(path); !why.empty())
+      throw OutputFileError(path + ": cannot resume the partial sweep: " + why + " (damaged); remove it");
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
   H5Pset_sieve_buf_size(fapl.get(), 0);
@@ -51,7 +55,7 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   std::optional<std::string> stored;
   if (H5Lexists(file_.get(), "/partial", H5P_DEFAULT) > 0) {
     Handle g(H5Gopen2(file_.get(), "/partial", H5P_DEFAULT), H5Gclose);
-    if (g.valid()) stored = hdf5::read_string_attribute(g.get(), "fingerprint");
+    if (g.valid()) stored = hdf5::read_fixed_string_attribute(g.get(), "fingerprint");
   }
   if (stored != fingerprint)
     throw OutputFileError(path + ": --resume: this partial sweep was started with a different spec, scene, scheme or "

@@ -5,6 +5,7 @@
 
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/hdf5_inspection.hpp"
 #include "experiments/io/hdf5_support.hpp"
 #include "lgi/build_info.hpp"
 
@@ -35,7 +36,7 @@ std::string long_time_fingerprint(const system::Scene& scene, const integrators:
 
 void create_resume_record(ResultsFile& file, const std::string& fingerprint) {
   ResultAttributes a;
-  a.text["fingerprint"] = fingerprint;
+  a.fixed_text["fingerprint"] = fingerprint;
   file.write_group(resume_group, a);
   file.create_record(resume_group, record_name, 2 * checkpoint_slot_bytes);
 }
@@ -50,9 +51,12 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
   for (const std::string& p : {out, csv})
     if (!force && hdf5::path_exists(p)) throw UsageError("--out: " + p + " exists (--force replaces it)");
   ResumedResults r;
+  if (H5Fis_hdf5(partial.c_str()) > 0)
+    if (const std::string why = hdf5::inspect_in_child(partial); !why.empty())
+      throw OutputFileError("cannot resume results '" + partial + "': " + why + " (damaged); remove it");
   bool readable = false;
   const std::optional<std::string> stored =
-      hdf5::read_string_attribute(partial, std::string("/") + resume_group, "fingerprint", &readable);
+      hdf5::read_fixed_string_attribute(partial, std::string("/") + resume_group, "fingerprint", &readable);
   if (!readable)
     throw OutputFileError("cannot resume results '" + partial + "': not an HDF5 file (damaged); remove it");
   if (!stored) return r;  // nothing to go on from
