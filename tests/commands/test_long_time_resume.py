@@ -80,6 +80,8 @@ def cut(args, out, sig, seconds, resume):
         if p.poll() is None and sig != signal.SIGINT:
             p.kill()
         p.wait(timeout=120)
+    if p.returncode == 0:  # it finished between the poll and the signal: a signal to a zombie does nothing
+        return False
     assert p.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 130), p.returncode
     return True
 
