@@ -29,7 +29,8 @@
 // without it the accepted iterate keeps an error of one sign that drifts the
 // energy). That last correction is only as good as ψ's rounding, so ψ is
 // evaluated as ψ_i = (2 w_i − a_i) + (2 (f × w)_i − |f|² a_i + 2 δw_i), with
-// δw_i = I_i f_i − w_i exact (std::fma, an error-free product: Ogita, Rump &
+// δw_i = I_i f_i − w_i exact (Dekker's error-free product with I_i split once
+// per run, no fma call: T. J. Dekker, Numer. Math. 18 (1971) 224; Ogita, Rump &
 // Oishi, SIAM J. Sci. Comput. 26 (2005)): near the root 2 w_i and a_i agree to
 // within O(|f|), so their difference is exact (Sterbenz) and ψ's rounding error
 // is ε times the cross terms, not ε |J f|. Rounded as 2 (w_i + (f × w)_i) − α a_i,
@@ -63,19 +64,37 @@ inline bool is_diagonal(const Mat3& J) {
   return J(0, 1) == 0.0 && J(0, 2) == 0.0 && J(1, 0) == 0.0 && J(1, 2) == 0.0 && J(2, 0) == 0.0 && J(2, 1) == 0.0;
 }
 
+/// Veltkamp's split x = hi + lo, each with at most 26 significant bits (Dekker 1971).
+inline void veltkamp_split(double x, double& hi, double& lo) {
+  const double c = 134217729.0 * x;  // 2^27 + 1
+  hi = c - (c - x);
+  lo = x - hi;
+}
+
+/// x y − p exactly for p = fl(x y) (Dekker's two-product), x given split.
+inline double product_error(double x_hi, double x_lo, double y, double p) {
+  double y_hi, y_lo;
+  veltkamp_split(y, y_hi, y_lo);
+  return ((x_hi * y_hi - p) + x_hi * y_lo + x_lo * y_hi) + x_lo * y_lo;
+}
+
 /// The moments I and the constants derived from them: μ = 1/I and
-/// k_i = (I_j − I_k) μ_i for the starting guess, c_i = 2 (I_k − I_j) for the Jacobian.
+/// k_i = (I_j − I_k) μ_i for the starting guess, c_i = 2 (I_k − I_j) for the Jacobian,
+/// and I split for the exact rounding error of J f (header comment).
 struct DiagonalMoments {
   Vec3 I = Vec3::Ones();
   Vec3 mu = Vec3::Ones();
   Vec3 k = Vec3::Zero();
   Vec3 c = Vec3::Zero();
+  Vec3 I_hi = Vec3::Ones(), I_lo = Vec3::Zero();
   DiagonalMoments() = default;
   DiagonalMoments(const Vec3& moments, const Vec3& inverse)
       : I(moments),
         mu(inverse),
         k((I.y() - I.z()) * mu.x(), (I.z() - I.x()) * mu.y(), (I.x() - I.y()) * mu.z()),
-        c(2.0 * (I.z() - I.y()), 2.0 * (I.x() - I.z()), 2.0 * (I.y() - I.x())) {}
+        c(2.0 * (I.z() - I.y()), 2.0 * (I.x() - I.z()), 2.0 * (I.y() - I.x())) {
+    for (int i = 0; i < 3; ++i) veltkamp_split(I(i), I_hi(i), I_lo(i));
+  }
 };
 
 /// The inverse of a 3×3 matrix a (row-major) by Cramer's rule, kept as its
@@ -123,10 +142,13 @@ struct DiagonalResidual {
     const double alpha = 1.0 + ff;
     const double w0 = m.I.x() * f0, w1 = m.I.y() * f1, w2 = m.I.z() * f2;  // J f
     const double p01 = f0 * w1, p10 = f1 * w0, p02 = f0 * w2, p20 = f2 * w0, p12 = f1 * w2, p21 = f2 * w1;
-    // (2 w_i − a_i) exact near the root; the small terms with w_i's rounding error δw_i = fma(I_i, f_i, −w_i)
-    r0 = (2.0 * w0 - a[0]) + ((2.0 * (p12 - p21) - ff * a[0]) + 2.0 * std::fma(m.I.x(), f0, -w0));
-    r1 = (2.0 * w1 - a[1]) + ((2.0 * (p20 - p02) - ff * a[1]) + 2.0 * std::fma(m.I.y(), f1, -w1));
-    r2 = (2.0 * w2 - a[2]) + ((2.0 * (p01 - p10) - ff * a[2]) + 2.0 * std::fma(m.I.z(), f2, -w2));
+    // (2 w_i − a_i) exact near the root; the small terms with w_i's exact rounding error δw_i = I_i f_i − w_i
+    const double e0 = product_error(m.I_hi.x(), m.I_lo.x(), f0, w0);
+    const double e1 = product_error(m.I_hi.y(), m.I_lo.y(), f1, w1);
+    const double e2 = product_error(m.I_hi.z(), m.I_lo.z(), f2, w2);
+    r0 = (2.0 * w0 - a[0]) + ((2.0 * (p12 - p21) - ff * a[0]) + 2.0 * e0);
+    r1 = (2.0 * w1 - a[1]) + ((2.0 * (p20 - p02) - ff * a[1]) + 2.0 * e1);
+    r2 = (2.0 * w2 - a[2]) + ((2.0 * (p01 - p10) - ff * a[2]) + 2.0 * e2);
     const double s0 = 2.0 * (std::abs(w0) + (std::abs(p12) + std::abs(p21))) + alpha * std::abs(a[0]);
     const double s1 = 2.0 * (std::abs(w1) + (std::abs(p20) + std::abs(p02))) + alpha * std::abs(a[1]);
     const double s2 = 2.0 * (std::abs(w2) + (std::abs(p01) + std::abs(p10))) + alpha * std::abs(a[2]);
