@@ -229,8 +229,11 @@ void classify(const HeavyTopBody& body, RelativeEquilibrium& e) {
   const double t2 = M2.trace(), t4 = (M2 * M2).trace();
   e.g1 = -0.5 * t2;
   e.g2 = t2 * t2 / 8.0 - t4 / 4.0;
-  if (e.g2 < 0.0) e.stability = EquilibriumStability::singly_unstable;
-  else if (e.g1 * e.g1 < 4.0 * e.g2) e.stability = EquilibriumStability::complex_unstable;
+  // A root λ² = 0 (a symmetry's neutral pair: the Lagrange top's carrousels) comes out as g2 of
+  // either sign at round-off (e.g. −2.3e-13 against g1² = 1.1e3): within 1e-12 g1² it counts as 0.
+  const double g2 = std::abs(e.g2) <= 1e-12 * e.g1 * e.g1 ? 0.0 : e.g2;
+  if (g2 < 0.0) e.stability = EquilibriumStability::singly_unstable;
+  else if (e.g1 * e.g1 < 4.0 * g2) e.stability = EquilibriumStability::complex_unstable;
   else if (e.g1 > 0.0) e.stability = EquilibriumStability::stable;
   else e.stability = EquilibriumStability::doubly_unstable;
   // Energy–Casimir: the Hessian of U_l on the sphere's tangent plane at Γ is positive definite.
