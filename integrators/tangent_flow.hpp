@@ -116,20 +116,23 @@ struct ChaosIndicators {
   bool ok = true;          // false: the tangent or the state blew up (the values are NaN)
 };
 
-/// Integrates (x, v) from t0 to t_end with steps dt (the last one shortened
-/// to land on t_end) and returns the indicators; x and v end at t_end.
-template <class Model>
-ChaosIndicators chaos_indicators(const Model& model, system::State& x, Vec6 v, double t0, double t_end, double dt) {
+/// The indicators' loop for any state: from t0 to t_end with steps dt (the
+/// last one shortened to land on t_end), `step(t, h, v)` advancing the state
+/// and the tangent v, `state_finite()` saying whether the state is still
+/// finite; v is renormalised after every step (top of this file).
+template <class Step, class StateFinite, class Tangent>
+ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_finite, Tangent& v, double t0,
+                                            double t_end, double dt) {
   ChaosIndicators out;
   ChaosAccumulator acc;
   v.normalize();
   double t = t0;
   while (t < t_end) {
     const double h = (t_end - t) < 1.0000001 * dt ? t_end - t : dt;
-    tangent_step(model, x, v, t, h);
+    step(t, h, v);
     t = (t_end - t) < 1.0000001 * dt ? t_end : t + h;
     const double n = v.norm();
-    if (!std::isfinite(n) || !(n > 0.0) || !x.Pi.allFinite()) {
+    if (!std::isfinite(n) || !(n > 0.0) || !state_finite()) {
       out.ok = false;
       out.lyapunov = out.megno = out.megno_y = std::nan("");
       return out;
@@ -142,6 +145,14 @@ ChaosIndicators chaos_indicators(const Model& model, system::State& x, Vec6 v, d
   out.megno = acc.mean_megno();
   out.megno_y = acc.megno();
   return out;
+}
+
+/// Integrates (x, v) from t0 to t_end with steps dt and returns the
+/// indicators; x and v end at t_end.
+template <class Model>
+ChaosIndicators chaos_indicators(const Model& model, system::State& x, Vec6 v, double t0, double t_end, double dt) {
+  return accumulate_chaos_indicators([&](double t, double h, Vec6& w) { tangent_step(model, x, w, t, h); },
+                                     [&] { return x.Pi.allFinite(); }, v, t0, t_end, dt);
 }
 
 }  // namespace lgi::integrators

@@ -15,17 +15,8 @@ using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
 constexpr double pi = std::numbers::pi;
 
-double wrap_pi(double a) {  // to (−π, π]
-  a = std::remainder(a, 2.0 * pi);
-  return a <= -pi ? a + 2.0 * pi : a;
-}
-double wrap_two_pi(double a) {  // to [0, 2π)
-  a = std::fmod(a, 2.0 * pi);
-  if (a < 0.0) a += 2.0 * pi;
-  return a >= 2.0 * pi ? 0.0 : a;
-}
 double torus_distance(const Vec2& a, const Vec2& b) {
-  return std::hypot(wrap_pi(a(0) - b(0)), wrap_pi(a(1) - b(1)));
+  return std::hypot(wrap_angle_signed(a(0) - b(0)), wrap_angle_signed(a(1) - b(1)));
 }
 
 /// U_ℓ (amended) or W_ω (augmented) on the shape torus (q2, q3), q1 = 0 (top of the header).
@@ -93,7 +84,7 @@ bool newton(const ShapePotential& P, Vec2& r, double tol) {
 
 /// A circle of critical points along q3 is reported at q3 = 0 (header).
 void canonicalise(const ShapePotential& P, CriticalPoint& c, double tol, double value_scale) {
-  c.r = {wrap_pi(c.r(0)), wrap_two_pi(c.r(1))};
+  c.r = {wrap_angle_signed(c.r(0)), wrap_angle_positive(c.r(1))};
   if (std::abs(std::sin(c.r(0))) < 1e-9) {  // a pole: exactly 0 or π if it is critical there
     const Vec2 pole(std::cos(c.r(0)) > 0.0 ? 0.0 : pi, c.r(1));
     if (P.gradient(pole).norm() <= tol) c.r = pole;
@@ -197,6 +188,17 @@ bool describe(const system::CardanTop& top, const ShapePotential& P, const Criti
 }
 
 }  // namespace
+
+double wrap_angle_signed(double a) {
+  a = std::remainder(a, 2.0 * pi);
+  return a <= -pi ? a + 2.0 * pi : a;
+}
+
+double wrap_angle_positive(double a) {
+  a = std::fmod(a, 2.0 * pi);
+  if (a < 0.0) a += 2.0 * pi;
+  return a >= 2.0 * pi ? 0.0 : a;
+}
 
 void require_cyclic_outer_angle(const system::CardanTop& top, const std::string& file, const std::string& command) {
   if (!top.outer_angle_cyclic())

@@ -35,6 +35,10 @@
 
 namespace lgi::experiments {
 
+/// An angle reduced to (−π, π] and to [0, 2π).
+double wrap_angle_signed(double a);
+double wrap_angle_positive(double a);
+
 struct CardanEquilibrium {
   Vec3 q = Vec3::Zero();                 // (0, q2, q3), q2 in (−π, π], q3 in [0, 2π)
   double omega = 0.0, l = 0.0, h = 0.0;  // q̇1, p1, H

@@ -22,12 +22,6 @@ using system::TorusState;
 constexpr double pi = std::numbers::pi;
 constexpr std::uint64_t draw_stream = 0x5ec7104ULL, tangent_stream = 0x7a1e5cULL;
 
-double wrap_two_pi(double a) {
-  a = std::fmod(a, 2.0 * pi);
-  if (a < 0.0) a += 2.0 * pi;
-  return a >= 2.0 * pi ? 0.0 : a;
-}
-
 /// The two factors of S = −sin q2 · q̇2 (header): 0 is q̇2, 1 is sin q2.
 double factor(const system::CardanTop& top, const TorusState& x, int which) {
   return which == 0 ? top.velocity(x)(1) : std::sin(x.q(1));
@@ -40,10 +34,10 @@ CardanCrossing crossing_at(const system::CardanTop& top, const TorusState& x, do
   CardanCrossing c;
   c.t = t, c.x = x, c.direction = direction;
   const Vec3 v = top.velocity(x);
-  c.x_coord = wrap_two_pi(x.q(2));
+  c.x_coord = wrap_angle_positive(x.q(2));
   if (which == 0) {
     c.piece = v(2) >= 0.0 ? 1 : -1;
-    c.y_coord = wrap_two_pi(x.q(1));
+    c.y_coord = wrap_angle_positive(x.q(1));
   } else {
     c.piece = std::cos(x.q(1)) > 0.0 ? 2 : 3;
     c.y_coord = std::atan2(v(2), v(1));

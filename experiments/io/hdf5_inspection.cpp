@@ -89,6 +89,7 @@ herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void*)
 }  // namespace
 
 std::string inspect_in_child(const std::string& path, int timeout_seconds) {
+  if (H5Fis_hdf5(path.c_str()) <= 0) return {};  // not HDF5 at all: the reader's own open refuses it
   const pid_t child = fork();
   if (child < 0) return {};  // no process to spare: the readers' own checks remain
   if (child == 0) inspect_and_exit(path);

@@ -13,7 +13,8 @@
 
 namespace lgi::experiments::hdf5 {
 
-/// Empty if a child process read `path` through HDF5 without failing within
+/// Empty if `path` is not an HDF5 file (the reader's own open refuses it), or
+/// if a child process read it through HDF5 without failing within
 /// `timeout_seconds`; otherwise why not ("HDF5 crashed on it (signal 11)",
 /// "HDF5 did not finish reading it in 10 s", ...).
 std::string inspect_in_child(const std::string& path, int timeout_seconds = 10);

@@ -10,9 +10,8 @@ using hdf5::Handle;
 
 SweepExtraColumns::SweepExtraColumns(const std::string& path) : path_(path) {
   const hdf5::QuietHdf5Errors quiet;
-  if (H5Fis_hdf5(path.c_str()) > 0)
-    if (const std::string why = hdf5::inspect_in_child(path); !why.empty())
-      throw OutputFileError(path_ + ": " + why + " (damaged)");
+  if (const std::string why = hdf5::inspect_in_child(path); !why.empty())
+    throw OutputFileError(path_ + ": " + why + " (damaged)");
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   if (file_ < 0) fail("cannot open for writing");
 }

@@ -44,9 +44,8 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
                                    bool /*resume*/)
     : path_(path), layout_(layout) {
   const hdf5::QuietHdf5Errors quiet;
-  if (H5Fis_hdf5(path.c_str()) > 0)
-    if (const std::string why = hdf5::inspect_in_child(path); !why.empty())
-      throw OutputFileError(path + ": cannot resume the partial sweep: " + why + " (damaged); remove it");
+  if (const std::string why = hdf5::inspect_in_child(path); !why.empty())
+    throw OutputFileError(path + ": cannot resume the partial sweep: " + why + " (damaged); remove it");
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
   H5Pset_sieve_buf_size(fapl.get(), 0);

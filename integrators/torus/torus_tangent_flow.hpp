@@ -53,30 +53,11 @@ inline void torus_tangent_step(const system::CardanTop& top, system::Vec6& x, sy
 /// and returns λ and ⟨Y⟩; NaN where the state or the tangent blew up.
 inline ChaosIndicators torus_chaos_indicators(const system::CardanTop& top, system::TorusState& s,
                                               system::Vec6 v, double t_end, double dt) {
-  ChaosIndicators out;
-  ChaosAccumulator acc;
   system::Vec6 x = system::stack(s);
-  v.normalize();
-  double t = 0.0;
-  while (t < t_end) {
-    const bool last = (t_end - t) < 1.0000001 * dt;
-    const double h = last ? t_end - t : dt;
-    torus_tangent_step(top, x, v, h);
-    t = last ? t_end : t + h;
-    const double n = v.norm();
-    if (!std::isfinite(n) || !(n > 0.0) || !x.allFinite()) {
-      out.ok = false;
-      out.lyapunov = out.megno = out.megno_y = std::nan("");
-      return out;
-    }
-    v /= n;
-    acc.add(t, h, n);
-    ++out.steps;
-  }
-  s = system::unstack(x);
-  out.lyapunov = acc.lyapunov();
-  out.megno = acc.mean_megno();
-  out.megno_y = acc.megno();
+  const ChaosIndicators out = accumulate_chaos_indicators(
+      [&](double, double h, system::Vec6& w) { torus_tangent_step(top, x, w, h); }, [&] { return x.allFinite(); }, v,
+      0.0, t_end, dt);
+  if (out.ok) s = system::unstack(x);
   return out;
 }
 

@@ -51,9 +51,8 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
   for (const std::string& p : {out, csv})
     if (!force && hdf5::path_exists(p)) throw UsageError("--out: " + p + " exists (--force replaces it)");
   ResumedResults r;
-  if (H5Fis_hdf5(partial.c_str()) > 0)
-    if (const std::string why = hdf5::inspect_in_child(partial); !why.empty())
-      throw OutputFileError("cannot resume results '" + partial + "': " + why + " (damaged); remove it");
+  if (const std::string why = hdf5::inspect_in_child(partial); !why.empty())
+    throw OutputFileError("cannot resume results '" + partial + "': " + why + " (damaged); remove it");
   bool readable = false;
   const std::optional<std::string> stored =
       hdf5::read_fixed_string_attribute(partial, std::string("/") + resume_group, "fingerprint", &readable);
