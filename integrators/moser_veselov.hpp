@@ -97,9 +97,13 @@
 // DMV's own limit (h|Ω| ≈ 1) and those refusals the modified equation may
 // still be solvable, with an error of order one, like any scheme there.
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
+#include <vector>
 
 #include "integrators/compensated_sum.hpp"
 #include "integrators/moser_veselov_diagonal.hpp"
@@ -282,6 +286,35 @@ inline double horner_in_h2(const std::array<double, 4>& c, int degree, double x,
   return offset + x * v;
 }
 
+/// The modified moments of a free body for the last few step lengths h, a
+/// direct-mapped table on a hash of h's bits. A fixed-step run's
+/// h = t_{k+1} − t_k takes a dozen or so values that differ in the last bits
+/// (t_k = t0 + k dt is computed, not accumulated), so a one-entry cache missed
+/// most steps and the series and three divisions were redone at ~17 ns a step.
+/// A hit returns the moments computed from the same h, so the run's numbers do
+/// not depend on what the table holds.
+struct MomentsByStep {
+  static constexpr std::size_t size = 8;
+  std::array<double, size> h{};
+  std::array<bool, size> filled{};
+  std::array<DiagonalMoments, size> moments{};
+  // Fibonacci hashing of h's bits (Knuth, TAOCP 3, §6.4): the h of one run share
+  // their low mantissa bits (they differ by multiples of ulp(t)), so those alone would collide.
+  static std::size_t slot(double step) {
+    return static_cast<std::size_t>((std::bit_cast<std::uint64_t>(step) * 0x9E3779B97F4A7C15ull) >> 61);
+  }
+  const DiagonalMoments* find(double step) const {
+    const std::size_t i = slot(step);
+    return filled[i] && h[i] == step ? &moments[i] : nullptr;
+  }
+  void insert(double step, const DiagonalMoments& m) {
+    const std::size_t i = slot(step);
+    h[i] = step;
+    filled[i] = true;
+    moments[i] = m;
+  }
+};
+
 /// The per-run constants of the diagonal fast path (moser_veselov_diagonal.hpp):
 /// whether J is diagonal, its moments and their inverses.
 struct DiagonalInertia {
@@ -342,9 +375,13 @@ class Lgvi {
   template <class Model>
   void start(const Model& model, const State& /*initial*/, double /*t0*/) {
     carry_ = {};
+    predictor_.reset();
     diag_ = moser_veselov::DiagonalInertia(model.inertia);
     ready_ = true;
   }
+  /// The carries and the predictor's history (a checkpoint's scheme memory).
+  void save_memory(std::vector<double>& out) const { moser_veselov::save_dmv_memory(carry_, predictor_, out); }
+  bool restore_memory(std::span<const double> in) { return moser_veselov::restore_dmv_memory(in, carry_, predictor_); }
   /// Π ← Π + τ M(R), the potential torque only (nothing for a free body), compensated.
   template <class Model>
   static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double /*t*/, double tau) {
@@ -359,7 +396,7 @@ class Lgvi {
     }
     if (diag_.diagonal) {
       if (diag_.turns_too_far(s.Pi, h)) return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
-      return moser_veselov::dmv_step_diagonal(diag_.moments, s, carry, h);
+      return moser_veselov::dmv_step_diagonal(diag_.moments, s, carry, h, &predictor_);
     }
     if (moser_veselov::turns_too_far(model.inertia.J_inv, s.Pi, h))
       return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
@@ -384,7 +421,8 @@ class Lgvi {
 
  private:
   moser_veselov::Carry carry_{};
-  moser_veselov::DiagonalInertia diag_{};  // per run (start), or at the first step without one
+  moser_veselov::CayleyPredictor predictor_{};  // the diagonal path's starting guess
+  moser_veselov::DiagonalInertia diag_{};       // per run (start), or at the first step without one
   bool ready_ = false;
 };
 
@@ -422,6 +460,8 @@ class DmvPreprocessed {
     prepare(model, initial);
     carry_ = {};
   }
+  void save_memory(std::vector<double>& out) const { moser_veselov::save_dmv_memory(carry_, predictor_, out); }
+  bool restore_memory(std::span<const double> in) { return moser_veselov::restore_dmv_memory(in, carry_, predictor_); }
 
   template <class Model>
   static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double t, double tau) {
@@ -438,9 +478,11 @@ class DmvPreprocessed {
     if (diag_.diagonal ? diag_.turns_too_far(s.Pi, h) : moser_veselov::turns_too_far(J_inv, s.Pi, h))
       return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
     if constexpr (!moser_veselov::has_potential<Model>) {
-      // Free body, diagonal J: the modified moments depend on h alone (H and C are
-      // the run's); the last h's are kept (h = t_{k+1} − t_k repeats bitwise often).
-      if (diag_.diagonal && h == cached_h_) return moser_veselov::dmv_step_diagonal(cached_moments_, s, carry, h);
+      // Free body, diagonal J: the modified moments depend on h alone (H and C are the run's).
+      if (diag_.diagonal) {
+        if (const moser_veselov::DiagonalMoments* m = moments_by_h_.find(h))
+          return moser_veselov::dmv_step_diagonal(*m, s, carry, h, &predictor_);
+      }
     }
     double css = 1.0, cdd = 0.0;
     const double x = h * h;
@@ -461,11 +503,8 @@ class DmvPreprocessed {
           "step refused: the truncated modified-inertia series is not positive at this h|Omega|; reduce --dt");
     if (diag_.diagonal) {  // moments_inv = 1/Ĩ_j in J's own order
       const moser_veselov::DiagonalMoments m(moments_inv.cwiseInverse(), moments_inv);
-      if constexpr (!moser_veselov::has_potential<Model>) {
-        cached_moments_ = m;
-        cached_h_ = h;
-      }
-      return moser_veselov::dmv_step_diagonal(m, s, carry, h);
+      if constexpr (!moser_veselov::has_potential<Model>) moments_by_h_.insert(h, m);
+      return moser_veselov::dmv_step_diagonal(m, s, carry, h, &predictor_);
     }
     Mat3 Jt_inv = css * J_inv;
     Jt_inv.diagonal().array() += cdd;
@@ -488,18 +527,19 @@ class DmvPreprocessed {
       const double C = 0.5 * x.Pi.squaredNorm();
       series_.coefficients_in_h2(H, C, css_in_h2_, cdd_in_h2_);
     }
-    cached_h_ = std::numeric_limits<double>::quiet_NaN();
+    moments_by_h_ = {};
+    predictor_.reset();
     ready_ = true;
   }
 
   moser_veselov::ModifiedInertiaSeries<Order> series_{};
-  double cached_h_ = std::numeric_limits<double>::quiet_NaN();  // free body: the h of cached_moments_
-  moser_veselov::DiagonalMoments cached_moments_{};
+  moser_veselov::MomentsByStep moments_by_h_{};  // free body: the modified moments of recent h
   std::array<double, 4> css_in_h2_{}, cdd_in_h2_{};  // free body: the series in h² (prepare)
   Vec3 principal_inv_ = Vec3::Ones();
   moser_veselov::DiagonalInertia diag_{};
   bool ready_ = false;
   moser_veselov::Carry carry_{};
+  moser_veselov::CayleyPredictor predictor_{};  // the diagonal path's starting guess
 };
 
 using DmvPre4 = DmvPreprocessed<4>;
