@@ -4,8 +4,9 @@ generator, then resumed with the same arguments and --resume, ends with the
 files of an uninterrupted run: every /series value bit for bit, the CSV twin
 byte for byte, and the same /diagnostics counters. The cases cover a
 fixed-step scheme without memory (rkmk4), an adaptive one that carries its
-FSAL stage and controller state (rkmk-dp54) and one whose start() sets up
-from the initial state (split-exact); one run is killed twice. A scheme that
+FSAL stage and controller state (rkmk-dp54), one whose start() sets up
+from the initial state (split-exact) and one that carries compensated sums
+and the history of its Newton predictor (dmv-pre10); one run is killed twice. A scheme that
 cannot be resumed, a missing partial file and changed arguments are refused
 with exit 2 and one line."""
 import os
@@ -28,6 +29,7 @@ CASES = {
     "rkmk4": ["--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-4", "--t-end", "200", "--samples", "40"],
     "rkmk-dp54": ["--scene", TOP, "--scheme", "rkmk-dp54", "--tol", "1e-12", "--t-end", "300", "--samples", "40"],
     "split-exact": ["--scene", TOP, "--scheme", "split-exact", "--dt", "1e-3", "--t-end", "150"],
+    "dmv-pre10": ["--scene", FREE, "--scheme", "dmv-pre10", "--dt", "1e-4", "--t-end", "1000", "--samples", "40"],
 }
 RNG = random.Random(1515)  # fixed seed: the same moments on every run
 # (case, signals, fractions of the uninterrupted run's wall time at which they are sent)
@@ -35,7 +37,8 @@ RUNS = [("rkmk4", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]) for _ in range(3)]
 RUNS += [("rkmk-dp54", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]),
          ("split-exact", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]),
          ("rkmk4", [signal.SIGKILL, signal.SIGKILL], [RNG.uniform(0.2, 0.4), RNG.uniform(0.2, 0.4)]),
-         ("rkmk-dp54", [signal.SIGINT], [RNG.uniform(0.25, 0.7)])]
+         ("rkmk-dp54", [signal.SIGINT], [RNG.uniform(0.25, 0.7)]),
+         ("dmv-pre10", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)])]
 COUNTERS = ["steps", "rejected_steps", "rhs_evaluations", "newton_iterations_max", "newton_failures", "samples",
             "t_final", "status"]
 
