@@ -328,14 +328,25 @@ inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry) {
   const double xx = x * x, yy = y * y, zz = z * z;
   const double c = 2.0 / (1.0 + ((xx + yy) + zz));
   const double xy = x * y, xz = x * z, yz = y * z;
-  Mat3 N;  // f̂ + f̂², so that cay(2f) − I = c N
-  N << -(yy + zz), xy - z, xz + y,  //
-      xy + z, -(xx + zz), yz - x,   //
-      xz - y, yz + x, -(xx + yy);
-  const Vec3 dPi = c * (N.transpose() * s.Pi);  // c last: the division overlaps Nᵀ Π
-  const Mat3 dR = s.R * (c * N);
-  add_compensated(s.Pi, dPi, carry.Pi);
-  add_compensated(s.R, dR, carry.R);
+  // N = f̂ + f̂² (row-major), so that cay(2f) − I = c N. The state and the carries
+  // are read into locals and written once at the end: through the references the
+  // compiler must assume they alias, and reloads them after every store.
+  const double N[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
+  double P[3], cP[3], R[9], cR[9];
+  for (int i = 0; i < 3; ++i) P[i] = s.Pi(i), cP[i] = carry.Pi(i);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[3 * i + j] = s.R(i, j), cR[3 * i + j] = carry.R(i, j);
+  double cN[9];
+  for (int k = 0; k < 9; ++k) cN[k] = c * N[k];
+  double dP[3], dR[9];  // all increments from the old state, then the compensated sums
+  for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);  // c Nᵀ Π, c last
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) dR[3 * i + j] = (R[3 * i] * cN[j] + R[3 * i + 1] * cN[3 + j]) + R[3 * i + 2] * cN[6 + j];
+  for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
+  for (int k = 0; k < 9; ++k) add_compensated(R[k], dR[k], cR[k]);
+  for (int i = 0; i < 3; ++i) s.Pi(i) = P[i], carry.Pi(i) = cP[i];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) s.R(i, j) = R[3 * i + j], carry.R(i, j) = cR[3 * i + j];
 }
 
 /// One DMV step of length h with diagonal moments m on the state as it is
