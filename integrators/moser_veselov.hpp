@@ -27,7 +27,8 @@
 //   ∂φ/∂f = (h g)^ + (h g·f) I + f (h g)ᵀ − 2 J,
 // solved for a diagonal J by the fast path of moser_veselov_diagonal.hpp (the
 // equivalent quadratic form 2(I + f̂)Jf = (1 + |f|²) hg, componentwise, a
-// Gauss–Seidel starting guess, Newton by Cramer's rule, no square root; one
+// Gauss–Seidel starting guess, or along a run of equal steps an extrapolation
+// of the last six solutions, Newton by Cramer's rule, no square root; one
 // Newton correction per step at moderate h|Ω|), and otherwise (J the full
 // tensor, non-diagonal) by Newton from f₀ = ½ h J⁻¹ g
 // to |φ| ≤ 4ε·(|hg| + |hg × f| + |hg·f||f| + 2|Jf|), the sum
@@ -57,7 +58,9 @@
 // Π ← Π + (F − I)ᵀΠ with F − I = 2/(1 + |f|²)(f̂ + f̂²) (the Cayley map's
 // closed form, lie/so3.hpp), and the kicks as Π ← Π + τM, all summed with
 // compensation (compensated_sum.hpp; Hairer, McLachlan & Razakarivony,
-// BIT 48 (2008)), the carries kept per run by the scheme. With the final
+// BIT 48 (2008)), the carries kept per run by the scheme. The carries and the
+// predictor's history are the scheme's memory in a checkpoint (save_memory),
+// so a resumed run goes on bit for bit (tests/test_resume.cpp). With the final
 // Newton correction above, on the book at dt = 0.01 (tests/test_round_off.cpp)
 // the energy error of 10⁶ / 10⁸ steps is 7.2e-15 / 5.5e-13 (1.9e-13 / 7.0e-12
 // before), |Π| 4.7e-15 / 2.2e-14 (1.3e-13 at 10⁶ before); the energy still

@@ -319,8 +319,9 @@ say "atlas done ($(( $(date +%s) - t_start )) s)"
 bench="$(dirname "$lgi")/lgi_bench"
 rm -f "$gen/benchmarks.tex"
 if [ -x "$bench" ]; then
-  if [ "$mode" = quick ]; then bench_min=0.005; else bench_min=0.1; fi
-  "$PY" "$root/scripts/benchmark_ratios.py" --bench "$bench" --min-time "$bench_min" --tex "$gen/benchmarks.tex" \
+  if [ "$mode" = quick ]; then bench_min=0.005 bench_procs=1; else bench_min=0.1 bench_procs=5; fi
+  "$PY" "$root/scripts/benchmark_ratios.py" --bench "$bench" --min-time "$bench_min" --processes "$bench_procs" \
+    --tex "$gen/benchmarks.tex" \
     >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/benchmark_ratios.py failed"; }
 else
   missing_note benchmarks "No \\texttt{lgi\\_bench} next to this \\texttt{lgi} (configure with LGI\\_BUILD\\_BENCHMARKS=ON): no cost-per-step table."
