@@ -6,6 +6,8 @@
 //    of h|Ω| and random diagonal bodies;
 //  - one Newton correction per step on Hairer & Vilmart's body at h = 0.01;
 //  - a clean, reported failure where no solution exists;
+//  - the predicted start (six past roots) takes one correction to the cold
+//    solve's root along a trajectory, and a poor guess goes on with Newton;
 //  - the series in h² equals the series evaluated at each step.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -113,4 +115,52 @@ TEST_CASE("the free body's modified-inertia series in h^2 equals the series at e
   check(mv::ModifiedInertiaSeries<6>(I));
   check(mv::ModifiedInertiaSeries<8>(I));
   check(mv::ModifiedInertiaSeries<10>(I));
+}
+
+TEST_CASE("the predicted start: one correction to the cold solve's root, and the cold Newton when the guess is poor",
+          "[variational][newton]") {
+  // Along a trajectory of equal steps the predictor's guess (six past roots,
+  // CayleyPredictor) is accepted after one correction and lands on the root of
+  // the cold solve to round-off; a guess that is off goes on with Newton to the same root.
+  const Vec3 I(0.6, 0.8, 1.0);
+  const mv::DiagonalMoments m(I, I.cwiseInverse());
+  for (const double h : {1e-3, 1e-2, 3e-2}) {
+    system::State s{Mat3::Identity(), Vec3(1.8, 0.4, -0.9)};
+    mv::Carry carry;
+    mv::CayleyPredictor predictor;
+    int predicted = 0;
+    for (int k = 0; k < 400; ++k) {
+      const bool ready = predictor.ready(h);
+      Vec3 cold;
+      REQUIRE(mv::solve_cayley_parameter_diagonal(m, h, s.Pi, cold).converged);
+      if (ready) {
+        Vec3 f;
+        const auto st = mv::solve_cayley_parameter_predicted(m, h, s.Pi, predictor.guess(), f);
+        INFO("h = " << h << ", step " << k);
+        REQUIRE(st.converged);
+        CHECK(st.iterations == 1);
+        CHECK((f - cold).norm() <= 4e-16 * cold.norm());
+        ++predicted;
+      }
+      REQUIRE(mv::dmv_step_diagonal(m, s, carry, h, &predictor).converged);
+    }
+    CHECK(predicted == 400 - mv::CayleyPredictor::points);  // the first six steps start cold
+  }
+  // A poor guess (10% off): not accepted after one correction, Newton goes on to the same root.
+  const Vec3 Pi(1.8, 0.4, -0.9);
+  Vec3 cold, f;
+  REQUIRE(mv::solve_cayley_parameter_diagonal(m, 0.01, Pi, cold).converged);
+  const auto st = mv::solve_cayley_parameter_predicted(m, 0.01, Pi, 1.1 * cold, f);
+  REQUIRE(st.converged);
+  CHECK(st.iterations > 1);
+  CHECK((f - cold).norm() <= 4e-16 * cold.norm());
+  // A step of another length starts the history anew (and a failed step too).
+  mv::CayleyPredictor p;
+  for (int k = 0; k < 6; ++k) p.record(0.01, cold);
+  CHECK(p.ready(0.01));
+  CHECK_FALSE(p.ready(0.02));
+  p.record(0.02, cold);
+  CHECK_FALSE(p.ready(0.02));
+  p.reset();
+  CHECK_FALSE(p.ready(0.01));
 }
