@@ -47,8 +47,8 @@
 // it is below 1e-10 |f| (solve_cayley_parameter_predicted). This takes the
 // sweeps, a Jacobian and a residual off each step: dmv-pre10 on that body,
 // 92 → 68 ns per step (tests/benchmarks/bench_schemes.cpp), with the
-// energy error of 10⁸ steps on the book 3.0e-14 (5.5e-14 cold) and its
-// growth exponent 0.499. The status has the corrections
+// energy error of 10⁸ steps on the book 4.5e-14 (5.5e-14 cold) and its
+// growth exponent over 8 books 0.55 (0.52 cold). The status has the corrections
 // made before the test passed and the relative residual
 // max_i |ψ_i| / max_i (sum of magnitudes)_i; a non-finite residual (diverged)
 // or 50 iterations end the solve unconverged. Same solution as the general
