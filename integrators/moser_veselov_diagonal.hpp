@@ -45,8 +45,9 @@
 // extrapolation of the last six solutions (CayleyPredictor, within ~3e-12
 // there): one Newton correction from the exactly-rounded ψ, accepted when
 // it is below 1e-10 |f| (solve_cayley_parameter_predicted). This takes the
-// sweeps, a Jacobian and a residual off each step: dmv-pre10 on that body,
-// 92 → 68 ns per step (tests/benchmarks/bench_schemes.cpp), with the
+// sweeps, a Jacobian and a residual off the step's dependent chain: with the
+// loop's changes of the same stop, dmv-pre10 on that body went from 0.94 to
+// 0.64 × quat/rk4 per step (scripts/benchmark_ratios.py; README), with the
 // energy error of 10⁸ steps on the book 4.5e-14 (5.5e-14 cold) and its
 // growth exponent over 8 books 0.55 (0.52 cold). The status has the corrections
 // made before the test passed and the relative residual
