@@ -198,8 +198,11 @@ inline StepStatus dmv_step(const Mat3& J, const Mat3& J_inv, State& s, Carry& ca
 /// not depend on what the table holds.
 struct MomentsByStep {
   static constexpr std::size_t size = 8;
-  std::array<double, size> h{};
-  std::array<bool, size> filled{};
+  std::array<double, size> h = [] {  // NaN: an empty slot (equal to no step)
+    std::array<double, size> a{};
+    a.fill(std::numeric_limits<double>::quiet_NaN());
+    return a;
+  }();
   std::array<DiagonalMoments, size> moments{};
   // Fibonacci hashing of h's bits (Knuth, TAOCP 3, §6.4): the h of one run share
   // their low mantissa bits (they differ by multiples of ulp(t)), so those alone would collide.
@@ -208,12 +211,11 @@ struct MomentsByStep {
   }
   const DiagonalMoments* find(double step) const {
     const std::size_t i = slot(step);
-    return filled[i] && h[i] == step ? &moments[i] : nullptr;
+    return h[i] == step ? &moments[i] : nullptr;
   }
   void insert(double step, const DiagonalMoments& m) {
     const std::size_t i = slot(step);
     h[i] = step;
-    filled[i] = true;
     moments[i] = m;
   }
 };
@@ -277,14 +279,13 @@ class Lgvi {
   /// A run starts with no carried rounding error.
   template <class Model>
   void start(const Model& model, const State& /*initial*/, double /*t0*/) {
-    carry_ = {};
-    predictor_.reset();
+    memory_.reset();
     diag_ = moser_veselov::DiagonalInertia(model.inertia);
     ready_ = true;
   }
   /// The carries and the predictor's history (a checkpoint's scheme memory).
-  void save_memory(std::vector<double>& out) const { moser_veselov::save_dmv_memory(carry_, predictor_, out); }
-  bool restore_memory(std::span<const double> in) { return moser_veselov::restore_dmv_memory(in, carry_, predictor_); }
+  void save_memory(std::vector<double>& out) const { memory_.save(out); }
+  bool restore_memory(std::span<const double> in) { return memory_.restore(in); }
   /// Π ← Π + τ M(R), the potential torque only (nothing for a free body), compensated.
   template <class Model>
   static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double /*t*/, double tau) {
@@ -299,7 +300,7 @@ class Lgvi {
     }
     if (diag_.diagonal) {
       if (diag_.turns_too_far(s.Pi, h)) return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
-      return moser_veselov::dmv_step_diagonal(diag_.moments, s, carry, h, &predictor_);
+      return moser_veselov::dmv_step_diagonal(diag_.moments, s, carry, h, &memory_.predictor);
     }
     if (moser_veselov::turns_too_far(model.inertia.J_inv, s.Pi, h))
       return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
@@ -308,24 +309,23 @@ class Lgvi {
 
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    return moser_veselov::strang_step(*this, model, s, carry_, t, h, work);
+    return moser_veselov::strang_step(*this, model, s, memory_.carry, t, h, work);
   }
 
   // The kick/flow face that composition.hpp uses to merge neighbouring half kicks.
   template <class Model>
   void kick(const Model& model, State& s, double t, double tau, WorkCounters& /*work*/) {
-    kick(model, s, carry_, t, tau);
+    kick(model, s, memory_.carry, t, tau);
   }
   template <class Model>
   StepStatus flow(const Model& model, State& s, double /*t*/, double h, WorkCounters& work) {
     work.rhs_evaluations += 1;
-    return free_step(model, s, carry_, h);
+    return free_step(model, s, memory_.carry, h);
   }
 
  private:
-  moser_veselov::Carry carry_{};
-  moser_veselov::CayleyPredictor predictor_{};  // the diagonal path's starting guess
-  moser_veselov::DiagonalInertia diag_{};       // per run (start), or at the first step without one
+  moser_veselov::StepMemory memory_{};     // carries and the diagonal path's predictor
+  moser_veselov::DiagonalInertia diag_{};  // per run (start), or at the first step without one
   bool ready_ = false;
 };
 
@@ -361,10 +361,9 @@ class DmvPreprocessed {
   template <class Model>
   void start(const Model& model, const State& initial, double /*t0*/) {
     prepare(model, initial);
-    carry_ = {};
   }
-  void save_memory(std::vector<double>& out) const { moser_veselov::save_dmv_memory(carry_, predictor_, out); }
-  bool restore_memory(std::span<const double> in) { return moser_veselov::restore_dmv_memory(in, carry_, predictor_); }
+  void save_memory(std::vector<double>& out) const { memory_.save(out); }
+  bool restore_memory(std::span<const double> in) { return memory_.restore(in); }
 
   template <class Model>
   static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double t, double tau) {
@@ -384,7 +383,7 @@ class DmvPreprocessed {
       // Free body, diagonal J: the modified moments depend on h alone (H and C are the run's).
       if (diag_.diagonal) {
         if (const moser_veselov::DiagonalMoments* m = moments_by_h_.find(h))
-          return moser_veselov::dmv_step_diagonal(*m, s, carry, h, &predictor_);
+          return moser_veselov::dmv_step_diagonal(*m, s, carry, h, &memory_.predictor);
       }
     }
     double css = 1.0, cdd = 0.0;
@@ -407,7 +406,7 @@ class DmvPreprocessed {
     if (diag_.diagonal) {  // moments_inv = 1/Ĩ_j in J's own order
       const moser_veselov::DiagonalMoments m(moments_inv.cwiseInverse(), moments_inv);
       if constexpr (!moser_veselov::has_potential<Model>) moments_by_h_.insert(h, m);
-      return moser_veselov::dmv_step_diagonal(m, s, carry, h, &predictor_);
+      return moser_veselov::dmv_step_diagonal(m, s, carry, h, &memory_.predictor);
     }
     Mat3 Jt_inv = css * J_inv;
     Jt_inv.diagonal().array() += cdd;
@@ -416,7 +415,7 @@ class DmvPreprocessed {
 
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    return moser_veselov::strang_step(*this, model, s, carry_, t, h, work);
+    return moser_veselov::strang_step(*this, model, s, memory_.carry, t, h, work);
   }
 
  private:
@@ -431,7 +430,7 @@ class DmvPreprocessed {
       series_.coefficients_in_h2(H, C, css_in_h2_, cdd_in_h2_);
     }
     moments_by_h_ = {};
-    predictor_.reset();
+    memory_.reset();
     ready_ = true;
   }
 
@@ -441,8 +440,7 @@ class DmvPreprocessed {
   Vec3 principal_inv_ = Vec3::Ones();
   moser_veselov::DiagonalInertia diag_{};
   bool ready_ = false;
-  moser_veselov::Carry carry_{};
-  moser_veselov::CayleyPredictor predictor_{};  // the diagonal path's starting guess
+  moser_veselov::StepMemory memory_{};  // carries and the diagonal path's predictor
 };
 
 using DmvPre4 = DmvPreprocessed<4>;

@@ -294,7 +294,7 @@ struct CayleyPredictor {
     for (const Vec3& v : f) out.insert(out.end(), {v.x(), v.y(), v.z()});
   }
   bool restore(std::span<const double> in) {
-    if (in.size() != memory_size || !(in[0] >= 0.0 && in[0] <= points)) return false;
+    if (in.size() != memory_size || !(in[0] >= 0.0 && in[0] <= points) || in[0] != std::floor(in[0])) return false;
     count = static_cast<int>(in[0]);
     h = in[1];
     for (std::size_t i = 0; i < f.size(); ++i) f[i] = Vec3(in[2 + 3 * i], in[3 + 3 * i], in[4 + 3 * i]);
@@ -308,19 +308,28 @@ struct Carry {
   Mat3 R = Mat3::Zero();
 };
 
-/// What a DMV scheme carries from step to step, for a checkpoint
-/// (scheme_interface.hpp, "Resume"): the carries, then the predictor's history.
-inline void save_dmv_memory(const Carry& carry, const CayleyPredictor& predictor, std::vector<double>& out) {
-  out.insert(out.end(), carry.Pi.data(), carry.Pi.data() + 3);
-  out.insert(out.end(), carry.R.data(), carry.R.data() + 9);
-  predictor.save(out);
-}
-inline bool restore_dmv_memory(std::span<const double> in, Carry& carry, CayleyPredictor& predictor) {
-  if (in.size() != 12 + CayleyPredictor::memory_size || !predictor.restore(in.subspan(12))) return false;
-  carry.Pi = Vec3(in[0], in[1], in[2]);
-  for (int i = 0; i < 9; ++i) carry.R.data()[i] = in[static_cast<std::size_t>(3 + i)];
-  return true;
-}
+/// What a DMV scheme carries from step to step: the carries of its compensated
+/// sums and the predictor's history; a checkpoint's scheme memory
+/// (scheme_interface.hpp, "Resume"), carries first.
+struct StepMemory {
+  Carry carry{};
+  CayleyPredictor predictor{};
+  void reset() {
+    carry = {};
+    predictor.reset();
+  }
+  void save(std::vector<double>& out) const {
+    out.insert(out.end(), carry.Pi.data(), carry.Pi.data() + 3);
+    out.insert(out.end(), carry.R.data(), carry.R.data() + 9);
+    predictor.save(out);
+  }
+  bool restore(std::span<const double> in) {
+    if (in.size() != 12 + CayleyPredictor::memory_size || !predictor.restore(in.subspan(12))) return false;
+    carry.Pi = Vec3(in[0], in[1], in[2]);
+    for (int i = 0; i < 9; ++i) carry.R.data()[i] = in[static_cast<std::size_t>(3 + i)];
+    return true;
+  }
+};
 
 /// R ← R F, Π ← Fᵀ Π for F = cay(2f), applied as compensated increments with
 /// F − I = 2/(1 + |f|²) (f̂ + f̂²) and f̂² = f fᵀ − |f|² I (moser_veselov.hpp).
