@@ -14,9 +14,12 @@
 // truncation condition applies). Conserves: RᵀR = I to round-off (the
 // attitude only moves by exp); no invariant of the dynamics exactly.
 // For a free body the stage attitudes R_i are never formed: the momentum
-// field does not depend on R.
+// field does not depend on R. exp and dexp⁻¹ are those of the adaptive pairs
+// (rkmk_pair_kernels.hpp: Taylor series below θ = 1, so no sin or cos in a
+// usual step), whose source lie/exp_series.hpp the ensemble kernel shares.
 #include <array>
 
+#include "integrators/rkmk_pair_kernels.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "integrators/tableaus/runge_kutta.hpp"
 
@@ -45,9 +48,15 @@ class Rkmk {
       w *= h;
       const Vec3 Pi_i = s.Pi + h * dPi;
       const Vec3 Omega_i = model.omega(Pi_i);
-      k_algebra[i] = i == 0 ? Omega_i : lie::dexpinv_body(w, Omega_i);
+      rkmk_pair_detail::MapCoefficients m{};
+      if (i == 0) {
+        k_algebra[i] = Omega_i;
+      } else {
+        m = rkmk_pair_detail::map_coefficients(lie::exp_series::squared_norm(w.data()));
+        rkmk_pair_detail::dexpinv(w.data(), Omega_i, m, k_algebra[i].data());
+      }
       if constexpr (Model::has_torque) {
-        const Mat3 R_i = i == 0 ? s.R : Mat3(s.R * lie::exp_so3(w));
+        const Mat3 R_i = i == 0 ? s.R : rkmk_pair_detail::times_exp(s.R, w.data(), m);
         k_momentum[i] = model.momentum_rate(R_i, Pi_i, Omega_i, t + Tableau.c[i] * h);
       } else {
         k_momentum[i] = model.momentum_rate(s.R, Pi_i, Omega_i, t);
@@ -59,7 +68,9 @@ class Rkmk {
       w += Tableau.b[i] * k_algebra[i];
       dPi += Tableau.b[i] * k_momentum[i];
     }
-    s.R = s.R * lie::exp_so3(h * w);
+    const Vec3 hw = h * w;
+    s.R = rkmk_pair_detail::times_exp(s.R, hw.data(),
+                                      rkmk_pair_detail::map_coefficients(lie::exp_series::squared_norm(hw.data())));
     s.Pi += h * dPi;
     work.rhs_evaluations += static_cast<std::int64_t>(stages);
     return {};

@@ -4,8 +4,10 @@
 // multiply-adds, none is emitted; called only where the CPU has AVX-512F.
 // GCC 12's avx512fintrin.h initialises _mm512_undefined_pd() from itself
 // (`__m512d __Y = __Y;`, deliberately undefined), which -Wuninitialized
-// reports wherever an intrinsic using it (_mm512_sqrt_pd) is inlined.
+// reports wherever an intrinsic using it (_mm512_sqrt_pd) is inlined (as
+// -Wmaybe-uninitialized where that inlining sits behind a branch).
 #pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "integrators/ensemble/kernel_set.hpp"
 
 namespace lgi::integrators::ensemble {

@@ -1,19 +1,22 @@
 #pragma once
-// The SO(3) algebra of lie/so3.hpp for lane numbers (lanes.hpp): 3-vectors,
-// 3×3 matrices, hat, exp and dexp⁻¹, operation for operation as the scalar
-// code evaluates them, so that each lane's bits are the scalar result
+// The SO(3) algebra of the RKMK schemes for lane numbers (lanes.hpp):
+// 3-vectors, 3×3 matrices, exp and dexp⁻¹, operation for operation as the
+// scalar code evaluates them, so that each lane's bits are the scalar result
 // (docs/ensemble.md; tests/test_ensemble.cpp checks every function here and
 // whole runs against the scalar schemes).
 //
-// "As the scalar code evaluates them" includes Eigen's own order for the
-// fixed-size products of the scalar code (Eigen 3.4, SSE2, no FMA):
+// exp and dexp⁻¹ are lie/exp_series.hpp's, the very source rkmk.hpp
+// evaluates. "As the scalar code evaluates them" also includes Eigen's own
+// order for the fixed-size products left in the scalar code (Eigen 3.4,
+// SSE2, no FMA):
 //  - sums of three products in dot(), squaredNorm() and Aᵀv:   (x0 + x1) + x2;
-//  - A·v and A·B (3×3): rows 0 and 1 come from a two-lane packet, (x0 + x1) + x2,
+//  - A·v (3×3): rows 0 and 1 come from a two-lane packet, (x0 + x1) + x2,
 //    row 2 from the scalar reduction, x0 + (x1 + x2).
 // Zeros are not skipped (0·x is −0 or NaN for some x, and −0 + 0 = +0).
 #include <cmath>
 
 #include "integrators/ensemble/lanes.hpp"
+#include "lie/exp_series.hpp"
 
 namespace lgi::integrators::ensemble {
 
@@ -71,85 +74,67 @@ inline V3<T> transposed_mat_vec(const M3<T>& A, const double (&x)[3]) {
   return {{sum_packet(p(0, 0), p(1, 0), p(2, 0)), sum_packet(p(0, 1), p(1, 1), p(2, 1)),
            sum_packet(p(0, 2), p(1, 2), p(2, 2))}};
 }
-/// A·B.
+/// The coefficients a, b, c of exp and dexp⁻¹ (lie/exp_series.hpp) in every
+/// lane, as rkmk_pair_detail::map_coefficients computes them: the series
+/// where θ² < 1, else the closed forms from libm's sin and cos of θ/2, lane
+/// by lane; each side computed only where some lane takes it. a and b only
+/// when `with_attitude` (a free body never forms a stage attitude).
 template <class T>
-inline M3<T> mat_mat(const M3<T>& A, const M3<T>& B) {
-  M3<T> r;
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < 2; ++i)
-      r.m[i][j] = sum_packet(A.m[i][0] * B.m[0][j], A.m[i][1] * B.m[1][j], A.m[i][2] * B.m[2][j]);
-    r.m[2][j] = sum_scalar(A.m[2][0] * B.m[0][j], A.m[2][1] * B.m[1][j], A.m[2][2] * B.m[2][j]);
-  }
-  return r;
-}
-
-/// Row 2 of A·B, as mat_mat computes it; rows 0 and 1 are left unset.
+struct Coefficients {
+  T a, b, c;
+};
 template <class T>
-inline M3<T> last_row_product(const M3<T>& A, const M3<T>& B) {
-  M3<T> r;
-  for (int j = 0; j < 3; ++j)
-    r.m[2][j] = sum_scalar(A.m[2][0] * B.m[0][j], A.m[2][1] * B.m[1][j], A.m[2][2] * B.m[2][j]);
-  return r;
-}
-
-/// exp(ξ̂) = I + a ξ̂ + b ξ̂² (lie::exp_so3: the same coefficients, the same
-/// series below θ = 1e-4, sin from libm lane by lane).
-template <class T>
-inline M3<T> exp_so3(const V3<T>& xi) {
-  const T theta2 = squared_norm(xi);
-  const T theta = sqrt(theta2);
-  const auto series = less(theta, 1e-4);
-  // Each side only where some lane takes it (the scalar code computes one).
-  auto series_a = [&] { return 1.0 - theta2 / 6.0 + theta2 * theta2 / 120.0; };
-  auto series_b = [&] { return 0.5 - theta2 / 24.0 + theta2 * theta2 / 720.0; };
-  T a, b;
-  if (all(series)) {
-    a = series_a();
-    b = series_b();
-  } else {
-    T sin_theta, sin_half;
-    sin_sin_unless(series, theta, sin_theta, sin_half);
-    a = sin_theta / theta;
-    const T s = sin_half / theta;
-    b = 2.0 * s * s;
-    if (any(series)) {
-      a = select(series, series_a(), a);
-      b = select(series, series_b(), b);
+inline Coefficients<T> map_coefficients(const T& t2, bool with_attitude) {
+  namespace ex = lie::exp_series;
+  const auto in_series = less(t2, ex::series_bound);
+  Coefficients<T> series{T(0.0), T(0.0), T(0.0)};
+  const bool some_series = any(in_series);
+  if (some_series) {
+    series.c = ex::series_c(t2);
+    if (with_attitude) {
+      series.a = ex::series_a(t2);
+      series.b = ex::series_b(t2);
     }
+    if (all(in_series)) return series;
   }
-  const T zero(0.0), one(1.0);
-  const M3<T> X{{{zero, -xi.v[2], xi.v[1]}, {xi.v[2], zero, -xi.v[0]}, {-xi.v[1], xi.v[0], zero}}};
-  M3<T> bX;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) bX.m[i][j] = b * X.m[i][j];
-  M3<T> r = mat_mat(bX, X);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r.m[i][j] = ((i == j ? one : zero) + a * X.m[i][j]) + r.m[i][j];
-  return r;
-}
-
-/// c(θ) = (1 − (θ/2) cot(θ/2))/θ² (lie::detail::dexpinv_coefficient).
-template <class T>
-inline T dexpinv_coefficient(const T& theta2) {
-  const T theta = sqrt(theta2);
-  const auto series = less(theta, 1e-2);
-  const T c = 1.0 / 12.0 + theta2 / 720.0 + theta2 * theta2 / 30240.0;
-  if (all(series)) return c;
+  const T theta = sqrt(t2);
   const T half = 0.5 * theta;
-  T cos_half, sin_half;
-  cos_sin_unless(series, half, cos_half, sin_half);
-  return select(series, c, (1.0 - half * cos_half / sin_half) / theta2);
+  T k, s;
+  cos_sin_unless(in_series, half, k, s);
+  Coefficients<T> closed{T(0.0), T(0.0), T(0.0)};
+  closed.c = ex::closed_c(t2, theta, s, k);
+  if (with_attitude) {
+    closed.a = ex::closed_a(theta, s, k);
+    closed.b = ex::closed_b(theta, s);
+  }
+  if (!some_series) return closed;
+  closed.c = select(in_series, series.c, closed.c);
+  if (with_attitude) {
+    closed.a = select(in_series, series.a, closed.a);
+    closed.b = select(in_series, series.b, closed.b);
+  }
+  return closed;
 }
 
-/// dexp⁻¹_body(ξ) Ω = Ω + ½ ξ × Ω + c(θ) ξ × (ξ × Ω) (lie::dexpinv_body).
+/// Row i of R exp(ŵ) into out (lie::exp_series::times_exp_row).
 template <class T>
-inline V3<T> dexpinv_body(const V3<T>& xi, const V3<T>& omega) {
-  const V3<T> xo = cross(xi, omega);
-  const T c = dexpinv_coefficient(squared_norm(xi));
-  const V3<T> xxo = cross(xi, xo);
-  V3<T> r;
-  for (int i = 0; i < 3; ++i) r.v[i] = omega.v[i] + 0.5 * xo.v[i] + c * xxo.v[i];
-  return r;
+inline void times_exp_row(const M3<T>& R, int i, const V3<T>& w, const Coefficients<T>& m, M3<T>& out) {
+  lie::exp_series::times_exp_row(R.m[i], w.v, m.a, m.b, out.m[i]);
+}
+/// R exp(ŵ).
+template <class T>
+inline M3<T> times_exp(const M3<T>& R, const V3<T>& w, const Coefficients<T>& m) {
+  M3<T> out;
+  for (int i = 0; i < 3; ++i) times_exp_row(R, i, w, m, out);
+  return out;
+}
+
+/// dexp⁻¹_body(w) Ω (lie::exp_series::dexpinv).
+template <class T>
+inline V3<T> dexpinv_body(const V3<T>& w, const V3<T>& omega, const Coefficients<T>& m) {
+  V3<T> out;
+  lie::exp_series::dexpinv(w.v, omega.v, m.c, out.v);
+  return out;
 }
 
 }  // namespace lgi::integrators::ensemble

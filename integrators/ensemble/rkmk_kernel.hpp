@@ -66,10 +66,12 @@ inline void stage(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, d
   w = scale(h, w);
   const V3<T> Pi_i = add(Pi, scale(h, dPi));
   const V3<T> Omega_i = mat_vec(model.J_inv, Pi_i);
+  Coefficients<T> m{T(0.0), T(0.0), T(0.0)};
   if constexpr (I == 0) {
     k_algebra[I] = Omega_i;
   } else {
-    k_algebra[I] = dexpinv_body(w, Omega_i);
+    m = map_coefficients(lie::exp_series::squared_norm(w.v), !model.free_body);
+    k_algebra[I] = dexpinv_body(w, Omega_i, m);
   }
   const V3<T> gyroscopic = cross(Pi_i, Omega_i);
   if (model.free_body) {
@@ -81,9 +83,11 @@ inline void stage(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, d
   if constexpr (I == 0) {
     tau = scene_torque(model, R, t + c * h);
   } else if (model.magnetic) {
-    tau = scene_torque(model, mat_mat(R, exp_so3(w)), t + c * h);
+    tau = scene_torque(model, times_exp(R, w, m), t + c * h);
   } else {  // only row 2 of R_i = R_n exp(w_i) is read (gravity): the others are not formed
-    tau = scene_torque(model, last_row_product(R, exp_so3(w)), t + c * h);
+    M3<T> R_i;
+    times_exp_row(R, 2, w, m, R_i);
+    tau = scene_torque(model, R_i, t + c * h);
   }
   k_momentum[I] = add(gyroscopic, tau);
 }
@@ -112,7 +116,8 @@ inline void rkmk_step(const EnsembleModel& model, M3<T>& R, V3<T>& Pi, double t,
     };
     (term.template operator()<I>(), ...);
   }(std::make_index_sequence<stages>{});
-  R = mat_mat(R, exp_so3(scale(h, w)));
+  const V3<T> hw = scale(h, w);
+  R = times_exp(R, hw, map_coefficients(lie::exp_series::squared_norm(hw.v), true));
   Pi = add(Pi, scale(h, dPi));
 }
 
