@@ -10,8 +10,8 @@
 // independent chains that the CPU overlaps: one trajectory's step is a
 // chain of dependent operations, bound by latency rather than throughput.
 //
-// Transcendentals never use xsimd's own: map_where() calls the scalar libm
-// function lane by lane, so a lane gets the very bits std::sin gives the
+// Transcendentals never use xsimd's own: cos_sin_unless() calls the scalar
+// libm functions lane by lane, so a lane gets the very bits std::sin gives the
 // scalar scheme. Branches on a lane's value become select() of both sides,
 // with the costly side computed only where some lane needs it.
 //
@@ -156,20 +156,6 @@ inline void for_lanes_unless(const LaneMask<B, K>& skip, const Lanes<B, K>& x, L
   z = load<B, K>(out_z);
 }
 
-/// f(x) in the lanes where `skip` is false (the lanes whose branch needs the
-/// scalar function f), 0 elsewhere: f is the scalar libm function, called
-/// lane by lane, so every lane gets exactly the scalar result.
-template <class B, int K, class F>
-inline Lanes<B, K> map_unless(const LaneMask<B, K>& skip, const Lanes<B, K>& x, F&& f) {
-  Lanes<B, K> y, unused;
-  for_lanes_unless(skip, x, y, unused, [&](double in, double& out, double&) { out = f(in); });
-  return y;
-}
-template <class F>
-inline double map_unless(bool skip, double x, F&& f) {
-  return skip ? 0.0 : f(x);
-}
-
 /// cos x and sin x in the lanes where `skip` is false, computed together as
 /// the scalar code computes them (which the compiler may fuse into one
 /// sincos call, there and here alike).
@@ -179,18 +165,6 @@ inline void cos_sin_unless(const LaneMask<B, K>& skip, const Lanes<B, K>& x, Lan
     co = std::cos(in);
     si = std::sin(in);
   });
-}
-/// sin x and sin(x/2) in the lanes where `skip` is false (lie::exp_so3's two calls).
-template <class B, int K>
-inline void sin_sin_unless(const LaneMask<B, K>& skip, const Lanes<B, K>& x, Lanes<B, K>& s, Lanes<B, K>& s_half) {
-  for_lanes_unless(skip, x, s, s_half, [](double in, double& si, double& si_half) {
-    si = std::sin(in);
-    si_half = std::sin(0.5 * in);
-  });
-}
-inline void sin_sin_unless(bool skip, double x, double& s, double& s_half) {
-  s = skip ? 0.0 : std::sin(x);
-  s_half = skip ? 0.0 : std::sin(0.5 * x);
 }
 inline void cos_sin_unless(bool skip, double x, double& c, double& s) {
   c = skip ? 0.0 : std::cos(x);
