@@ -364,6 +364,10 @@ class DmvPreprocessed {
   }
   void save_memory(std::vector<double>& out) const { memory_.save(out); }
   bool restore_memory(std::span<const double> in) { return memory_.restore(in); }
+  /// A free body's css and cdd as polynomials in h² (after start()), for the
+  /// ensemble kernel (integrators/ensemble/dmv_kernel.hpp).
+  const std::array<double, 4>& css_in_h2() const { return css_in_h2_; }
+  const std::array<double, 4>& cdd_in_h2() const { return cdd_in_h2_; }
 
   template <class Model>
   static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double t, double tau) {

@@ -33,14 +33,20 @@ KernelSet kernels(Isa isa) {
   return baseline_kernels();
 }
 
-/// A scheme's kernel in a KernelSet, and its cost per step.
+/// A scheme's kernel in a KernelSet, its cost per step, and whether it is the
+/// preprocessed DMV's (free body with diagonal J, a scalar scheme behind each lane).
 struct SchemeKernel {
   std::string_view name;
   StepKernel KernelSet::*kernel;
   int rhs_per_step;
+  bool dmv = false;
 };
 constexpr SchemeKernel scheme_kernels[] = {
     {"rkmk4", &KernelSet::rkmk4, 4},
+    {"dmv-pre4", &KernelSet::dmv_pre, 1, true},
+    {"dmv-pre6", &KernelSet::dmv_pre, 1, true},
+    {"dmv-pre8", &KernelSet::dmv_pre, 1, true},
+    {"dmv-pre10", &KernelSet::dmv_pre, 1, true},
 };
 
 const SchemeKernel* find(std::string_view scheme) {
@@ -129,8 +135,20 @@ void set_sweep_isa(std::optional<Isa> isa) { sweep_choice = isa ? static_cast<in
 
 bool has_kernel(std::string_view scheme) { return find(scheme) != nullptr; }
 
+/// Why the DMV kernel does not apply to this model, or empty.
+std::string dmv_unsupported(std::string_view scheme, const system::AnyModel& model) {
+  const auto* free = std::get_if<system::FreeBody>(&model);
+  if (!free) return "no ensemble kernel for " + std::string(scheme) + " with torques (only on a free body)";
+  const lie::Mat3& J = free->inertia.J;
+  if (!(J(0, 1) == 0.0 && J(0, 2) == 0.0 && J(1, 0) == 0.0 && J(1, 2) == 0.0 && J(2, 0) == 0.0 && J(2, 1) == 0.0))
+    return "no ensemble kernel for " + std::string(scheme) + " with a non-diagonal inertia tensor";
+  return {};
+}
+
 std::string unsupported_reason(std::string_view scheme, const system::AnyModel& model) {
-  if (!find(scheme)) return "no ensemble kernel for " + std::string(scheme);
+  const SchemeKernel* k = find(scheme);
+  if (!k) return "no ensemble kernel for " + std::string(scheme);
+  if (k->dmv) return dmv_unsupported(scheme, model);
   std::string why;
   if (!describe(model, &why)) return why;
   return {};
@@ -138,11 +156,12 @@ std::string unsupported_reason(std::string_view scheme, const system::AnyModel& 
 
 std::optional<EnsembleStepper> EnsembleStepper::make(std::string_view scheme, const system::AnyModel& model, Isa isa) {
   const SchemeKernel* k = find(scheme);
-  if (!k || !isa_available(isa)) return std::nullopt;
-  const std::optional<EnsembleModel> m = describe(model, nullptr);
+  if (!k || !isa_available(isa) || !unsupported_reason(scheme, model).empty()) return std::nullopt;
+  std::optional<EnsembleModel> m = describe(model, nullptr);
   if (!m) return std::nullopt;
   const KernelSet set = kernels(isa);
   EnsembleStepper e;
+  if (k->dmv) e.fallback_ = make_dmv_fallback(k->name, std::get<system::FreeBody>(model), *m);
   e.model_ = *m;
   e.kernel_ = set.*(k->kernel);
   e.scheme_ = k->name;
@@ -154,6 +173,7 @@ std::optional<EnsembleStepper> EnsembleStepper::make(std::string_view scheme, co
 
 void EnsembleStepper::set_lane(int lane, const State& s) {
   const auto l = static_cast<std::size_t>(lane);
+  active_[l] = true;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) block_.row[3 * i + j][l] = s.R(i, j);
     block_.row[9 + i][l] = s.Pi(i);
@@ -168,11 +188,45 @@ void EnsembleStepper::get_lane(int lane, State& s) const {
   }
 }
 
-bool EnsembleStepper::lane_finite(int lane) const {
-  const auto l = static_cast<std::size_t>(lane);
+StepStatus EnsembleStepper::start_lane(int lane, const State& s, double t0) {
+  set_lane(lane, s);
+  return fallback_ ? fallback_->start(lane, s, t0, memory_) : StepStatus{};
+}
+
+void EnsembleStepper::step(double t, double h, int retry_halving) {
+  kernel_(model_, block_, memory_, t, h);
+  if (fallback_) {
+    for (int l = 0; l < lanes_; ++l) {
+      kernel_stepped_[l] = memory_.row[dmv_rows::stepped][l] == 1.0;
+      if (!active_[l]) continue;
+      if (kernel_stepped_[l]) ++kernel_lane_steps_;
+      else fallback_->step(l, block_, memory_, t, h, retry_halving, outcome_[l]);
+    }
+  }
+  // Every lane's finiteness at once (detail::finite_state: x − x is 0 for a
+  // finite x and NaN otherwise), a vector loop over lanes rather than twelve
+  // strided loads per lane.
+  double z[max_lanes] = {};
   for (const auto& row : block_.row)
-    if (!std::isfinite(row[l])) return false;
-  return true;
+    for (int l = 0; l < max_lanes; ++l) z[l] += row[l] - row[l];
+  for (int l = 0; l < max_lanes; ++l) finite_[l] = z[l] == 0.0;
+}
+
+const LaneOutcome& EnsembleStepper::outcome(int lane) const {
+  // A lane the kernel stepped: one Newton correction, one evaluation (strang_step).
+  static constexpr LaneOutcome kernel_step{.status = {.converged = true, .iterations = 1},
+                                           .work = {.rhs_evaluations = 1, .newton_iterations_max = 1}};
+  return kernel_stepped_[lane] ? kernel_step : outcome_[lane];
+}
+
+void EnsembleStepper::save_lane_memory(int lane, std::span<double> out) const {
+  for (std::size_t r = 0; r < out.size() && r < static_cast<std::size_t>(dmv_rows::memory); ++r)
+    out[r] = memory_.row[r][lane];
+}
+
+bool EnsembleStepper::step_lane_from(int lane, std::span<const double> snapshot, State& x, double t, double h,
+                                     int retry_halving, WorkCounters& work) {
+  return fallback_ && fallback_->step_from(lane, snapshot, x, t, h, retry_halving, work);
 }
 
 }  // namespace lgi::integrators::ensemble

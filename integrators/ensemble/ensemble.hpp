@@ -3,19 +3,25 @@
 // in SIMD lanes, each lane bit for bit the trajectory the scalar scheme
 // computes one at a time (docs/ensemble.md). Kernels exist for rkmk4 on the
 // free body and on scenes whose torques are gravity, the harmonic drive and
-// the magnetic dipole (not the spring); they are compiled for the baseline
+// the magnetic dipole (not the spring), and for dmv-pre4 … dmv-pre10 on a
+// free body with diagonal J (with the scalar scheme behind each lane for the
+// steps the kernel leaves, lane_fallback.hpp); they are compiled for the baseline
 // instruction set (SSE2 on x86-64) and, on x86-64, for AVX2 and AVX-512F
 // (without FMA), chosen at run time from what the CPU supports.
 //
 // A step allocates nothing: the lanes live in a fixed-size block inside the
 // stepper. Lanes beyond the trajectories in use are padding (a copy of the
 // first trajectory) whose results are dropped.
+#include <cstdint>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/ensemble/lane_fallback.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -58,14 +64,33 @@ class EnsembleStepper {
   Isa isa() const { return isa_; }
   /// The scheme's registry name.
   std::string_view scheme() const { return scheme_; }
-  /// Right-hand-side evaluations one step costs per lane (WorkCounters).
+  /// Right-hand-side evaluations one step costs per lane (WorkCounters), for
+  /// a scheme without memory; with memory, see outcome().
   int rhs_per_step() const { return rhs_per_step_; }
+  /// Whether the scheme carries memory from step to step (then each lane has
+  /// a scalar scheme behind it: start_lane(), outcome(), step_lane_from()).
+  bool has_memory() const { return fallback_ != nullptr; }
+  /// Sets a lane's state (and makes it active).
   void set_lane(int lane, const State& s);
   void get_lane(int lane, State& s) const;
-  /// Every lane from t to t + h.
-  void step(double t, double h) { kernel_(model_, block_, t, h); }
-  /// Whether every entry of lane's R and Π is finite (detail::finite_state).
-  bool lane_finite(int lane) const;
+  /// set_lane and, for a scheme with memory, the scheme's start() for the lane.
+  StepStatus start_lane(int lane, const State& s, double t0);
+  /// An inactive lane is still stepped by the kernel but never by the scalar scheme.
+  void set_active(int lane, bool active) { active_[lane] = active; }
+  /// Every lane from t to t + h (for a scheme with memory, the lanes the
+  /// kernel leaves by the scalar scheme, with retry_halving as the run's).
+  void step(double t, double h, int retry_halving = 0);
+  /// With memory: the lane steps the kernel has taken (active lanes), all runs.
+  std::int64_t kernel_lane_steps() const { return kernel_lane_steps_; }
+  /// With memory: the last step of an active lane (its status and work counters).
+  const LaneOutcome& outcome(int lane) const;
+  /// With memory: the lane's memory (dmv_rows::memory values), and a step of
+  /// the lane's scalar scheme from x with such a snapshot (event location).
+  void save_lane_memory(int lane, std::span<double> out) const;
+  bool step_lane_from(int lane, std::span<const double> snapshot, State& x, double t, double h, int retry_halving,
+                      WorkCounters& work);
+  /// After step(): whether every entry of lane's R and Π is finite (detail::finite_state).
+  bool lane_finite(int lane) const { return finite_[lane]; }
 
  private:
   EnsembleStepper() = default;
@@ -76,6 +101,13 @@ class EnsembleStepper {
   int rhs_per_step_ = 0;
   Isa isa_ = Isa::baseline;
   LaneBlock block_{};
+  LaneMemory memory_{};
+  std::unique_ptr<LaneFallback> fallback_;
+  LaneOutcome outcome_[max_lanes];
+  bool active_[max_lanes] = {};
+  bool kernel_stepped_[max_lanes] = {};
+  bool finite_[max_lanes] = {};
+  std::int64_t kernel_lane_steps_ = 0;
 };
 
 }  // namespace lgi::integrators::ensemble

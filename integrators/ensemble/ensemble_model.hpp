@@ -26,6 +26,9 @@ struct EnsembleModel {
   bool magnetic = false;
   double magnetic_field[3] = {0.0, 0.0, 0.0};         // B, space frame (terms/magnetic_dipole.hpp)
   double magnetic_minus_moment[3] = {0.0, 0.0, 0.0};  // −μ
+  // The preprocessed DMV schemes (dmv_kernel.hpp): the degree of the
+  // modified-inertia series in h² (moser_veselov_series.hpp).
+  int series_degrees = 0;
 };
 
 /// Storage of one ensemble: 12 rows (R(0,0), R(0,1), …, R(2,2), Π1, Π2, Π3)
@@ -36,15 +39,42 @@ struct alignas(64) LaneBlock {
   double row[state_rows][max_lanes];
 };
 
+/// What a scheme carries from step to step, per lane (schemes with memory:
+/// the DMV family, dmv_kernel.hpp). Rows 0 … 31 are the scalar scheme's
+/// memory in its checkpoint layout (moser_veselov::StepMemory::save: the
+/// carries of Π and of R, column-major, the predictor's count, its h and its
+/// six Cayley parameters, newest first), so that a lane's memory passes to
+/// and from the scalar scheme as one copy; then the lane's per-run constants
+/// (the series in h² of css and cdd, DmvPreprocessed::free_body_series), and
+/// the kernel's verdict per lane.
+namespace dmv_rows {
+inline constexpr int carry_Pi = 0;   // 3 rows
+inline constexpr int carry_R = 3;    // 9 rows: carry.R(i, j) at carry_R + i + 3 j
+inline constexpr int count = 12;     // the predictor's valid entries
+inline constexpr int step = 13;      // the step length of its history
+inline constexpr int history = 14;   // 18 rows: f_{k−m} component i at history + 3 m + i
+inline constexpr int memory = 32;    // rows 0 … 31: the scalar scheme's memory
+inline constexpr int css = 32;       // 4 rows: css in h², lowest degree first
+inline constexpr int cdd = 36;       // 4 rows
+inline constexpr int stepped = 40;   // 1 where the kernel took the step, 0 where the scalar scheme must
+inline constexpr int rows = 41;
+}  // namespace dmv_rows
+struct alignas(64) LaneMemory {
+  double row[dmv_rows::rows][max_lanes];
+};
+
 /// One step of every lane of `block` from t to t + h (the kernels of one
-/// instruction set; `lanes` is that set's lane count).
-using StepKernel = void (*)(const EnsembleModel& model, LaneBlock& block, double t, double h);
+/// instruction set; `lanes` is that set's lane count). A kernel of a scheme
+/// with memory reads and writes `memory` and may leave a lane to the scalar
+/// scheme (dmv_rows::stepped); the others ignore it.
+using StepKernel = void (*)(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double t, double h);
 
 /// The kernels compiled for one instruction set.
 struct KernelSet {
   const char* isa = "";  // "sse2", "avx2", "avx512"
   int lanes = 0;
   StepKernel rkmk4 = nullptr;
+  StepKernel dmv_pre = nullptr;  // dmv-pre4 … dmv-pre10 on a free body with diagonal J
 };
 
 // One per instruction set (ensemble_<isa>.cpp); call only where the CPU has it.

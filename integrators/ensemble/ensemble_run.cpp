@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "integrators/ensemble/ensemble_loop.hpp"
+#include "integrators/moser_veselov.hpp"
 #include "integrators/rkmk.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -25,6 +26,10 @@ void run_ensemble(EnsembleStepper& e, const system::AnyModel& model, std::span<S
       stats.size() != states.size())
     throw std::invalid_argument("run_ensemble: at most lanes() states, one observer and one RunStats each");
   if (e.scheme() == "rkmk4") return run_with<Rkmk4>(e, model, states, cfg, observers, stats, ws);
+  if (e.scheme() == "dmv-pre4") return run_with<DmvPre4>(e, model, states, cfg, observers, stats, ws);
+  if (e.scheme() == "dmv-pre6") return run_with<DmvPre6>(e, model, states, cfg, observers, stats, ws);
+  if (e.scheme() == "dmv-pre8") return run_with<DmvPre8>(e, model, states, cfg, observers, stats, ws);
+  if (e.scheme() == "dmv-pre10") return run_with<DmvPre10>(e, model, states, cfg, observers, stats, ws);
   throw std::invalid_argument("run_ensemble: no scalar scheme for " + std::string(e.scheme()));
 }
 

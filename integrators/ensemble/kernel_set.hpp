@@ -1,6 +1,7 @@
 #pragma once
 // The kernels of one instruction set, for ensemble_<isa>.cpp: each of those
 // units includes this with its own lane type (docs/ensemble.md).
+#include "integrators/ensemble/dmv_kernel.hpp"
 #include "integrators/ensemble/rkmk_kernel.hpp"
 #include "integrators/tableaus/runge_kutta.hpp"
 
@@ -12,6 +13,7 @@ KernelSet kernel_set(const char* isa) {
   set.isa = isa;
   set.lanes = LaneType::size;
   set.rkmk4 = &rkmk_block_step<tableaus::classical_rk4, LaneType>;
+  set.dmv_pre = &dmv_pre_block_step<LaneType>;
   return set;
 }
 

@@ -95,6 +95,46 @@ inline LaneMask<B, K> less(const Lanes<B, K>& x, double c) {
 }
 inline bool less(double x, double c) { return x < c; }
 
+/// x < y, x ≤ y, x > c and x == c lane by lane (false for NaN, as in the scalar comparisons).
+template <class B, int K>
+inline LaneMask<B, K> less(const Lanes<B, K>& x, const Lanes<B, K>& y) {
+  LaneMask<B, K> m;
+  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] < y.b[k];
+  return m;
+}
+template <class B, int K>
+inline LaneMask<B, K> less_equal(const Lanes<B, K>& x, const Lanes<B, K>& y) {
+  LaneMask<B, K> m;
+  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] <= y.b[k];
+  return m;
+}
+template <class B, int K>
+inline LaneMask<B, K> greater(const Lanes<B, K>& x, double c) {
+  LaneMask<B, K> m;
+  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] > B(c);
+  return m;
+}
+template <class B, int K>
+inline LaneMask<B, K> equal(const Lanes<B, K>& x, double c) {
+  LaneMask<B, K> m;
+  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] == B(c);
+  return m;
+}
+/// Both masks.
+template <class B, int K>
+inline LaneMask<B, K> operator&(const LaneMask<B, K>& x, const LaneMask<B, K>& y) {
+  LaneMask<B, K> m;
+  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] && y.b[k];
+  return m;
+}
+/// |x| lane by lane (clears the sign bit, as std::abs does).
+template <class B, int K>
+inline Lanes<B, K> abs(const Lanes<B, K>& x) {
+  Lanes<B, K> r;
+  for (int k = 0; k < K; ++k) r.b[k] = xsimd::abs(x.b[k]);
+  return r;
+}
+
 /// m ? a : b lane by lane.
 template <class B, int K>
 inline Lanes<B, K> select(const LaneMask<B, K>& m, const Lanes<B, K>& a, const Lanes<B, K>& b) {

@@ -123,7 +123,7 @@ inline void rkmk_step(const EnsembleModel& model, M3<T>& R, V3<T>& Pi, double t,
 
 /// rkmk_step on the lanes of a LaneBlock (T = Lanes<Batch, K>, T::size lanes).
 template <const auto& Tableau, class T>
-inline void rkmk_block_step(const EnsembleModel& model, LaneBlock& block, double t, double h) {
+inline void rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& /*memory*/, double t, double h) {
   M3<T> R;
   V3<T> Pi;
   for (int i = 0; i < 3; ++i)

@@ -1,0 +1,95 @@
+// The scalar preprocessed DMV behind the lanes of dmv_kernel.hpp (lane_fallback.hpp).
+#include <array>
+#include <vector>
+
+#include "integrators/ensemble/lane_fallback.hpp"
+#include "integrators/loop_support.hpp"
+#include "integrators/moser_veselov.hpp"
+
+namespace lgi::integrators::ensemble {
+
+namespace {
+
+template <int Order>
+class DmvFallback final : public LaneFallback {
+ public:
+  using Scheme = DmvPreprocessed<Order>;
+
+  explicit DmvFallback(const system::FreeBody& model) : model_(model) { buffer_.reserve(dmv_rows::memory); }
+
+  StepStatus start(int lane, const State& s, double t0, LaneMemory& memory) override {
+    Scheme& scheme = schemes_[static_cast<std::size_t>(lane)];
+    scheme = Scheme{};
+    const StepStatus st = detail::start(scheme, model_, s, t0);
+    save(lane, memory);
+    for (std::size_t k = 0; k < 4; ++k) {
+      memory.row[dmv_rows::css + static_cast<int>(k)][lane] = scheme.css_in_h2()[k];
+      memory.row[dmv_rows::cdd + static_cast<int>(k)][lane] = scheme.cdd_in_h2()[k];
+    }
+    return st;
+  }
+
+  void step(int lane, LaneBlock& block, LaneMemory& memory, double t, double h, int retry_halving,
+            LaneOutcome& out) override {
+    Scheme& scheme = schemes_[static_cast<std::size_t>(lane)];
+    restore(lane, memory, scheme);
+    State x;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) x.R(i, j) = block.row[3 * i + j][lane];
+      x.Pi(i) = block.row[9 + i][lane];
+    }
+    out.work = {};
+    out.status = retry_halving > 0 ? detail::step_with_halving(scheme, model_, x, t, h, retry_halving, out.work)
+                                   : detail::recorded_step(scheme, model_, x, t, h, out.work);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) block.row[3 * i + j][lane] = x.R(i, j);
+      block.row[9 + i][lane] = x.Pi(i);
+    }
+    save(lane, memory);
+  }
+
+  bool step_from(int lane, std::span<const double> snapshot, State& x, double t, double h, int retry_halving,
+                 WorkCounters& work) override {
+    Scheme copy = schemes_[static_cast<std::size_t>(lane)];
+    if (!copy.restore_memory(snapshot)) return false;
+    if (retry_halving > 0) return detail::step_with_halving(copy, model_, x, t, h, retry_halving, work).converged;
+    return copy.step(model_, x, t, h, work).converged;
+  }
+
+ private:
+  void save(int lane, LaneMemory& memory) {
+    buffer_.clear();
+    schemes_[static_cast<std::size_t>(lane)].save_memory(buffer_);
+    for (int r = 0; r < dmv_rows::memory; ++r) memory.row[r][lane] = buffer_[static_cast<std::size_t>(r)];
+  }
+  void restore(int lane, const LaneMemory& memory, Scheme& scheme) {
+    buffer_.resize(dmv_rows::memory);
+    for (int r = 0; r < dmv_rows::memory; ++r) buffer_[static_cast<std::size_t>(r)] = memory.row[r][lane];
+    [[maybe_unused]] const bool restored = scheme.restore_memory(buffer_);  // the rows hold what save() wrote
+  }
+
+  system::FreeBody model_;
+  std::array<Scheme, max_lanes> schemes_{};
+  std::vector<double> buffer_;  // one lane's memory, reserved once: a step allocates nothing
+};
+
+template <int Order>
+std::unique_ptr<LaneFallback> make_for(const system::FreeBody& model, EnsembleModel& constants) {
+  constants.series_degrees = moser_veselov::ModifiedInertiaSeries<Order>::degrees;
+  return std::make_unique<DmvFallback<Order>>(model);
+}
+
+}  // namespace
+
+std::unique_ptr<LaneFallback> make_dmv_fallback(std::string_view scheme, const system::FreeBody& model,
+                                                EnsembleModel& constants) {
+  static_assert(12 + moser_veselov::CayleyPredictor::memory_size == static_cast<std::size_t>(dmv_rows::memory),
+                "dmv_rows must follow StepMemory::save");
+  if (scheme == "dmv-pre4") return make_for<4>(model, constants);
+  if (scheme == "dmv-pre6") return make_for<6>(model, constants);
+  if (scheme == "dmv-pre8") return make_for<8>(model, constants);
+  if (scheme == "dmv-pre10") return make_for<10>(model, constants);
+  return nullptr;
+}
+
+}  // namespace lgi::integrators::ensemble

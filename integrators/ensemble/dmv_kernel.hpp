@@ -1,0 +1,165 @@
+#pragma once
+// The preprocessed DMV step (dmv-pre4 … dmv-pre10, moser_veselov.hpp) on a
+// free body with diagonal J, for lane numbers: the common step of a run, in
+// which the predictor holds six steps of this length and its guess passes
+// after one Newton correction (moser_veselov_diagonal.hpp,
+// solve_cayley_parameter_predicted). Every other case (the first six steps,
+// a step of another length, a guess that does not pass, a step the scheme
+// would refuse) is left untouched and flagged (dmv_rows::stepped = 0), and
+// the scalar scheme takes that lane's step from its state and memory
+// (lane_fallback.hpp), so a lane is the scalar run bit for bit whatever
+// happens in it. Operation for operation, the scalar path it repeats is:
+//   turns_too_far: (h h) |J⁻¹ ∘ Π|² < π² (DiagonalInertia::turns_too_far);
+//   the moments: x = h², css = 1 + x p(x), cdd = 0 + x q(x) by Horner
+//     (horner_in_h2), 1/Ĩ = css J⁻¹ + cdd, all > 0, Ĩ = 1/(1/Ĩ), c and the
+//     Veltkamp split of Ĩ (DiagonalMoments);
+//   the guess ((6 f₀ − 15 f₁) + (20 f₂ − 15 f₃)) + (6 f₄ − f₅) (CayleyPredictor);
+//   a = h Π, ψ at the guess with Dekker's exact products (DiagonalResidual),
+//     the Jacobian, Cramer's rule, f = p − δ, accepted when
+//     |δ|² ≤ 1e-20 |f|² and |δ|² is finite;
+//   R ← R cay(2f), Π ← cay(2f)ᵀ Π as compensated sums (apply_cayley_step);
+//   the history shifted, f first.
+// tests/test_ensemble.cpp checks the lanes against DmvPreprocessed step by step.
+#include <numbers>
+
+#include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/ensemble/lanes.hpp"
+
+namespace lgi::integrators::ensemble {
+
+namespace dmv_detail {
+
+/// Veltkamp's split and Dekker's x y − p (moser_veselov_diagonal.hpp), x given split.
+template <class T>
+inline T product_error(const T& x_hi, const T& x_lo, const T& y, const T& p) {
+  const T c = 134217729.0 * y;
+  const T y_hi = c - (c - y);
+  const T y_lo = y - y_hi;
+  return ((x_hi * y_hi - p) + x_hi * y_lo + x_lo * y_hi) + x_lo * y_lo;
+}
+
+/// Σ_{k<degree} c_k x^k by Horner from the lane rows c, times x, plus offset (horner_in_h2).
+template <class T>
+inline T horner_in_h2(const LaneMemory& memory, int first_row, int degree, double x, double offset) {
+  using B = typename T::batch_type;
+  T v(0.0);
+  for (int k = degree - 1; k >= 0; --k) v = load<B, T::batches>(memory.row[first_row + k]) + x * v;
+  return offset + x * v;
+}
+
+/// R ← R F, Π ← Fᵀ Π with their carries, F = cay(2f) (apply_cayley_step).
+template <class T>
+inline void apply_cayley_step(const T (&f)[3], T (&P)[3], T (&cP)[3], T (&R)[9], T (&cR)[9]) {
+  const T x = f[0], y = f[1], z = f[2];
+  const T xx = x * x, yy = y * y, zz = z * z;
+  const T c = 2.0 / (1.0 + ((xx + yy) + zz));
+  const T xy = x * y, xz = x * z, yz = y * z;
+  const T N[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
+  T cN[9];
+  for (int k = 0; k < 9; ++k) cN[k] = c * N[k];
+  T dP[3], dR[9];
+  for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) dR[3 * i + j] = (R[3 * i] * cN[j] + R[3 * i + 1] * cN[3 + j]) + R[3 * i + 2] * cN[6 + j];
+  auto add_compensated = [](T& sum, const T& delta, T& carry) {  // compensated_sum.hpp
+    const T d = delta - carry;
+    const T t = sum + d;
+    carry = (t - sum) - d;
+    sum = t;
+  };
+  for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
+  for (int k = 0; k < 9; ++k) add_compensated(R[k], dR[k], cR[k]);
+}
+
+/// The Cayley parameter from the predictor's guess p (one Newton correction on
+/// ψ with the moments I and their split), and whether it passes.
+template <class T>
+inline auto predicted_parameter(const T (&I)[3], const T (&I_hi)[3], const T (&I_lo)[3], const T (&c)[3],
+                                const T (&a)[3], const T (&p)[3], T (&f)[3]) {
+  const T ff = (p[0] * p[0] + p[1] * p[1]) + p[2] * p[2];
+  const T w0 = I[0] * p[0], w1 = I[1] * p[1], w2 = I[2] * p[2];
+  const T p01 = p[0] * w1, p10 = p[1] * w0, p02 = p[0] * w2, p20 = p[2] * w0, p12 = p[1] * w2, p21 = p[2] * w1;
+  const T e0 = product_error(I_hi[0], I_lo[0], p[0], w0);
+  const T e1 = product_error(I_hi[1], I_lo[1], p[1], w1);
+  const T e2 = product_error(I_hi[2], I_lo[2], p[2], w2);
+  const T r0 = (2.0 * w0 - a[0]) + ((2.0 * (p12 - p21) - ff * a[0]) + 2.0 * e0);
+  const T r1 = (2.0 * w1 - a[1]) + ((2.0 * (p20 - p02) - ff * a[1]) + 2.0 * e1);
+  const T r2 = (2.0 * w2 - a[2]) + ((2.0 * (p01 - p10) - ff * a[2]) + 2.0 * e2);
+  // ∂ψ/∂f at p (diagonal_jacobian), row-major, and its adjugate (Cramer3).
+  const T ta0 = 2.0 * a[0], ta1 = 2.0 * a[1], ta2 = 2.0 * a[2];
+  const T j[9] = {2.0 * I[0] - ta0 * p[0], c[0] * p[2] - ta0 * p[1], c[0] * p[1] - ta0 * p[2],
+                  c[1] * p[2] - ta1 * p[0], 2.0 * I[1] - ta1 * p[1], c[1] * p[0] - ta1 * p[2],
+                  c[2] * p[1] - ta2 * p[0], c[2] * p[0] - ta2 * p[1], 2.0 * I[2] - ta2 * p[2]};
+  const T adj0 = j[4] * j[8] - j[5] * j[7], adj3 = j[5] * j[6] - j[3] * j[8], adj6 = j[3] * j[7] - j[4] * j[6];
+  const T det_inv = 1.0 / (j[0] * adj0 + j[1] * adj3 + j[2] * adj6);
+  const T adj1 = j[2] * j[7] - j[1] * j[8], adj2 = j[1] * j[5] - j[2] * j[4];
+  const T adj4 = j[0] * j[8] - j[2] * j[6], adj5 = j[2] * j[3] - j[0] * j[5];
+  const T adj7 = j[1] * j[6] - j[0] * j[7], adj8 = j[0] * j[4] - j[1] * j[3];
+  const T d0 = det_inv * (adj0 * r0 + adj1 * r1 + adj2 * r2);
+  const T d1 = det_inv * (adj3 * r0 + adj4 * r1 + adj5 * r2);
+  const T d2 = det_inv * (adj6 * r0 + adj7 * r1 + adj8 * r2);
+  f[0] = p[0] - d0;
+  f[1] = p[1] - d1;
+  f[2] = p[2] - d2;
+  const T step2 = (d0 * d0 + d1 * d1) + d2 * d2;
+  return less_equal(step2, 1e-20 * ((f[0] * f[0] + f[1] * f[1]) + f[2] * f[2])) & equal(step2 - step2, 0.0);
+}
+
+}  // namespace dmv_detail
+
+/// The step of the top of this file in every lane of a LaneBlock (T = Lanes<Batch, K>).
+template <class T>
+inline void dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double /*t*/,
+                               double h) {
+  using B = typename T::batch_type;
+  constexpr int K = T::batches;
+  namespace rows = dmv_rows;
+  auto ld = [](const double* p) { return load<B, K>(p); };
+  T P[3], R[9], cP[3], cR[9], hist[6][3];
+  for (int i = 0; i < 3; ++i) P[i] = ld(block.row[9 + i]), cP[i] = ld(memory.row[rows::carry_Pi + i]);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[3 * i + j] = ld(block.row[3 * i + j]), cR[3 * i + j] = ld(memory.row[rows::carry_R + i + 3 * j]);
+  for (int m = 0; m < 6; ++m)
+    for (int i = 0; i < 3; ++i) hist[m][i] = ld(memory.row[rows::history + 3 * m + i]);
+  const T count = ld(memory.row[rows::count]), h_history = ld(memory.row[rows::step]);
+  auto ok = equal(count, 6.0) & less_equal(abs(h - h_history), 1e-9 * abs(h_history));
+  // Not turning too far, and the truncated series positive.
+  const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
+  const T v0 = Jd[0] * P[0], v1 = Jd[1] * P[1], v2 = Jd[2] * P[2];
+  ok = ok & less((h * h) * ((v0 * v0 + v1 * v1) + v2 * v2), T(std::numbers::pi * std::numbers::pi));
+  const double x = h * h;
+  const T css = dmv_detail::horner_in_h2<T>(memory, rows::css, model.series_degrees, x, 1.0);
+  const T cdd = dmv_detail::horner_in_h2<T>(memory, rows::cdd, model.series_degrees, x, 0.0);
+  T I[3], I_hi[3], I_lo[3], a[3], guess[3], f[3];
+  for (int i = 0; i < 3; ++i) {
+    const T moment_inv = css * Jd[i] + cdd;
+    ok = ok & greater(moment_inv, 0.0);
+    I[i] = 1.0 / moment_inv;
+    const T split = 134217729.0 * I[i];
+    I_hi[i] = split - (split - I[i]);
+    I_lo[i] = I[i] - I_hi[i];
+    a[i] = h * P[i];
+    guess[i] = ((6.0 * hist[0][i] - 15.0 * hist[1][i]) + (20.0 * hist[2][i] - 15.0 * hist[3][i])) +
+               (6.0 * hist[4][i] - hist[5][i]);
+  }
+  const T c[3] = {2.0 * (I[2] - I[1]), 2.0 * (I[0] - I[2]), 2.0 * (I[1] - I[0])};
+  ok = ok & dmv_detail::predicted_parameter(I, I_hi, I_lo, c, a, guess, f);
+  T P1[3] = {P[0], P[1], P[2]}, R1[9], cP1[3] = {cP[0], cP[1], cP[2]}, cR1[9];
+  for (int k = 0; k < 9; ++k) R1[k] = R[k], cR1[k] = cR[k];
+  dmv_detail::apply_cayley_step(f, P1, cP1, R1, cR1);
+  // Only the lanes that passed change; the others keep their state and memory for the scalar step.
+  for (int i = 0; i < 3; ++i) {
+    store(select(ok, P1[i], P[i]), block.row[9 + i]);
+    store(select(ok, cP1[i], cP[i]), memory.row[rows::carry_Pi + i]);
+    for (int j = 0; j < 3; ++j) {
+      store(select(ok, R1[3 * i + j], R[3 * i + j]), block.row[3 * i + j]);
+      store(select(ok, cR1[3 * i + j], cR[3 * i + j]), memory.row[rows::carry_R + i + 3 * j]);
+    }
+  }
+  for (int m = 5; m >= 0; --m)
+    for (int i = 0; i < 3; ++i)
+      store(select(ok, m == 0 ? f[i] : hist[m - 1][i], hist[m][i]), memory.row[rows::history + 3 * m + i]);
+  store(select(ok, T(1.0), T(0.0)), memory.row[rows::stepped]);
+}
+
+}  // namespace lgi::integrators::ensemble

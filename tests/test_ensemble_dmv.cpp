@@ -1,0 +1,238 @@
+// The ensemble kernel of the preprocessed DMV (integrators/ensemble/dmv_kernel.hpp,
+// docs/ensemble.md): every lane is bit for bit the scalar scheme's
+// trajectory, on every instruction set this CPU has, through the steps the
+// kernel takes and those it leaves to the scalar scheme (the first six, a
+// change of step length, a refused step); the ensemble loop gives each lane
+// the registry's run; a step allocates nothing.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "experiments/io/scene_reader.hpp"
+#include "integrators/ensemble/ensemble_loop.hpp"
+#include "integrators/moser_veselov.hpp"
+#include "integrators/registry.hpp"
+
+using namespace lgi;
+namespace ensemble = lgi::integrators::ensemble;
+using integrators::State;
+
+namespace {
+
+bool same_bits(const State& a, const State& b) {
+  for (int i = 0; i < 9; ++i)
+    if (!(std::isnan(a.R.data()[i]) && std::isnan(b.R.data()[i])) &&
+        std::memcmp(a.R.data() + i, b.R.data() + i, sizeof(double)) != 0)
+      return false;
+  for (int i = 0; i < 3; ++i)
+    if (!(std::isnan(a.Pi(i)) && std::isnan(b.Pi(i))) && std::memcmp(&a.Pi(i), &b.Pi(i), sizeof(double)) != 0)
+      return false;
+  return true;
+}
+
+system::Scene shipped(const std::string& name) {
+  return experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + name + ".toml");
+}
+
+/// Initial states near the scene's: attitude turned, momentum scaled and tilted by a seeded draw.
+std::vector<State> initial_states(const State& base, int n, unsigned seed) {
+  std::mt19937_64 gen(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<State> out;
+  for (int l = 0; l < n; ++l) {
+    State s = base;
+    s.R = base.R * lie::exp_so3(lie::Vec3(u(gen), u(gen), u(gen)));
+    s.Pi = (1.5 + u(gen)) * base.Pi + 0.3 * base.Pi.norm() * lie::Vec3(u(gen), u(gen), u(gen));
+    out.push_back(s);
+  }
+  return out;
+}
+
+/// The step lengths of the lane test: a run of equal steps (the kernel's), a
+/// change of length (the predictor starts anew), one step far too long (the
+/// scheme refuses it), and equal steps again.
+std::vector<double> step_lengths(double h) {
+  std::vector<double> out(120, h);
+  for (int k = 0; k < 20; ++k) out.push_back(0.5 * h);
+  out.push_back(1e5 * h);
+  for (int k = 0; k < 40; ++k) out.push_back(h);
+  return out;
+}
+
+/// n trajectories stepped together and one at a time by DmvPreprocessed<Order>, compared after every step.
+template <int Order>
+void check_lanes(const system::Scene& scene, const char* name, ensemble::Isa isa, int n) {
+  const system::AnyModel any = system::make_model(scene);
+  const auto& model = std::get<system::FreeBody>(any);
+  auto e = ensemble::EnsembleStepper::make(name, any, isa);
+  REQUIRE(e);
+  REQUIRE(e->has_memory());
+  std::vector<State> scalar = initial_states(scene.initial, n, 23u + static_cast<unsigned>(n));
+  std::vector<integrators::DmvPreprocessed<Order>> schemes(static_cast<std::size_t>(n));
+  for (int l = 0; l < e->lanes(); ++l) e->start_lane(l, scalar[static_cast<std::size_t>(l < n ? l : 0)], 0.0);
+  for (int l = 0; l < n; ++l) schemes[static_cast<std::size_t>(l)].start(model, scalar[static_cast<std::size_t>(l)], 0.0);
+  int mismatches = 0, status_mismatches = 0, refused = 0;
+  double t = 0.0;
+  const std::int64_t kernel_before = e->kernel_lane_steps();
+  for (const double h : step_lengths(scene.dt.value_or(1e-2))) {
+    e->step(t, h);
+    for (int l = 0; l < n; ++l) {
+      State& s = scalar[static_cast<std::size_t>(l)];
+      integrators::WorkCounters work;
+      const integrators::StepStatus st = schemes[static_cast<std::size_t>(l)].step(model, s, t, h, work);
+      refused += st.converged ? 0 : 1;
+      const ensemble::LaneOutcome& o = e->outcome(l);
+      status_mismatches += o.status.converged != st.converged || o.status.iterations != st.iterations ||
+                           o.work.rhs_evaluations != work.rhs_evaluations;
+      State lane;
+      e->get_lane(l, lane);
+      mismatches += same_bits(lane, s) ? 0 : 1;
+    }
+    t += h;
+  }
+  const std::int64_t by_kernel = e->kernel_lane_steps() - kernel_before;
+  INFO(name << ", " << ensemble::isa_name(isa) << ", " << n << " of " << e->lanes() << " lanes; " << by_kernel
+            << " lane steps by the kernel");
+  CHECK(mismatches == 0);
+  CHECK(status_mismatches == 0);
+  CHECK(refused == n);  // the long step, in every lane
+  // Most steps go through the kernel; the first six of each run of equal steps do not.
+  CHECK(by_kernel >= static_cast<std::int64_t>(n) * (114 + 14 + 34));
+}
+
+}  // namespace
+
+TEST_CASE("ensemble lanes are dmv-pre bit for bit on every instruction set", "[ensemble][dmv]") {
+  for (const char* name : {"free_body_hlw", "dzhanibekov_book_axis2", "dzhanibekov_book_axis1"}) {
+    const system::Scene scene = shipped(name);
+    INFO(name);
+    REQUIRE(ensemble::unsupported_reason("dmv-pre10", system::make_model(scene)).empty());
+    for (const ensemble::Isa isa : ensemble::available_isas()) {
+      const int lanes = ensemble::isa_lanes(isa);
+      for (const int n : {1, 3, lanes}) {
+        check_lanes<10>(scene, "dmv-pre10", isa, n);
+        check_lanes<4>(scene, "dmv-pre4", isa, n);
+      }
+    }
+  }
+}
+
+TEST_CASE("what has no dmv-pre ensemble kernel says why", "[ensemble][dmv]") {
+  const system::AnyModel top = system::make_model(shipped("heavy_top_trindade_1"));
+  CHECK_THAT(ensemble::unsupported_reason("dmv-pre10", top), Catch::Contains("torques"));
+  CHECK_FALSE(ensemble::EnsembleStepper::make("dmv-pre10", top, ensemble::Isa::baseline));
+  const system::Scene tilted = experiments::parse_scene(
+      "name = \"tilted\"\n[body]\ninertia_tensor = [[1.0, 0.1, 0.0], [0.1, 1.5, 0.0], [0.0, 0.0, 2.0]]\n"
+      "[initial]\nangular_velocity = [0.1, 1.0, 0.2]\n",
+      "tilted.toml");
+  CHECK_THAT(ensemble::unsupported_reason("dmv-pre10", system::make_model(tilted)), Catch::Contains("non-diagonal"));
+  CHECK(ensemble::has_kernel("dmv-pre6"));
+  CHECK_FALSE(ensemble::has_kernel("dmv"));
+}
+
+namespace {
+
+struct Recorder final : integrators::Observer {
+  std::vector<std::int64_t> steps;
+  std::vector<double> times;
+  std::vector<State> states;
+  std::vector<integrators::EventHit> hits;
+  void observe(std::int64_t step, double t, const State& s) override {
+    steps.push_back(step), times.push_back(t), states.push_back(s);
+  }
+  void on_event(const integrators::EventHit& hit) override { hits.push_back(hit); }
+};
+
+/// Π1 = 0 both ways.
+struct MomentumZero final : integrators::EventFunctions {
+  int count() const override { return 1; }
+  double value(int, double, const State& x) const override { return x.Pi(0); }
+  int direction(int) const override { return 0; }
+};
+
+/// The ensemble loop against the registry's run of `name`, lane by lane.
+void check_loop(const char* name, const system::Scene& scene, const integrators::RunConfig& cfg,
+                const std::vector<State>& initial) {
+  const system::AnyModel model = system::make_model(scene);
+  const integrators::SchemeInfo& scheme = *integrators::find_scheme(name);
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    auto e = ensemble::EnsembleStepper::make(name, model, isa);
+    REQUIRE(e);
+    const auto n = std::min(initial.size(), static_cast<std::size_t>(e->lanes()));
+    std::vector<State> states(initial.begin(), initial.begin() + static_cast<std::ptrdiff_t>(n));
+    std::vector<Recorder> recorders(n);
+    std::vector<integrators::Observer*> observers;
+    for (auto& r : recorders) observers.push_back(&r);
+    std::vector<integrators::RunStats> stats(n);
+    ensemble::EnsembleWorkspace ws;
+    ensemble::run_ensemble(*e, model, states, cfg, observers, stats, ws);
+    for (std::size_t l = 0; l < n; ++l) {
+      INFO(name << ", " << ensemble::isa_name(isa) << ", lane " << l);
+      Recorder alone;
+      State x = initial[l];
+      const integrators::RunStats s = scheme.run(model, x, cfg, alone);
+      CHECK(stats[l].steps == s.steps);
+      CHECK(stats[l].status == s.status);
+      CHECK(stats[l].t_final == s.t_final);
+      CHECK(stats[l].work.rhs_evaluations == s.work.rhs_evaluations);
+      CHECK(stats[l].work.newton_iterations_max == s.work.newton_iterations_max);
+      CHECK(stats[l].work.newton_failures == s.work.newton_failures);
+      CHECK(same_bits(states[l], x));
+      REQUIRE(recorders[l].steps == alone.steps);
+      CHECK(recorders[l].times == alone.times);
+      for (std::size_t k = 0; k < alone.states.size(); ++k) CHECK(same_bits(recorders[l].states[k], alone.states[k]));
+      REQUIRE(recorders[l].hits.size() == alone.hits.size());
+      for (std::size_t k = 0; k < alone.hits.size(); ++k) {
+        CHECK(recorders[l].hits[k].t == alone.hits[k].t);
+        CHECK(same_bits(recorders[l].hits[k].state, alone.hits[k].state));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the ensemble loop gives each dmv-pre lane the scalar loop's run", "[ensemble][dmv]") {
+  const system::Scene body = shipped("free_body_hlw");
+  MomentumZero zero;
+  integrators::RunConfig cfg{0.0, 3.0, 1e-2, 0.0, 7};
+  cfg.cpu_clock = false;
+  cfg.events = &zero;
+  std::vector<State> initial = initial_states(body.initial, 16, 5);
+  SECTION("samples every 7 steps and crossings") { check_loop("dmv-pre10", body, cfg, initial); }
+  SECTION("output times, and dmv-pre6") {
+    const std::vector<double> times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
+    cfg.output_times = &times;
+    check_loop("dmv-pre6", body, cfg, initial);
+  }
+  SECTION("backward in time, a step that does not divide the span") {
+    cfg.t_end = -2.005;
+    check_loop("dmv-pre10", body, cfg, initial);
+  }
+  SECTION("lanes that fail: a blow-up and a step the scheme refuses; the others go on") {
+    initial[1].Pi(2) = std::numeric_limits<double>::infinity();
+    initial[4].Pi *= 1e3;  // |h Ω| > π: refused at the first step
+    cfg.retry_halving = 2;
+    check_loop("dmv-pre10", body, cfg, initial);
+  }
+}
+
+TEST_CASE("a dmv-pre ensemble step allocates nothing", "[ensemble][dmv][allocations]") {
+  const system::Scene scene = shipped("free_body_hlw");
+  const system::AnyModel model = system::make_model(scene);
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    auto e = ensemble::EnsembleStepper::make("dmv-pre10", model, isa);
+    REQUIRE(e);
+    const std::vector<State> initial = initial_states(scene.initial, e->lanes(), 2);
+    for (int l = 0; l < e->lanes(); ++l) e->start_lane(l, initial[static_cast<std::size_t>(l)], 0.0);
+    const long before = experiments::verification::counted_allocations();
+    for (int k = 0; k < 1000; ++k) e->step(k * 0.01, k < 500 ? 0.01 : 0.02);  // both kernel and scalar steps
+    CHECK(experiments::verification::counted_allocations() == before);
+  }
+}
