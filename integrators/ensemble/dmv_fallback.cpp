@@ -1,5 +1,6 @@
 // The scalar preprocessed DMV behind the lanes of dmv_kernel.hpp (lane_fallback.hpp).
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "integrators/ensemble/lane_fallback.hpp"
@@ -22,6 +23,8 @@ class DmvFallback final : public LaneFallback {
     scheme = Scheme{};
     const StepStatus st = detail::start(scheme, model_, s, t0);
     save(lane, memory);
+    // The lane's constants change: the kernel's table of moments starts empty.
+    for (double& key : memory.moments_h) key = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t k = 0; k < 4; ++k) {
       memory.row[dmv_rows::css + static_cast<int>(k)][lane] = scheme.css_in_h2()[k];
       memory.row[dmv_rows::cdd + static_cast<int>(k)][lane] = scheme.cdd_in_h2()[k];

@@ -20,9 +20,12 @@
 //   R ← R cay(2f), Π ← cay(2f)ᵀ Π as compensated sums (apply_cayley_step);
 //   the history shifted, f first.
 // tests/test_ensemble.cpp checks the lanes against DmvPreprocessed step by step.
+#include <bit>
+#include <cstdint>
 #include <numbers>
 
 #include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lanes.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -45,6 +48,48 @@ inline T horner_in_h2(const LaneMemory& memory, int first_row, int degree, doubl
   T v(0.0);
   for (int k = degree - 1; k >= 0; --k) v = load<B, T::batches>(memory.row[first_row + k]) + x * v;
   return offset + x * v;
+}
+
+/// The modified moments Ĩ at step h for every lane (1/Ĩ = css J⁻¹ + cdd with
+/// css, cdd the lane's series in x = h², DmvPreprocessed::free_step), Ĩ's
+/// split and c (DiagonalMoments), and where 1/Ĩ > 0; from the table of
+/// LaneMemory where it holds this h, else computed and entered. A hit gives
+/// what the computation gives, so the lanes do not depend on the table.
+template <class T>
+inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h, T (&I)[3], T (&I_hi)[3],
+                        T (&I_lo)[3], T (&c)[3]) {
+  using B = typename T::batch_type;
+  constexpr int K = T::batches;
+  const auto slot = static_cast<int>((std::bit_cast<std::uint64_t>(h) * 0x9E3779B97F4A7C15ull) >> 61);
+  double(*rows)[max_lanes] = memory.row + dmv_rows::moments + dmv_rows::moment_rows * slot;
+  if (memory.moments_h[slot] == h) {
+    for (int i = 0; i < 3; ++i) {
+      I[i] = load<B, K>(rows[i]), I_hi[i] = load<B, K>(rows[3 + i]);
+      I_lo[i] = load<B, K>(rows[6 + i]), c[i] = load<B, K>(rows[9 + i]);
+    }
+    return equal(load<B, K>(rows[12]), 1.0);
+  }
+  const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
+  const double x = h * h;
+  const T css = horner_in_h2<T>(memory, dmv_rows::css, model.series_degrees, x, 1.0);
+  const T cdd = horner_in_h2<T>(memory, dmv_rows::cdd, model.series_degrees, x, 0.0);
+  auto positive = greater(css * Jd[0] + cdd, 0.0);
+  for (int i = 0; i < 3; ++i) {
+    const T moment_inv = css * Jd[i] + cdd;
+    positive = positive & greater(moment_inv, 0.0);
+    I[i] = 1.0 / moment_inv;
+    const T split = 134217729.0 * I[i];
+    I_hi[i] = split - (split - I[i]);
+    I_lo[i] = I[i] - I_hi[i];
+  }
+  c[0] = 2.0 * (I[2] - I[1]), c[1] = 2.0 * (I[0] - I[2]), c[2] = 2.0 * (I[1] - I[0]);
+  for (int i = 0; i < 3; ++i) {
+    store(I[i], rows[i]), store(I_hi[i], rows[3 + i]);
+    store(I_lo[i], rows[6 + i]), store(c[i], rows[9 + i]);
+  }
+  store(select(positive, T(1.0), T(0.0)), rows[12]);
+  memory.moments_h[slot] = h;
+  return positive;
 }
 
 /// R ← R F, Π ← Fᵀ Π with their carries, F = cay(2f) (apply_cayley_step).
@@ -107,9 +152,10 @@ inline auto predicted_parameter(const T (&I)[3], const T (&I_hi)[3], const T (&I
 
 }  // namespace dmv_detail
 
-/// The step of the top of this file in every lane of a LaneBlock (T = Lanes<Batch, K>).
+/// The step of the top of this file in every lane of a LaneBlock (T = Lanes<Batch, K>);
+/// whether every active lane was stepped here and is finite (StepKernel).
 template <class T>
-inline void dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double /*t*/,
+inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double /*t*/,
                                double h) {
   using B = typename T::batch_type;
   constexpr int K = T::batches;
@@ -127,22 +173,13 @@ inline void dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
   const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
   const T v0 = Jd[0] * P[0], v1 = Jd[1] * P[1], v2 = Jd[2] * P[2];
   ok = ok & less((h * h) * ((v0 * v0 + v1 * v1) + v2 * v2), T(std::numbers::pi * std::numbers::pi));
-  const double x = h * h;
-  const T css = dmv_detail::horner_in_h2<T>(memory, rows::css, model.series_degrees, x, 1.0);
-  const T cdd = dmv_detail::horner_in_h2<T>(memory, rows::cdd, model.series_degrees, x, 0.0);
-  T I[3], I_hi[3], I_lo[3], a[3], guess[3], f[3];
+  T I[3], I_hi[3], I_lo[3], c[3], a[3], guess[3], f[3];
+  ok = ok & dmv_detail::moments_for<T>(model, memory, h, I, I_hi, I_lo, c);
   for (int i = 0; i < 3; ++i) {
-    const T moment_inv = css * Jd[i] + cdd;
-    ok = ok & greater(moment_inv, 0.0);
-    I[i] = 1.0 / moment_inv;
-    const T split = 134217729.0 * I[i];
-    I_hi[i] = split - (split - I[i]);
-    I_lo[i] = I[i] - I_hi[i];
     a[i] = h * P[i];
     guess[i] = ((6.0 * hist[0][i] - 15.0 * hist[1][i]) + (20.0 * hist[2][i] - 15.0 * hist[3][i])) +
                (6.0 * hist[4][i] - hist[5][i]);
   }
-  const T c[3] = {2.0 * (I[2] - I[1]), 2.0 * (I[0] - I[2]), 2.0 * (I[1] - I[0])};
   ok = ok & dmv_detail::predicted_parameter(I, I_hi, I_lo, c, a, guess, f);
   T P1[3] = {P[0], P[1], P[2]}, R1[9], cP1[3] = {cP[0], cP[1], cP[2]}, cR1[9];
   for (int k = 0; k < 9; ++k) R1[k] = R[k], cR1[k] = cR[k];
@@ -160,6 +197,7 @@ inline void dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
     for (int i = 0; i < 3; ++i)
       store(select(ok, m == 0 ? f[i] : hist[m - 1][i], hist[m][i]), memory.row[rows::history + 3 * m + i]);
   store(select(ok, T(1.0), T(0.0)), memory.row[rows::stepped]);
+  return active_lanes_clear<T>(block, memory, ok);
 }
 
 }  // namespace lgi::integrators::ensemble

@@ -173,7 +173,7 @@ std::optional<EnsembleStepper> EnsembleStepper::make(std::string_view scheme, co
 
 void EnsembleStepper::set_lane(int lane, const State& s) {
   const auto l = static_cast<std::size_t>(lane);
-  active_[l] = true;
+  set_active(lane, true);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) block_.row[3 * i + j][l] = s.R(i, j);
     block_.row[9 + i][l] = s.Pi(i);
@@ -194,7 +194,11 @@ StepStatus EnsembleStepper::start_lane(int lane, const State& s, double t0) {
 }
 
 void EnsembleStepper::step(double t, double h, int retry_halving) {
-  kernel_(model_, block_, memory_, t, h);
+  if (kernel_(model_, block_, memory_, t, h)) {  // every active lane stepped by the kernel, and finite
+    for (int l = 0; l < max_lanes; ++l) kernel_stepped_[l] = finite_[l] = true;
+    if (fallback_) kernel_lane_steps_ += active_count();
+    return;
+  }
   if (fallback_) {
     for (int l = 0; l < lanes_; ++l) {
       kernel_stepped_[l] = memory_.row[dmv_rows::stepped][l] == 1.0;
@@ -203,13 +207,22 @@ void EnsembleStepper::step(double t, double h, int retry_halving) {
       else fallback_->step(l, block_, memory_, t, h, retry_halving, outcome_[l]);
     }
   }
-  // Every lane's finiteness at once (detail::finite_state: x − x is 0 for a
-  // finite x and NaN otherwise), a vector loop over lanes rather than twelve
-  // strided loads per lane.
+  // As detail::finite_state: x − x is 0 for a finite x and NaN otherwise.
   double z[max_lanes] = {};
   for (const auto& row : block_.row)
     for (int l = 0; l < max_lanes; ++l) z[l] += row[l] - row[l];
   for (int l = 0; l < max_lanes; ++l) finite_[l] = z[l] == 0.0;
+}
+
+int EnsembleStepper::active_count() const {
+  int n = 0;
+  for (int l = 0; l < lanes_; ++l) n += active_[l] ? 1 : 0;
+  return n;
+}
+
+void EnsembleStepper::set_active(int lane, bool active) {
+  active_[lane] = active;
+  memory_.row[dmv_rows::active][lane] = active ? 1.0 : 0.0;
 }
 
 const LaneOutcome& EnsembleStepper::outcome(int lane) const {

@@ -76,7 +76,7 @@ class EnsembleStepper {
   /// set_lane and, for a scheme with memory, the scheme's start() for the lane.
   StepStatus start_lane(int lane, const State& s, double t0);
   /// An inactive lane is still stepped by the kernel but never by the scalar scheme.
-  void set_active(int lane, bool active) { active_[lane] = active; }
+  void set_active(int lane, bool active);
   /// Every lane from t to t + h (for a scheme with memory, the lanes the
   /// kernel leaves by the scalar scheme, with retry_halving as the run's).
   void step(double t, double h, int retry_halving = 0);
@@ -84,6 +84,9 @@ class EnsembleStepper {
   std::int64_t kernel_lane_steps() const { return kernel_lane_steps_; }
   /// With memory: the last step of an active lane (its status and work counters).
   const LaneOutcome& outcome(int lane) const;
+  /// With memory: whether the kernel took the lane's last step (outcome(): one
+  /// Newton correction, rhs_per_step() evaluations).
+  bool kernel_stepped(int lane) const { return kernel_stepped_[lane]; }
   /// With memory: the lane's memory (dmv_rows::memory values), and a step of
   /// the lane's scalar scheme from x with such a snapshot (event location).
   void save_lane_memory(int lane, std::span<double> out) const;
@@ -94,6 +97,7 @@ class EnsembleStepper {
 
  private:
   EnsembleStepper() = default;
+  int active_count() const;
   EnsembleModel model_{};
   StepKernel kernel_ = nullptr;
   std::string_view scheme_;

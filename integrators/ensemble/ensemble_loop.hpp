@@ -51,9 +51,10 @@ inline void add_work(WorkCounters& run, const WorkCounters& step) {
 template <class Scheme>
 bool count_lane_step(const EnsembleStepper& e, int l, const Scheme& scheme, const RunConfig& cfg, std::int64_t k,
                      double t_next, RunStats& st) {
-  if (!e.has_memory()) {
+  if (!e.has_memory() || e.kernel_stepped(l)) {  // the kernel's step: as outcome() would say, without a call
     st.steps = k + 1;
     st.work.rhs_evaluations += e.rhs_per_step();
+    if (e.has_memory() && st.work.newton_iterations_max < 1) st.work.newton_iterations_max = 1;
     return false;
   }
   const LaneOutcome& o = e.outcome(l);

@@ -57,17 +57,28 @@ inline constexpr int memory = 32;    // rows 0 … 31: the scalar scheme's memor
 inline constexpr int css = 32;       // 4 rows: css in h², lowest degree first
 inline constexpr int cdd = 36;       // 4 rows
 inline constexpr int stepped = 40;   // 1 where the kernel took the step, 0 where the scalar scheme must
-inline constexpr int rows = 41;
+inline constexpr int active = 41;    // 1 for a lane in use (EnsembleStepper::set_active), 0 for padding or a finished run
+// The kernel's table of modified moments by step length (as MomentsByStep in
+// moser_veselov.hpp: the h of a fixed-step run differ in their last bits):
+// per entry Ĩ, its Veltkamp split, c (3 rows each) and 1 where 1/Ĩ > 0.
+inline constexpr int moments = 42;
+inline constexpr int moment_rows = 13;
+inline constexpr int moment_entries = 8;
+inline constexpr int rows = moments + moment_rows * moment_entries;
 }  // namespace dmv_rows
 struct alignas(64) LaneMemory {
   double row[dmv_rows::rows][max_lanes];
+  double moments_h[dmv_rows::moment_entries];  // the h of each entry; NaN: empty (equal to no h)
 };
 
 /// One step of every lane of `block` from t to t + h (the kernels of one
 /// instruction set; `lanes` is that set's lane count). A kernel of a scheme
 /// with memory reads and writes `memory` and may leave a lane to the scalar
-/// scheme (dmv_rows::stepped); the others ignore it.
-using StepKernel = void (*)(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double t, double h);
+/// scheme (dmv_rows::stepped); the others read only its active row. Returns
+/// whether every active lane (dmv_rows::active) was stepped by the kernel and
+/// is finite (detail::finite_state), the common case, in which the stepper
+/// reads no flag lane by lane.
+using StepKernel = bool (*)(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double t, double h);
 
 /// The kernels compiled for one instruction set.
 struct KernelSet {

@@ -127,6 +127,13 @@ inline LaneMask<B, K> operator&(const LaneMask<B, K>& x, const LaneMask<B, K>& y
   for (int k = 0; k < K; ++k) m.b[k] = x.b[k] && y.b[k];
   return m;
 }
+/// Either mask.
+template <class B, int K>
+inline LaneMask<B, K> operator|(const LaneMask<B, K>& x, const LaneMask<B, K>& y) {
+  LaneMask<B, K> m;
+  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] || y.b[k];
+  return m;
+}
 /// |x| lane by lane (clears the sign bit, as std::abs does).
 template <class B, int K>
 inline Lanes<B, K> abs(const Lanes<B, K>& x) {

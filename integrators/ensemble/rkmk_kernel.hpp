@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lane_so3.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -121,9 +122,10 @@ inline void rkmk_step(const EnsembleModel& model, M3<T>& R, V3<T>& Pi, double t,
   Pi = add(Pi, scale(h, dPi));
 }
 
-/// rkmk_step on the lanes of a LaneBlock (T = Lanes<Batch, K>, T::size lanes).
+/// rkmk_step on the lanes of a LaneBlock (T = Lanes<Batch, K>, T::size lanes);
+/// whether every active lane is finite after it (StepKernel).
 template <const auto& Tableau, class T>
-inline void rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& /*memory*/, double t, double h) {
+inline bool rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double t, double h) {
   M3<T> R;
   V3<T> Pi;
   for (int i = 0; i < 3; ++i)
@@ -133,6 +135,8 @@ inline void rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMe
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) store(R.m[i][j], block.row[3 * i + j]);
   for (int i = 0; i < 3; ++i) store(Pi.v[i], block.row[9 + i]);
+  const T zero(0.0);
+  return active_lanes_clear<T>(block, memory, equal(zero, 0.0));
 }
 
 }  // namespace lgi::integrators::ensemble

@@ -2,7 +2,7 @@
 // function, one trajectory after another, what a sweep does with --simd off)
 // against the ensemble loop (integrators/ensemble/, docs/ensemble.md) on each
 // instruction set this CPU has, on the same trajectories in the same run:
-// 64 trajectories of 100 steps from initial states near the scene's, no
+// 64 trajectories of 1000 steps from initial states near the scene's, no
 // samples but the first and the last (a null observer), one thread.
 //   ensemble/<scene>/<scheme>/scalar      the baseline
 //   ensemble/<scene>/<scheme>/<isa>       the ensemble loop on that instruction set
@@ -25,7 +25,7 @@ namespace ensemble = lgi::integrators::ensemble;
 namespace {
 
 constexpr int trajectories = 64;
-constexpr int steps = 100;
+constexpr int steps = 1000;
 
 struct Problem {
   system::Scene scene;
