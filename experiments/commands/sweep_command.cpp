@@ -86,11 +86,17 @@ void select_simd(const std::string& simd) {
 }
 
 /// What the ensemble path used: "avx512 (16 lanes)", or "off".
-std::string simd_used() {
+/// The instruction set chosen for the ensemble and, where the sweep's scheme
+/// has no kernel for its scene (docs/ensemble.md), that it was not used and why.
+std::string simd_used(const system::Scene& scene, const integrators::SchemeInfo& scheme,
+                      const integrators::RunConfig& cfg) {
   const auto isa = integrators::ensemble::sweep_isa();
   if (!isa) return "off";
-  return std::string(integrators::ensemble::isa_name(*isa)) + " (" +
-         std::to_string(integrators::ensemble::isa_lanes(*isa)) + " lanes)";
+  std::string used = std::string(integrators::ensemble::isa_name(*isa)) + " (" +
+                     std::to_string(integrators::ensemble::isa_lanes(*isa)) + " lanes)";
+  std::string why = integrators::ensemble::unsupported_reason(scheme.name, system::make_model(scene));
+  if (why.empty() && (scheme.properties.adaptive || !(cfg.dt > 0.0))) why = "no ensemble for adaptive steps";
+  return why.empty() ? used : used + "; not used: " + why;
 }
 
 std::string fingerprint(const SweepSpec& spec, const system::Scene& scene, const integrators::SchemeInfo& scheme) {
@@ -111,7 +117,7 @@ SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& sce
   if (cfg.tol > 0.0) a.numbers.push_back({"tol", cfg.tol});
   a.provenance = {{"command_line", o.command_line},
                   {"threads", std::to_string(run.threads)},
-                  {"simd", simd_used()},
+                  {"simd", simd_used(scene, scheme, cfg)},
                   {"ranks", std::to_string(run.ranks)},
                   {"resumed", o.resume ? "yes" : "no"},
                   {"utc_start", run.utc_start},

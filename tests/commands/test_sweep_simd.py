@@ -117,3 +117,18 @@ def test_bad_simd_is_refused(tmp_path):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "--simd" in lines[0] and "avx3" in lines[0], r.stderr
     assert not (tmp_path / "bad.h5").exists()
+
+
+def test_provenance_says_when_the_ensemble_was_not_used(tmp_path):
+    # dmv-pre10 has a kernel for the free body only: on a top it runs one trajectory at a time, and says why.
+    top = LEVEL_SET.replace('scheme = "rkmk4"', 'scheme = "dmv-pre10"').replace("t_end = 4.0", "t_end = 0.5")
+    for text, expected in ((top, "not used: no ensemble kernel for dmv-pre10 with torques"), (DMV, None)):
+        out = str(tmp_path / "p.h5")
+        sweep("--spec", spec(tmp_path, text), "--out", out, "--simd", "sse2", "--force", "--quiet")
+        with h5py.File(out, "r") as f:
+            used = f["provenance"].attrs["simd"]
+            used = used.decode() if isinstance(used, bytes) else used
+        if expected:
+            assert used.startswith("sse2") and expected in used, used
+        else:
+            assert "not used" not in used, used
