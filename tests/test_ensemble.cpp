@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/ensemble_test_support.hpp"
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
@@ -25,35 +26,9 @@
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
 using integrators::State;
+using namespace lgi::ensemble_test;
 
 namespace {
-
-/// Bit for bit, except that any two NaNs are equal: IEEE 754 leaves the sign
-/// and payload of a NaN produced by arithmetic unspecified, and SSE2 and x87
-/// paths differ there (a lane started at NaN or infinity).
-bool same_bits(const double* a, const double* b, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!(std::isnan(a[i]) && std::isnan(b[i])) && std::memcmp(a + i, b + i, sizeof(double)) != 0) return false;
-  return true;
-}
-bool same_bits(const State& a, const State& b) {
-  return same_bits(a.R.data(), b.R.data(), 9) && same_bits(a.Pi.data(), b.Pi.data(), 3);
-}
-
-/// Initial states near the scene's: the attitude turned and the momentum
-/// scaled and tilted by a seeded draw (some lanes far from others).
-std::vector<State> initial_states(const State& base, int n, unsigned seed) {
-  std::mt19937_64 gen(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<State> out;
-  for (int l = 0; l < n; ++l) {
-    State s = base;
-    s.R = base.R * lie::exp_so3(lie::Vec3(u(gen), u(gen), u(gen)));
-    s.Pi = (1.5 + u(gen)) * base.Pi + 0.3 * base.Pi.norm() * lie::Vec3(u(gen), u(gen), u(gen));
-    out.push_back(s);
-  }
-  return out;
-}
 
 /// Steps `n` trajectories of model together and one at a time by Rkmk4 and
 /// compares every lane after every step, bit for bit.
@@ -95,9 +70,6 @@ void check_scene_lanes(const system::Scene& scene, const system::AnyModel& model
   }
 }
 
-system::Scene shipped(const std::string& name) {
-  return experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + name + ".toml");
-}
 
 /// A heavy top that also carries a magnetic dipole and a harmonic drive: every term the kernels evaluate.
 system::Scene every_kernel_term() {
@@ -215,74 +187,12 @@ TEST_CASE("what has no ensemble kernel says why", "[ensemble]") {
 
 namespace {
 
-/// Everything a run hands its observer.
-struct Recorder final : integrators::Observer {
-  std::vector<std::int64_t> steps;
-  std::vector<double> times;
-  std::vector<State> states;
-  std::vector<integrators::EventHit> hits;
-  bool stopped = false;
-  void observe(std::int64_t step, double t, const State& s) override {
-    steps.push_back(step), times.push_back(t), states.push_back(s);
-  }
-  void on_event(const integrators::EventHit& hit) override { hits.push_back(hit); }
-  void on_stop() override { stopped = true; }
-};
-
 /// Π1 = 0 both ways and Γ3 = 0.2 rising.
 struct Surfaces final : integrators::EventFunctions {
   int count() const override { return 2; }
   double value(int i, double, const State& x) const override { return i == 0 ? x.Pi(0) : x.R(2, 2) - 0.2; }
   int direction(int i) const override { return i == 0 ? 0 : 1; }
 };
-
-void require_same_run(const Recorder& a, const Recorder& b, const integrators::RunStats& sa,
-                      const integrators::RunStats& sb, const State& xa, const State& xb) {
-  CHECK(sa.steps == sb.steps);
-  CHECK(sa.ok == sb.ok);
-  CHECK(sa.status == sb.status);
-  CHECK(sa.interrupted == sb.interrupted);
-  CHECK(sa.t_final == sb.t_final);
-  CHECK(sa.work.rhs_evaluations == sb.work.rhs_evaluations);
-  CHECK(same_bits(xa, xb));
-  CHECK(a.stopped == b.stopped);
-  REQUIRE(a.steps == b.steps);
-  CHECK(a.times == b.times);
-  for (std::size_t k = 0; k < a.states.size(); ++k) CHECK(same_bits(a.states[k], b.states[k]));
-  REQUIRE(a.hits.size() == b.hits.size());
-  for (std::size_t k = 0; k < a.hits.size(); ++k) {
-    CHECK(a.hits[k].event == b.hits[k].event);
-    CHECK(a.hits[k].direction == b.hits[k].direction);
-    CHECK(a.hits[k].step == b.hits[k].step);
-    CHECK(a.hits[k].t == b.hits[k].t);
-    CHECK(same_bits(a.hits[k].state, b.hits[k].state));
-  }
-}
-
-/// The ensemble loop against the registry's rkmk4 run, lane by lane.
-void check_loop(const system::Scene& scene, const integrators::RunConfig& cfg, std::vector<State> initial) {
-  const system::AnyModel model = system::make_model(scene);
-  const integrators::SchemeInfo& rkmk4 = *integrators::find_scheme("rkmk4");
-  for (const ensemble::Isa isa : ensemble::available_isas()) {
-    auto e = ensemble::EnsembleStepper::make("rkmk4", model, isa);
-    REQUIRE(e);
-    const auto n = std::min(initial.size(), static_cast<std::size_t>(e->lanes()));
-    std::vector<State> states(initial.begin(), initial.begin() + static_cast<std::ptrdiff_t>(n));
-    std::vector<Recorder> recorders(n);
-    std::vector<integrators::Observer*> observers;
-    for (auto& r : recorders) observers.push_back(&r);
-    std::vector<integrators::RunStats> stats(n);
-    ensemble::EnsembleWorkspace ws;
-    ensemble::run_ensemble(*e, model, states, cfg, observers, stats, ws);
-    for (std::size_t l = 0; l < n; ++l) {
-      INFO(ensemble::isa_name(isa) << ", lane " << l);
-      Recorder alone;
-      State x = initial[l];
-      const integrators::RunStats s = rkmk4.run(model, x, cfg, alone);
-      require_same_run(recorders[l], alone, stats[l], s, states[l], x);
-    }
-  }
-}
 
 }  // namespace
 
@@ -293,30 +203,30 @@ TEST_CASE("the ensemble loop gives each lane the scalar loop's run", "[ensemble]
   cfg.cpu_clock = false;
   cfg.events = &surfaces;
   std::vector<State> initial = initial_states(top.initial, 16, 3);
-  SECTION("samples every 7 steps and crossings") { check_loop(top, cfg, initial); }
+  SECTION("samples every 7 steps and crossings") { check_loop("rkmk4", top, cfg, initial); }
   SECTION("output times") {
     const std::vector<double> times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
     cfg.output_times = &times;
-    check_loop(top, cfg, initial);
+    check_loop("rkmk4", top, cfg, initial);
   }
   SECTION("backward in time") {
     cfg.t_end = -2.0;
-    check_loop(top, cfg, initial);
+    check_loop("rkmk4", top, cfg, initial);
   }
   SECTION("a lane that blows up, the others go on") {
     initial[1].Pi(2) = std::numeric_limits<double>::infinity();
     initial[4].Pi(0) = std::numeric_limits<double>::quiet_NaN();
-    check_loop(top, cfg, initial);
+    check_loop("rkmk4", top, cfg, initial);
   }
   SECTION("the stop flag") {
     std::atomic<bool> stop{true};
     cfg.stop = &stop;
-    check_loop(top, cfg, initial);
+    check_loop("rkmk4", top, cfg, initial);
   }
   SECTION("the free body, a step that does not divide the span") {
     const system::Scene free = shipped("free_body_hlw");
     cfg.t_end = 2.005;
-    check_loop(free, cfg, initial_states(free.initial, 5, 9));
+    check_loop("rkmk4", free, cfg, initial_states(free.initial, 5, 9));
   }
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/ensemble_test_support.hpp"
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
@@ -22,37 +23,9 @@
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
 using integrators::State;
+using namespace lgi::ensemble_test;
 
 namespace {
-
-bool same_bits(const State& a, const State& b) {
-  for (int i = 0; i < 9; ++i)
-    if (!(std::isnan(a.R.data()[i]) && std::isnan(b.R.data()[i])) &&
-        std::memcmp(a.R.data() + i, b.R.data() + i, sizeof(double)) != 0)
-      return false;
-  for (int i = 0; i < 3; ++i)
-    if (!(std::isnan(a.Pi(i)) && std::isnan(b.Pi(i))) && std::memcmp(&a.Pi(i), &b.Pi(i), sizeof(double)) != 0)
-      return false;
-  return true;
-}
-
-system::Scene shipped(const std::string& name) {
-  return experiments::read_scene(std::string(LGI_SCENES_DIR) + "/" + name + ".toml");
-}
-
-/// Initial states near the scene's: attitude turned, momentum scaled and tilted by a seeded draw.
-std::vector<State> initial_states(const State& base, int n, unsigned seed) {
-  std::mt19937_64 gen(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<State> out;
-  for (int l = 0; l < n; ++l) {
-    State s = base;
-    s.R = base.R * lie::exp_so3(lie::Vec3(u(gen), u(gen), u(gen)));
-    s.Pi = (1.5 + u(gen)) * base.Pi + 0.3 * base.Pi.norm() * lie::Vec3(u(gen), u(gen), u(gen));
-    out.push_back(s);
-  }
-  return out;
-}
 
 /// The step lengths of the lane test: a run of equal steps (the kernel's), a
 /// change of length (the predictor starts anew), one step far too long (the
@@ -138,63 +111,12 @@ TEST_CASE("what has no dmv-pre ensemble kernel says why", "[ensemble][dmv]") {
 
 namespace {
 
-struct Recorder final : integrators::Observer {
-  std::vector<std::int64_t> steps;
-  std::vector<double> times;
-  std::vector<State> states;
-  std::vector<integrators::EventHit> hits;
-  void observe(std::int64_t step, double t, const State& s) override {
-    steps.push_back(step), times.push_back(t), states.push_back(s);
-  }
-  void on_event(const integrators::EventHit& hit) override { hits.push_back(hit); }
-};
-
 /// Π1 = 0 both ways.
 struct MomentumZero final : integrators::EventFunctions {
   int count() const override { return 1; }
   double value(int, double, const State& x) const override { return x.Pi(0); }
   int direction(int) const override { return 0; }
 };
-
-/// The ensemble loop against the registry's run of `name`, lane by lane.
-void check_loop(const char* name, const system::Scene& scene, const integrators::RunConfig& cfg,
-                const std::vector<State>& initial) {
-  const system::AnyModel model = system::make_model(scene);
-  const integrators::SchemeInfo& scheme = *integrators::find_scheme(name);
-  for (const ensemble::Isa isa : ensemble::available_isas()) {
-    auto e = ensemble::EnsembleStepper::make(name, model, isa);
-    REQUIRE(e);
-    const auto n = std::min(initial.size(), static_cast<std::size_t>(e->lanes()));
-    std::vector<State> states(initial.begin(), initial.begin() + static_cast<std::ptrdiff_t>(n));
-    std::vector<Recorder> recorders(n);
-    std::vector<integrators::Observer*> observers;
-    for (auto& r : recorders) observers.push_back(&r);
-    std::vector<integrators::RunStats> stats(n);
-    ensemble::EnsembleWorkspace ws;
-    ensemble::run_ensemble(*e, model, states, cfg, observers, stats, ws);
-    for (std::size_t l = 0; l < n; ++l) {
-      INFO(name << ", " << ensemble::isa_name(isa) << ", lane " << l);
-      Recorder alone;
-      State x = initial[l];
-      const integrators::RunStats s = scheme.run(model, x, cfg, alone);
-      CHECK(stats[l].steps == s.steps);
-      CHECK(stats[l].status == s.status);
-      CHECK(stats[l].t_final == s.t_final);
-      CHECK(stats[l].work.rhs_evaluations == s.work.rhs_evaluations);
-      CHECK(stats[l].work.newton_iterations_max == s.work.newton_iterations_max);
-      CHECK(stats[l].work.newton_failures == s.work.newton_failures);
-      CHECK(same_bits(states[l], x));
-      REQUIRE(recorders[l].steps == alone.steps);
-      CHECK(recorders[l].times == alone.times);
-      for (std::size_t k = 0; k < alone.states.size(); ++k) CHECK(same_bits(recorders[l].states[k], alone.states[k]));
-      REQUIRE(recorders[l].hits.size() == alone.hits.size());
-      for (std::size_t k = 0; k < alone.hits.size(); ++k) {
-        CHECK(recorders[l].hits[k].t == alone.hits[k].t);
-        CHECK(same_bits(recorders[l].hits[k].state, alone.hits[k].state));
-      }
-    }
-  }
-}
 
 }  // namespace
 

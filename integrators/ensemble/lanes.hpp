@@ -86,54 +86,38 @@ inline Lanes<B, K> sqrt(const Lanes<B, K>& x) {
 }
 inline double sqrt(double x) { return __builtin_sqrt(x); }
 
-/// x < c lane by lane (false for NaN, as in the scalar comparison).
-template <class B, int K>
-inline LaneMask<B, K> less(const Lanes<B, K>& x, double c) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] < B(c);
-  return m;
-}
+/// Comparisons lane by lane, with another lane number or a constant (false
+/// for NaN, as in the scalar comparisons): less, less_equal, greater, equal.
+#define LGI_LANES_COMPARE(name, op)                                                  \
+  template <class B, int K>                                                          \
+  inline LaneMask<B, K> name(const Lanes<B, K>& x, const Lanes<B, K>& y) {           \
+    LaneMask<B, K> m;                                                                \
+    for (int k = 0; k < K; ++k) m.b[k] = x.b[k] op y.b[k];                           \
+    return m;                                                                        \
+  }                                                                                  \
+  template <class B, int K>                                                          \
+  inline LaneMask<B, K> name(const Lanes<B, K>& x, double c) {                       \
+    return name(x, Lanes<B, K>(c));                                                  \
+  }
+LGI_LANES_COMPARE(less, <)
+LGI_LANES_COMPARE(less_equal, <=)
+LGI_LANES_COMPARE(greater, >)
+LGI_LANES_COMPARE(equal, ==)
+#undef LGI_LANES_COMPARE
 inline bool less(double x, double c) { return x < c; }
 
-/// x < y, x ≤ y, x > c and x == c lane by lane (false for NaN, as in the scalar comparisons).
-template <class B, int K>
-inline LaneMask<B, K> less(const Lanes<B, K>& x, const Lanes<B, K>& y) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] < y.b[k];
-  return m;
-}
-template <class B, int K>
-inline LaneMask<B, K> less_equal(const Lanes<B, K>& x, const Lanes<B, K>& y) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] <= y.b[k];
-  return m;
-}
-template <class B, int K>
-inline LaneMask<B, K> greater(const Lanes<B, K>& x, double c) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] > B(c);
-  return m;
-}
-template <class B, int K>
-inline LaneMask<B, K> equal(const Lanes<B, K>& x, double c) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] == B(c);
-  return m;
-}
-/// Both masks.
-template <class B, int K>
-inline LaneMask<B, K> operator&(const LaneMask<B, K>& x, const LaneMask<B, K>& y) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] && y.b[k];
-  return m;
-}
-/// Either mask.
-template <class B, int K>
-inline LaneMask<B, K> operator|(const LaneMask<B, K>& x, const LaneMask<B, K>& y) {
-  LaneMask<B, K> m;
-  for (int k = 0; k < K; ++k) m.b[k] = x.b[k] || y.b[k];
-  return m;
-}
+/// Both masks (&), either mask (|).
+#define LGI_LANES_MASK(op, logical)                                                  \
+  template <class B, int K>                                                          \
+  inline LaneMask<B, K> operator op(const LaneMask<B, K>& x, const LaneMask<B, K>& y) { \
+    LaneMask<B, K> m;                                                                \
+    for (int k = 0; k < K; ++k) m.b[k] = x.b[k] logical y.b[k];                      \
+    return m;                                                                        \
+  }
+LGI_LANES_MASK(&, &&)
+LGI_LANES_MASK(|, ||)
+#undef LGI_LANES_MASK
+
 /// |x| lane by lane (clears the sign bit, as std::abs does).
 template <class B, int K>
 inline Lanes<B, K> abs(const Lanes<B, K>& x) {
