@@ -178,7 +178,7 @@ TEST_CASE("what has no ensemble kernel says why", "[ensemble]") {
   CHECK_THAT(ensemble::unsupported_reason("rkmk4", spring), Catch::Contains("spring"));
   CHECK_FALSE(ensemble::EnsembleStepper::make("rkmk4", spring, ensemble::Isa::baseline));
   const system::AnyModel free = system::make_model(shipped("free_body_hlw"));
-  CHECK_THAT(ensemble::unsupported_reason("lgvi", free), Catch::Contains("no ensemble kernel"));
+  CHECK_THAT(ensemble::unsupported_reason("cf4", free), Catch::Contains("no ensemble kernel"));
   CHECK(ensemble::has_kernel("rkmk4"));
   CHECK(ensemble::parse_isa(ensemble::isa_name(ensemble::Isa::avx2)) == ensemble::Isa::avx2);
   CHECK_FALSE(ensemble::parse_isa("avx3"));

@@ -1,4 +1,5 @@
-// The ensemble kernel of the preprocessed DMV (integrators/ensemble/dmv_kernel.hpp,
+// The ensemble kernel of the DMV schemes, dmv, lgvi and the preprocessed
+// dmv-pre* (integrators/ensemble/dmv_kernel.hpp,
 // docs/ensemble.md): every lane is bit for bit the scalar scheme's
 // trajectory, on every instruction set this CPU has, through the steps the
 // kernel takes and those it leaves to the scalar scheme (the first six, a
@@ -38,8 +39,8 @@ std::vector<double> step_lengths(double h) {
   return out;
 }
 
-/// n trajectories stepped together and one at a time by DmvPreprocessed<Order>, compared after every step.
-template <int Order>
+/// n trajectories stepped together and one at a time by Scheme, compared after every step.
+template <class Scheme>
 void check_lanes(const system::Scene& scene, const char* name, ensemble::Isa isa, int n) {
   const system::AnyModel any = system::make_model(scene);
   const auto& model = std::get<system::FreeBody>(any);
@@ -47,7 +48,7 @@ void check_lanes(const system::Scene& scene, const char* name, ensemble::Isa isa
   REQUIRE(e);
   REQUIRE(e->has_memory());
   std::vector<State> scalar = initial_states(scene.initial, n, 23u + static_cast<unsigned>(n));
-  std::vector<integrators::DmvPreprocessed<Order>> schemes(static_cast<std::size_t>(n));
+  std::vector<Scheme> schemes(static_cast<std::size_t>(n));
   for (int l = 0; l < e->lanes(); ++l) e->start_lane(l, scalar[static_cast<std::size_t>(l < n ? l : 0)], 0.0);
   for (int l = 0; l < n; ++l) schemes[static_cast<std::size_t>(l)].start(model, scalar[static_cast<std::size_t>(l)], 0.0);
   int mismatches = 0, status_mismatches = 0, refused = 0;
@@ -81,7 +82,7 @@ void check_lanes(const system::Scene& scene, const char* name, ensemble::Isa isa
 
 }  // namespace
 
-TEST_CASE("ensemble lanes are dmv-pre bit for bit on every instruction set", "[ensemble][dmv]") {
+TEST_CASE("ensemble lanes are dmv, lgvi and dmv-pre bit for bit on every instruction set", "[ensemble][dmv]") {
   for (const char* name : {"free_body_hlw", "dzhanibekov_book_axis2", "dzhanibekov_book_axis1"}) {
     const system::Scene scene = shipped(name);
     INFO(name);
@@ -89,8 +90,10 @@ TEST_CASE("ensemble lanes are dmv-pre bit for bit on every instruction set", "[e
     for (const ensemble::Isa isa : ensemble::available_isas()) {
       const int lanes = ensemble::isa_lanes(isa);
       for (const int n : {1, 3, lanes}) {
-        check_lanes<10>(scene, "dmv-pre10", isa, n);
-        check_lanes<4>(scene, "dmv-pre4", isa, n);
+        check_lanes<integrators::DmvPre10>(scene, "dmv-pre10", isa, n);
+        check_lanes<integrators::DmvPre4>(scene, "dmv-pre4", isa, n);
+        check_lanes<integrators::Dmv>(scene, "dmv", isa, n);
+        check_lanes<integrators::Lgvi>(scene, "lgvi", isa, n);
       }
     }
   }
@@ -105,8 +108,10 @@ TEST_CASE("what has no dmv-pre ensemble kernel says why", "[ensemble][dmv]") {
       "[initial]\nangular_velocity = [0.1, 1.0, 0.2]\n",
       "tilted.toml");
   CHECK_THAT(ensemble::unsupported_reason("dmv-pre10", system::make_model(tilted)), Catch::Contains("non-diagonal"));
+  CHECK_THAT(ensemble::unsupported_reason("lgvi", top), Catch::Contains("torques"));
   CHECK(ensemble::has_kernel("dmv-pre6"));
-  CHECK_FALSE(ensemble::has_kernel("dmv"));
+  CHECK(ensemble::has_kernel("dmv"));
+  CHECK_FALSE(ensemble::has_kernel("cf4"));
 }
 
 namespace {
@@ -132,6 +137,10 @@ TEST_CASE("the ensemble loop gives each dmv-pre lane the scalar loop's run", "[e
     const std::vector<double> times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
     cfg.output_times = &times;
     check_loop("dmv-pre6", body, cfg, initial);
+  }
+  SECTION("dmv and lgvi") {
+    check_loop("dmv", body, cfg, initial);
+    check_loop("lgvi", body, cfg, initial);
   }
   SECTION("backward in time, a step that does not divide the span") {
     cfg.t_end = -2.005;

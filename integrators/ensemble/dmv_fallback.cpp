@@ -1,4 +1,5 @@
-// The scalar preprocessed DMV behind the lanes of dmv_kernel.hpp (lane_fallback.hpp).
+// The scalar DMV schemes behind the lanes of dmv_kernel.hpp (lane_fallback.hpp):
+// dmv, lgvi and the preprocessed dmv-pre4 … dmv-pre10.
 #include <array>
 #include <limits>
 #include <vector>
@@ -11,10 +12,9 @@ namespace lgi::integrators::ensemble {
 
 namespace {
 
-template <int Order>
+template <class Scheme>
 class DmvFallback final : public LaneFallback {
  public:
-  using Scheme = DmvPreprocessed<Order>;
 
   explicit DmvFallback(const system::FreeBody& model) : model_(model) { buffer_.reserve(dmv_rows::memory); }
 
@@ -25,9 +25,11 @@ class DmvFallback final : public LaneFallback {
     save(lane, memory);
     // The lane's constants change: the kernel's table of moments starts empty.
     for (double& key : memory.moments_h) key = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t k = 0; k < 4; ++k) {
-      memory.row[dmv_rows::css + static_cast<int>(k)][lane] = scheme.css_in_h2()[k];
-      memory.row[dmv_rows::cdd + static_cast<int>(k)][lane] = scheme.cdd_in_h2()[k];
+    if constexpr (requires { scheme.css_in_h2(); }) {  // the preprocessed schemes' series
+      for (std::size_t k = 0; k < 4; ++k) {
+        memory.row[dmv_rows::css + static_cast<int>(k)][lane] = scheme.css_in_h2()[k];
+        memory.row[dmv_rows::cdd + static_cast<int>(k)][lane] = scheme.cdd_in_h2()[k];
+      }
     }
     return st;
   }
@@ -78,8 +80,16 @@ class DmvFallback final : public LaneFallback {
 
 template <int Order>
 std::unique_ptr<LaneFallback> make_for(const system::FreeBody& model, EnsembleModel& constants) {
+  constants.preprocessed = true;
   constants.series_degrees = moser_veselov::ModifiedInertiaSeries<Order>::degrees;
-  return std::make_unique<DmvFallback<Order>>(model);
+  return std::make_unique<DmvFallback<DmvPreprocessed<Order>>>(model);
+}
+/// dmv and lgvi: the moments of J (moser_veselov::DiagonalInertia).
+template <class Scheme>
+std::unique_ptr<LaneFallback> make_unprocessed(const system::FreeBody& model, EnsembleModel& constants) {
+  constants.preprocessed = false;
+  for (int i = 0; i < 3; ++i) constants.moments[i] = model.inertia.J(i, i);
+  return std::make_unique<DmvFallback<Scheme>>(model);
 }
 
 }  // namespace
@@ -88,6 +98,8 @@ std::unique_ptr<LaneFallback> make_dmv_fallback(std::string_view scheme, const s
                                                 EnsembleModel& constants) {
   static_assert(12 + moser_veselov::CayleyPredictor::memory_size == static_cast<std::size_t>(dmv_rows::memory),
                 "dmv_rows must follow StepMemory::save");
+  if (scheme == "dmv") return make_unprocessed<Dmv>(model, constants);
+  if (scheme == "lgvi") return make_unprocessed<Lgvi>(model, constants);
   if (scheme == "dmv-pre4") return make_for<4>(model, constants);
   if (scheme == "dmv-pre6") return make_for<6>(model, constants);
   if (scheme == "dmv-pre8") return make_for<8>(model, constants);

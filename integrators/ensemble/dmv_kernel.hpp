@@ -1,6 +1,6 @@
 #pragma once
-// The preprocessed DMV step (dmv-pre4 … dmv-pre10, moser_veselov.hpp) on a
-// free body with diagonal J, for lane numbers: the common step of a run, in
+// The DMV step (dmv, lgvi and the preprocessed dmv-pre4 … dmv-pre10,
+// moser_veselov.hpp) on a free body with diagonal J, for lane numbers: the common step of a run, in
 // which the predictor holds six steps of this length and its guess passes
 // after one Newton correction (moser_veselov_diagonal.hpp,
 // solve_cayley_parameter_predicted). Every other case (the first six steps,
@@ -11,8 +11,9 @@
 // happens in it. Operation for operation, the scalar path it repeats is:
 //   turns_too_far: (h h) |J⁻¹ ∘ Π|² < π² (DiagonalInertia::turns_too_far);
 //   the moments: x = h², css = 1 + x p(x), cdd = 0 + x q(x) by Horner
-//     (horner_in_h2), 1/Ĩ = css J⁻¹ + cdd, all > 0, Ĩ = 1/(1/Ĩ), c and the
-//     Veltkamp split of Ĩ (DiagonalMoments);
+//     (horner_in_h2), 1/Ĩ = css J⁻¹ + cdd, all > 0, Ĩ = 1/(1/Ĩ) (dmv and
+//     lgvi: Ĩ = the moments of J), c and the Veltkamp split of Ĩ
+//     (DiagonalMoments);
 //   the guess ((6 f₀ − 15 f₁) + (20 f₂ − 15 f₃)) + (6 f₄ − f₅) (CayleyPredictor);
 //   a = h Π, ψ at the guess with Dekker's exact products (DiagonalResidual),
 //     the Jacobian, Cramer's rule, f = p − δ, accepted when
@@ -51,8 +52,9 @@ inline T horner_in_h2(const LaneMemory& memory, int first_row, int degree, doubl
 }
 
 /// The modified moments Ĩ at step h for every lane (1/Ĩ = css J⁻¹ + cdd with
-/// css, cdd the lane's series in x = h², DmvPreprocessed::free_step), Ĩ's
-/// split and c (DiagonalMoments), and where 1/Ĩ > 0; from the table of
+/// css, cdd the lane's series in x = h², DmvPreprocessed::free_step; for dmv
+/// and lgvi the moments of J, DiagonalInertia), Ĩ's split and c
+/// (DiagonalMoments), and where 1/Ĩ > 0; from the table of
 /// LaneMemory where it holds this h, else computed and entered. A hit gives
 /// what the computation gives, so the lanes do not depend on the table.
 template <class T>
@@ -69,15 +71,21 @@ inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h
     }
     return equal(load<B, K>(rows[12]), 1.0);
   }
-  const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
-  const double x = h * h;
-  const T css = horner_in_h2<T>(memory, dmv_rows::css, model.series_degrees, x, 1.0);
-  const T cdd = horner_in_h2<T>(memory, dmv_rows::cdd, model.series_degrees, x, 0.0);
-  auto positive = greater(css * Jd[0] + cdd, 0.0);
+  auto positive = equal(T(0.0), 0.0);  // dmv and lgvi: the moments of J, no test
+  if (!model.preprocessed) {
+    for (int i = 0; i < 3; ++i) I[i] = T(model.moments[i]);
+  } else {
+    const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
+    const double x = h * h;
+    const T css = horner_in_h2<T>(memory, dmv_rows::css, model.series_degrees, x, 1.0);
+    const T cdd = horner_in_h2<T>(memory, dmv_rows::cdd, model.series_degrees, x, 0.0);
+    for (int i = 0; i < 3; ++i) {
+      const T moment_inv = css * Jd[i] + cdd;
+      positive = positive & greater(moment_inv, 0.0);
+      I[i] = 1.0 / moment_inv;
+    }
+  }
   for (int i = 0; i < 3; ++i) {
-    const T moment_inv = css * Jd[i] + cdd;
-    positive = positive & greater(moment_inv, 0.0);
-    I[i] = 1.0 / moment_inv;
     const T split = 134217729.0 * I[i];
     I_hi[i] = split - (split - I[i]);
     I_lo[i] = I[i] - I_hi[i];

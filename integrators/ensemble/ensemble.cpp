@@ -34,7 +34,7 @@ KernelSet kernels(Isa isa) {
 }
 
 /// A scheme's kernel in a KernelSet, its cost per step, and whether it is the
-/// preprocessed DMV's (free body with diagonal J, a scalar scheme behind each lane).
+/// DMV family's (free body with diagonal J, a scalar scheme behind each lane).
 struct SchemeKernel {
   std::string_view name;
   StepKernel KernelSet::*kernel;
@@ -43,6 +43,8 @@ struct SchemeKernel {
 };
 constexpr SchemeKernel scheme_kernels[] = {
     {"rkmk4", &KernelSet::rkmk4, 4},
+    {"dmv", &KernelSet::dmv_pre, 1, true},
+    {"lgvi", &KernelSet::dmv_pre, 1, true},
     {"dmv-pre4", &KernelSet::dmv_pre, 1, true},
     {"dmv-pre6", &KernelSet::dmv_pre, 1, true},
     {"dmv-pre8", &KernelSet::dmv_pre, 1, true},

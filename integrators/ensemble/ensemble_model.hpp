@@ -26,9 +26,12 @@ struct EnsembleModel {
   bool magnetic = false;
   double magnetic_field[3] = {0.0, 0.0, 0.0};         // B, space frame (terms/magnetic_dipole.hpp)
   double magnetic_minus_moment[3] = {0.0, 0.0, 0.0};  // −μ
-  // The preprocessed DMV schemes (dmv_kernel.hpp): the degree of the
-  // modified-inertia series in h² (moser_veselov_series.hpp).
+  // The DMV schemes (dmv_kernel.hpp): for dmv-pre*, the degree of the
+  // modified-inertia series in h² (moser_veselov_series.hpp); for dmv and
+  // lgvi, no series (preprocessed = false) and the moments J_ii themselves.
+  bool preprocessed = true;
   int series_degrees = 0;
+  double moments[3] = {1.0, 1.0, 1.0};
 };
 
 /// Storage of one ensemble: 12 rows (R(0,0), R(0,1), …, R(2,2), Π1, Π2, Π3)
@@ -85,7 +88,7 @@ struct KernelSet {
   const char* isa = "";  // "sse2", "avx2", "avx512"
   int lanes = 0;
   StepKernel rkmk4 = nullptr;
-  StepKernel dmv_pre = nullptr;  // dmv-pre4 … dmv-pre10 on a free body with diagonal J
+  StepKernel dmv_pre = nullptr;  // dmv, lgvi, dmv-pre4 … dmv-pre10 on a free body with diagonal J
 };
 
 // One per instruction set (ensemble_<isa>.cpp); call only where the CPU has it.

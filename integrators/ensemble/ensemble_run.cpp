@@ -26,6 +26,8 @@ void run_ensemble(EnsembleStepper& e, const system::AnyModel& model, std::span<S
       stats.size() != states.size())
     throw std::invalid_argument("run_ensemble: at most lanes() states, one observer and one RunStats each");
   if (e.scheme() == "rkmk4") return run_with<Rkmk4>(e, model, states, cfg, observers, stats, ws);
+  if (e.scheme() == "dmv") return run_with<Dmv>(e, model, states, cfg, observers, stats, ws);
+  if (e.scheme() == "lgvi") return run_with<Lgvi>(e, model, states, cfg, observers, stats, ws);
   if (e.scheme() == "dmv-pre4") return run_with<DmvPre4>(e, model, states, cfg, observers, stats, ws);
   if (e.scheme() == "dmv-pre6") return run_with<DmvPre6>(e, model, states, cfg, observers, stats, ws);
   if (e.scheme() == "dmv-pre8") return run_with<DmvPre8>(e, model, states, cfg, observers, stats, ws);

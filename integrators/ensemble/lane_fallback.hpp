@@ -38,7 +38,7 @@ class LaneFallback {
                          WorkCounters& work) = 0;
 };
 
-/// The fallback of dmv-pre4 … dmv-pre10 on a free body; sets the kernel's
+/// The fallback of dmv, lgvi and dmv-pre4 … dmv-pre10 on a free body; sets the kernel's
 /// constants in `constants`. nullptr for any other scheme name.
 std::unique_ptr<LaneFallback> make_dmv_fallback(std::string_view scheme, const system::FreeBody& model,
                                                 EnsembleModel& constants);
