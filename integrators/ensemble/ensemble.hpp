@@ -4,9 +4,9 @@
 // computes one at a time (docs/ensemble.md). Kernels exist for rkmk4 on the
 // free body and on scenes whose torques are gravity, the harmonic drive and
 // the magnetic dipole (not the spring), and for dmv, lgvi and dmv-pre4 …
-// dmv-pre10 on a
-// free body with diagonal J (with the scalar scheme behind each lane for the
-// steps the kernel leaves, lane_fallback.hpp); they are compiled for the baseline
+// dmv-pre10 on a free body with diagonal J (with the scalar scheme behind
+// each lane for the steps the kernel leaves, lane_fallback.hpp); they are
+// compiled for the baseline
 // instruction set (SSE2 on x86-64) and, on x86-64, for AVX2 and AVX-512F
 // (without FMA), chosen at run time from what the CPU supports.
 //
