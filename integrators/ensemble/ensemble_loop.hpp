@@ -48,9 +48,11 @@ inline void add_work(WorkCounters& run, const WorkCounters& step) {
 }
 /// Counts lane l's step k + 1 in st as integrate_fixed does; returns whether
 /// the lane's run ends there (a refusal or a solve that did not converge).
+/// Inlined: called for every lane and step, and GCC kept it out of line (8% of
+/// a dmv-pre10 ensemble run, perf; 14% faster inlined).
 template <class Scheme>
-bool count_lane_step(const EnsembleStepper& e, int l, const Scheme& scheme, const RunConfig& cfg, std::int64_t k,
-                     double t_next, RunStats& st) {
+[[gnu::always_inline]] inline bool count_lane_step(const EnsembleStepper& e, int l, const Scheme& scheme,
+                                                   const RunConfig& cfg, std::int64_t k, double t_next, RunStats& st) {
   if (!e.has_memory() || e.kernel_stepped(l)) {  // the kernel's step: as outcome() would say, without a call
     st.steps = k + 1;
     st.work.rhs_evaluations += e.rhs_per_step();
