@@ -20,11 +20,12 @@
 //     |δ|² ≤ 1e-20 |f|² and |δ|² is finite;
 //   R ← R cay(2f), Π ← cay(2f)ᵀ Π as compensated sums (apply_cayley_step);
 //   the history shifted, f first.
-// tests/test_ensemble.cpp checks the lanes against DmvPreprocessed step by step.
+// tests/test_ensemble_dmv.cpp checks the lanes against the scalar schemes step by step.
 #include <bit>
 #include <cstdint>
 #include <numbers>
 
+#include "integrators/compensated_sum.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lanes.hpp"
@@ -114,12 +115,6 @@ inline void apply_cayley_step(const T (&f)[3], T (&P)[3], T (&cP)[3], T (&R)[9],
   for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) dR[3 * i + j] = (R[3 * i] * cN[j] + R[3 * i + 1] * cN[3 + j]) + R[3 * i + 2] * cN[6 + j];
-  auto add_compensated = [](T& sum, const T& delta, T& carry) {  // compensated_sum.hpp
-    const T d = delta - carry;
-    const T t = sum + d;
-    carry = (t - sum) - d;
-    sum = t;
-  };
   for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
   for (int k = 0; k < 9; ++k) add_compensated(R[k], dR[k], cR[k]);
 }
