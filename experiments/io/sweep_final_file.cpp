@@ -3,6 +3,7 @@
 // index (and in time within a trajectory), /parameters and /provenance.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -107,9 +108,9 @@ class EventColumns {
 struct RowOffsets {
   std::vector<std::int64_t> events, samples;
 };
-RowOffsets copy_event_rows(const SweepHdf5& in, hid_t partial, const std::vector<std::int64_t>& first,
-                           const std::vector<std::int64_t>& crossings, const std::vector<std::int64_t>& samples,
-                           EventColumns& events, EventColumns* trajectory) {
+RowOffsets copy_event_rows(const SweepHdf5& in, const hdf5::Fail& fail_in, hid_t partial,
+                           const std::vector<std::int64_t>& first, const std::vector<std::int64_t>& crossings,
+                           const std::vector<std::int64_t>& samples, EventColumns& events, EventColumns* trajectory) {
   const auto n = static_cast<std::int64_t>(first.size());
   RowOffsets at{std::vector<std::int64_t>(first.size()), std::vector<std::int64_t>(first.size())};
   std::vector<double> batch, crossing_rows, sample_rows;
@@ -144,6 +145,16 @@ RowOffsets copy_event_rows(const SweepHdf5& in, hid_t partial, const std::vector
       batch.resize(old + static_cast<std::size_t>(total * event_row_width));
       in.read_rows(partial, "/partial/events_" + std::to_string(start >> block_shift), H5T_NATIVE_DOUBLE,
                    start & ((std::int64_t{1} << block_shift) - 1), total, event_row_width, batch.data() + old);
+      // The integer columns (index, event, direction, step) as the run wrote them:
+      // a damaged partial file must be reported, not reach EventColumns' integer casts.
+      for (std::size_t q = old; q < batch.size(); q += event_row_width)
+        for (int col = 0; col < 4; ++col) {
+          const double v = batch[q + static_cast<std::size_t>(col)];
+          const double bound = col == 1 || col == 2 ? 2147483647.0 : 9.0e18;
+          if (!(std::abs(v) <= bound && v == std::floor(v)))
+            fail_in("/partial/events_" + std::to_string(start >> block_shift) +
+                    ": a crossing row whose index, event, direction or step is not an integer in range");
+        }
       if (batch.size() >= static_cast<std::size_t>(65536 * event_row_width)) flush();
     }
     r = end;
@@ -254,7 +265,7 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
     trajectory_group = hdf5::create_group(file.get(), "/trajectory", fail_out);
     trajectory = std::make_unique<EventColumns>(trajectory_group.get(), false, sample_rows, fail_out);
   }
-  const RowOffsets at = copy_event_rows(in, file_.get(), first, crossings, samples, events, trajectory.get());
+  const RowOffsets at = copy_event_rows(in, fail_in, file_.get(), first, crossings, samples, events, trajectory.get());
   out.write_whole(dst.get(), "event_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, at.events.data());
   if (layout_.trajectories)
     out.write_whole(dst.get(), "sample_first", H5T_STD_I64LE, H5T_NATIVE_INT64, n, 1, at.samples.data());
