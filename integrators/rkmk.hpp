@@ -14,7 +14,8 @@
 // truncation condition applies). Conserves: RᵀR = I to round-off (the
 // attitude only moves by exp); no invariant of the dynamics exactly.
 // For a free body the stage attitudes R_i are never formed: the momentum
-// field does not depend on R. exp and dexp⁻¹ are those of the adaptive pairs
+// field does not depend on R; otherwise only the rows the torque reads are
+// (gravity: Γ = Rᵀe3, rkmk_pair_kernels.hpp's stage_attitude). exp and dexp⁻¹ are those of the adaptive pairs
 // (rkmk_pair_kernels.hpp: Taylor series below θ = 1, so no sin or cos in a
 // usual step), whose source lie/exp_series.hpp the ensemble kernel shares.
 #include <array>
@@ -36,6 +37,7 @@ class Rkmk {
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
     std::array<Vec3, stages> k_algebra;  // k̃_i
     std::array<Vec3, stages> k_momentum; // K_i
+    const unsigned rows = rkmk_pair_detail::torque_rows(model);  // of R_i the torque reads
     for (std::size_t i = 0; i < stages; ++i) {
       Vec3 w = Vec3::Zero();
       Vec3 dPi = Vec3::Zero();
@@ -56,8 +58,13 @@ class Rkmk {
         rkmk_pair_detail::dexpinv(w.data(), Omega_i, m, k_algebra[i].data());
       }
       if constexpr (Model::has_torque) {
-        const Mat3 R_i = i == 0 ? s.R : rkmk_pair_detail::times_exp(s.R, w.data(), m);
-        k_momentum[i] = model.momentum_rate(R_i, Pi_i, Omega_i, t + Tableau.c[i] * h);
+        if (i == 0) {
+          k_momentum[i] = model.momentum_rate(s.R, Pi_i, Omega_i, t);
+        } else {
+          Mat3 R_i;
+          rkmk_pair_detail::stage_attitude(s.R, w.data(), m, rows, R_i);
+          k_momentum[i] = model.momentum_rate(R_i, Pi_i, Omega_i, t + Tableau.c[i] * h);
+        }
       } else {
         k_momentum[i] = model.momentum_rate(s.R, Pi_i, Omega_i, t);
       }

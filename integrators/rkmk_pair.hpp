@@ -20,8 +20,8 @@
 //   err = E(e) for an embedded pair, err = E(e5)²/sqrt(E(e5)² + 0.01 E(e3)²)
 //   for DOP853's 8(5,3) estimator (HNW I §II.10).
 // exp(w) and dexp⁻¹(w) share one sin/cos of θ/2, or a Taylor series below
-// θ = 0.3 (rkmk_pair_kernels.hpp). The stage attitude R_i is formed only when
-// the model has a torque.
+// θ = 1 (rkmk_pair_kernels.hpp). The stage attitude R_i is formed only when
+// the model has a torque, and only the rows the torque reads (gravity: Γ = Rᵀe3).
 //
 // Step control: PI controller (Gustafsson, ACM TOMS 17 (1991) 533–554;
 // HNW I §II.4 after eq. (4.13); the form of Hairer's DOPRI5/DOP853 codes):
@@ -150,6 +150,7 @@ class RkmkPair {
     t_n_ = t;
     h_ = h;
     dense_ready_ = false;
+    torque_rows_ = rkmk_pair_detail::torque_rows(model);
     work.rhs_evaluations += run_stages(model, std::make_index_sequence<stages>{});
 
     // The propagated solution: for an FSAL pair the last stage sits there.
@@ -229,6 +230,10 @@ class RkmkPair {
   static Vec3 omega_of(const Model& model, const Vec3& Pi) {
     if constexpr (requires { model.inertia.J_inv; }) {
       const Mat3& J = model.inertia.J_inv;
+      // A diagonal J⁻¹ (J's off-diagonal entries exactly 0) gives the same
+      // products without the zero terms, one multiply deep on the stage's
+      // critical path Π_i → Ω_i → K_i instead of three operations.
+      if (model.inertia.diagonal) return Vec3(J(0, 0) * Pi(0), J(1, 1) * Pi(1), J(2, 2) * Pi(2));
       return Vec3(J(0, 0) * Pi(0) + J(0, 1) * Pi(1) + J(0, 2) * Pi(2),
                   J(1, 0) * Pi(0) + J(1, 1) * Pi(1) + J(1, 2) * Pi(2),
                   J(2, 0) * Pi(0) + J(2, 1) * Pi(1) + J(2, 2) * Pi(2));
@@ -294,9 +299,15 @@ class RkmkPair {
       rkmk_pair_detail::dexpinv(w, Omega_i, m, k_[I].data());
       Vec3 K;
       if constexpr (Model::has_torque) {
-        const Mat3 R_i = rkmk_pair_detail::times_exp(R_n_, w, m);
-        K = model.momentum_rate(R_i, Pi_i, Omega_i, t_n_ + c_i<I>() * h_);
-        if constexpr (I == stages - 1) R_last_ = R_i;
+        // FSAL: the last stage's attitude is the new point's, needed whole.
+        if constexpr (fsal && I == stages - 1) {
+          R_last_ = rkmk_pair_detail::times_exp(R_n_, w, m);
+          K = model.momentum_rate(R_last_, Pi_i, Omega_i, t_n_ + c_i<I>() * h_);
+        } else {
+          Mat3 R_i;
+          rkmk_pair_detail::stage_attitude(R_n_, w, m, torque_rows_, R_i);
+          K = model.momentum_rate(R_i, Pi_i, Omega_i, t_n_ + c_i<I>() * h_);
+        }
       } else {
         K = model.momentum_rate(R_n_, Pi_i, Omega_i, t_n_);
       }
@@ -378,6 +389,7 @@ class RkmkPair {
   std::array<double, 3> w_last_{};
   Vec3 Pi_last_ = Vec3::Zero();
   Mat3 R_last_ = Mat3::Identity();
+  unsigned torque_rows_ = 0b111u;  // the rows of a stage attitude the torque reads
   Vec3 first_K_ = Vec3::Zero();
 };
 

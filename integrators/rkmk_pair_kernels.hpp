@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "lie/exp_series.hpp"
 #include "lie/so3.hpp"
@@ -49,6 +50,34 @@ inline Mat3 times_exp(const Mat3& R, const double* w, const MapCoefficients& m) 
     out(i, 2) = o[2];
   }
   return out;
+}
+
+/// The rows of R a model's torque reads (RigidBody::attitude_rows()); all
+/// three for a model that does not say.
+template <class Model>
+unsigned torque_rows(const Model& model) {
+  if constexpr (requires { model.attitude_rows(); }) return model.attitude_rows();
+  else return 0b111u;
+}
+
+/// A stage attitude R exp(ŵ) as the torque needs it: the rows in `rows` (bit i:
+/// row i), the others NaN, so that a term reading a row it did not declare
+/// makes the run fail instead of using a stale row (torque_term.hpp). Gravity
+/// reads only Γ = Rᵀe3: one row instead of three (a quarter of a DOP853 step
+/// on a heavy top).
+inline void stage_attitude(const Mat3& R, const double* w, const MapCoefficients& m, unsigned rows, Mat3& out) {
+  for (int i = 0; i < 3; ++i) {
+    if ((rows >> i) & 1u) {
+      const double r[3] = {R(i, 0), R(i, 1), R(i, 2)};
+      double o[3];
+      lie::exp_series::times_exp_row(r, w, m.a, m.b, o);
+      out(i, 0) = o[0];
+      out(i, 1) = o[1];
+      out(i, 2) = o[2];
+    } else {
+      out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
 }
 
 /// k̃ = dexp⁻¹_body(w) Ω into out[0..2].

@@ -45,6 +45,17 @@ struct RigidBody {
 
   Vec3 omega(const Vec3& Pi) const { return inertia.J_inv * Pi; }
 
+  /// The rows of R that torque() reads (bit i: row i; TermTraits::attitude_rows)
+  /// over the terms in use; a Declared term that is off reads none.
+  unsigned attitude_rows() const {
+    unsigned rows = 0;
+    for_each_term([&](const auto& term) {
+      if constexpr (requires { term.attitude_rows(); }) rows |= term.attitude_rows();
+      else rows |= std::remove_cvref_t<decltype(term)>::traits.attitude_rows;
+    });
+    return rows;
+  }
+
   /// Body torque, the sum of the declared terms (zero for a free body, at no cost).
   Vec3 torque(const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) const {
     if constexpr (!has_torque) {

@@ -31,6 +31,8 @@ struct Declared {
   bool active = false;
 
   static constexpr TermTraits traits = T::traits;
+  /// The rows of R read by the torque as declared (TermTraits::attitude_rows): none when inactive.
+  unsigned attitude_rows() const { return active ? traits.attitude_rows : 0u; }
 
   Vec3 torque(const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) const {
     return active ? term.torque(R, Pi, Omega, t) : Vec3::Zero();

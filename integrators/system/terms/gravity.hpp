@@ -19,7 +19,8 @@ struct GravityTerm {
   };
   static constexpr const char* scene_table = "gravity";
   static constexpr TermTraits traits{
-      .time_dependent = false, .momentum_dependent = false, .may_be_conservative = true, .linear_in_attitude = true};
+      .time_dependent = false, .momentum_dependent = false, .may_be_conservative = true, .linear_in_attitude = true,
+      .attitude_rows = 0b100};  // Γ = Rᵀe3 is row 2 of R
 
   double mass = 0.0;
   double g = 0.0;

@@ -16,7 +16,8 @@ struct HarmonicDriveTerm {
   };
   static constexpr const char* scene_table = "drive";
   static constexpr TermTraits traits{
-      .time_dependent = true, .momentum_dependent = false, .may_be_conservative = false, .linear_in_attitude = false};
+      .time_dependent = true, .momentum_dependent = false, .may_be_conservative = false, .linear_in_attitude = false,
+      .attitude_rows = 0};  // τ does not depend on R
 
   Vec3 amplitude = Vec3::Zero();
   double angular_frequency = 0.0;

@@ -34,6 +34,12 @@ struct TermTraits {
   /// Then τ at a non-orthogonal matrix is the same formula, and the
   /// Lie–Poisson reduction to (Π, Rᵀe) applies.
   bool linear_in_attitude = false;
+  /// The rows of R that torque() reads, bit i for row i (gravity reads only
+  /// Γ = Rᵀe3, row 2: 0b100). The RKMK schemes form only these rows of a
+  /// stage's attitude and fill the others with NaN, so a term that reads a row
+  /// it did not declare makes the run fail, never silently wrong
+  /// (tests/test_attitude_rows.cpp checks every term).
+  unsigned attitude_rows = 0b111;
 };
 
 /// The scene's body, as the terms that depend on it need it.
