@@ -65,6 +65,7 @@
 #include <vector>
 
 #include "integrators/compensated_sum.hpp"
+#include "integrators/exact_products.hpp"
 #include "integrators/scheme_interface.hpp"
 
 namespace lgi::integrators::moser_veselov {
@@ -74,20 +75,6 @@ inline constexpr int max_newton_iterations = 50;
 /// Whether J has exactly zero off-diagonal entries (then the fast path applies).
 inline bool is_diagonal(const Mat3& J) {
   return J(0, 1) == 0.0 && J(0, 2) == 0.0 && J(1, 0) == 0.0 && J(1, 2) == 0.0 && J(2, 0) == 0.0 && J(2, 1) == 0.0;
-}
-
-/// Veltkamp's split x = hi + lo, each with at most 26 significant bits (Dekker 1971).
-inline void veltkamp_split(double x, double& hi, double& lo) {
-  const double c = 134217729.0 * x;  // 2^27 + 1
-  hi = c - (c - x);
-  lo = x - hi;
-}
-
-/// x y − p exactly for p = fl(x y) (Dekker's two-product), x given split.
-inline double product_error(double x_hi, double x_lo, double y, double p) {
-  double y_hi, y_lo;
-  veltkamp_split(y, y_hi, y_lo);
-  return ((x_hi * y_hi - p) + x_hi * y_lo + x_lo * y_hi) + x_lo * y_lo;
 }
 
 /// The moments I and the constants derived from them: μ = 1/I and

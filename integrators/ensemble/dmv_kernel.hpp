@@ -26,6 +26,7 @@
 #include <numbers>
 
 #include "integrators/compensated_sum.hpp"
+#include "integrators/exact_products.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lanes.hpp"
@@ -33,15 +34,6 @@
 namespace lgi::integrators::ensemble {
 
 namespace dmv_detail {
-
-/// Veltkamp's split and Dekker's x y − p (moser_veselov_diagonal.hpp), x given split.
-template <class T>
-inline T product_error(const T& x_hi, const T& x_lo, const T& y, const T& p) {
-  const T c = 134217729.0 * y;
-  const T y_hi = c - (c - y);
-  const T y_lo = y - y_hi;
-  return ((x_hi * y_hi - p) + x_hi * y_lo + x_lo * y_hi) + x_lo * y_lo;
-}
 
 /// Σ_{k<degree} c_k x^k by Horner from the lane rows c, times x, plus offset (horner_in_h2).
 template <class T>
@@ -86,11 +78,7 @@ inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h
       I[i] = 1.0 / moment_inv;
     }
   }
-  for (int i = 0; i < 3; ++i) {
-    const T split = 134217729.0 * I[i];
-    I_hi[i] = split - (split - I[i]);
-    I_lo[i] = I[i] - I_hi[i];
-  }
+  for (int i = 0; i < 3; ++i) veltkamp_split(I[i], I_hi[i], I_lo[i]);
   c[0] = 2.0 * (I[2] - I[1]), c[1] = 2.0 * (I[0] - I[2]), c[2] = 2.0 * (I[1] - I[0]);
   for (int i = 0; i < 3; ++i) {
     store(I[i], rows[i]), store(I_hi[i], rows[3 + i]);
