@@ -58,13 +58,10 @@ class Rkmk {
         rkmk_pair_detail::dexpinv(w.data(), Omega_i, m, k_algebra[i].data());
       }
       if constexpr (Model::has_torque) {
-        if (i == 0) {
-          k_momentum[i] = model.momentum_rate(s.R, Pi_i, Omega_i, t);
-        } else {
-          Mat3 R_i;
-          rkmk_pair_detail::stage_attitude(s.R, w.data(), m, rows, R_i);
-          k_momentum[i] = model.momentum_rate(R_i, Pi_i, Omega_i, t + Tableau.c[i] * h);
-        }
+        Mat3 R_i;
+        if (i == 0) R_i = s.R;
+        else rkmk_pair_detail::stage_attitude(s.R, w.data(), m, rows, R_i);
+        k_momentum[i] = model.momentum_rate(R_i, Pi_i, Omega_i, t + Tableau.c[i] * h);
       } else {
         k_momentum[i] = model.momentum_rate(s.R, Pi_i, Omega_i, t);
       }
