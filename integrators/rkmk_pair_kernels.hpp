@@ -38,20 +38,6 @@ inline MapCoefficients map_coefficients(double t2) {
   return {ex::closed_a(theta, s, k), ex::closed_b(theta, s), ex::closed_c(t2, theta, s, k)};
 }
 
-/// R exp(ŵ), row by row (lie::exp_series::times_exp_row).
-inline Mat3 times_exp(const Mat3& R, const double* w, const MapCoefficients& m) {
-  Mat3 out;
-  for (int i = 0; i < 3; ++i) {
-    const double r[3] = {R(i, 0), R(i, 1), R(i, 2)};
-    double o[3];
-    lie::exp_series::times_exp_row(r, w, m.a, m.b, o);
-    out(i, 0) = o[0];
-    out(i, 1) = o[1];
-    out(i, 2) = o[2];
-  }
-  return out;
-}
-
 /// The rows of R a model's torque reads (RigidBody::attitude_rows()); all
 /// three for a model that does not say.
 template <class Model>
@@ -61,10 +47,9 @@ unsigned torque_rows(const Model& model) {
 }
 
 /// A stage attitude R exp(ŵ) as the torque needs it: the rows in `rows` (bit i:
-/// row i), the others NaN, so that a term reading a row it did not declare
-/// makes the run fail instead of using a stale row (torque_term.hpp). Gravity
-/// reads only Γ = Rᵀe3: one row instead of three (a quarter of a DOP853 step
-/// on a heavy top).
+/// row i, lie::exp_series::times_exp_row), the others NaN, so that a term
+/// reading a row it did not declare makes the run fail instead of using a stale
+/// row (torque_term.hpp). Gravity reads only Γ = Rᵀe3: one row's work instead of three.
 inline void stage_attitude(const Mat3& R, const double* w, const MapCoefficients& m, unsigned rows, Mat3& out) {
   for (int i = 0; i < 3; ++i) {
     if ((rows >> i) & 1u) {
@@ -78,6 +63,13 @@ inline void stage_attitude(const Mat3& R, const double* w, const MapCoefficients
       out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
     }
   }
+}
+
+/// R exp(ŵ), every row.
+inline Mat3 times_exp(const Mat3& R, const double* w, const MapCoefficients& m) {
+  Mat3 out;
+  stage_attitude(R, w, m, 0b111u, out);
+  return out;
 }
 
 /// k̃ = dexp⁻¹_body(w) Ω into out[0..2].
