@@ -14,10 +14,11 @@
 // truncation condition applies). Conserves: RᵀR = I to round-off (the
 // attitude only moves by exp); no invariant of the dynamics exactly.
 // For a free body the stage attitudes R_i are never formed: the momentum
-// field does not depend on R; otherwise only the rows the torque reads are
-// (gravity: Γ = Rᵀe3, rkmk_pair_kernels.hpp's stage_attitude). exp and dexp⁻¹ are those of the adaptive pairs
-// (rkmk_pair_kernels.hpp: Taylor series below θ = 1, so no sin or cos in a
-// usual step), whose source lie/exp_series.hpp the ensemble kernel shares.
+// field does not depend on R. Otherwise only the rows the torque reads are
+// (gravity: Γ = Rᵀe3; rkmk_pair_kernels.hpp's stage_attitude). exp and
+// dexp⁻¹ are those of the adaptive pairs (rkmk_pair_kernels.hpp: Taylor
+// series below θ = 1, so no sin or cos in a usual step), whose source
+// lie/exp_series.hpp the ensemble kernel shares.
 #include <array>
 
 #include "integrators/rkmk_pair_kernels.hpp"
