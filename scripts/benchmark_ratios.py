@@ -12,9 +12,18 @@ median and range of their ratios: a process's stack placement (address-space
 randomisation) moves the DMV step's cost by up to ~20% (false store-to-load
 dependencies between addresses 4 KiB apart), so one process is one sample.
 
+The cost at equal error on heavy tops (the performance bars there) is measured with
+`lgi work-precision` (--lgi, default build/release/lgi; --skip-equal-error to
+leave it out): on each study's scene, the CPU time (minimum of 5 repeats) at which
+the cheapest Lie-group scheme and the cheapest baseline reach the target error,
+log-log interpolated along each curve as in the paper's "cost at equal error"
+table (scripts/plots/cost_table.py), and their ratio.
+
 usage: scripts/benchmark_ratios.py [--bench PATH] [--min-time S] [--processes N] [--tex FILE] [--json FILE]
+                                   [--lgi PATH | --skip-equal-error]
 """
 import argparse
+import csv
 import json
 import os
 import subprocess
@@ -98,6 +107,56 @@ def dmv_bar_over_processes(bench, processes):
     return sorted(ratios)
 
 
+SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "scenes")
+LIE_GROUP = ("rkmk-dop853", "rkmk-verner65", "rkmk-dp54", "split-exact@kahan-li8", "split-symmetric@kahan-li8",
+             "split-axes@kahan-li8")
+BASELINES = ("quat/rkf78", "quat/dopri5", "quat/bs", "rotvec/rkf78", "matrix/rkf78")
+# (scene, t_end or None for the scene's, target error, bar, fixed steps of the splittings)
+EQUAL_ERROR_STUDIES = (
+    ("heavy_top_hlw", None, 1e-10, 0.5, (0.1, 0.05, 0.025, 0.012, 0.006)),
+    ("heavy_top_trindade_1", 2.0, 1e-8, 0.5, (0.1, 0.05, 0.025, 0.012, 0.006)),
+)
+TOLERANCES = "1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12,1e-13"
+
+
+def cheapest(rows, names, target):
+    """(scheme, CPU seconds) of the cheapest of `names` to reach `target`, or None."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "plots"))
+    from cost_table import cpu_at_error  # matplotlib and h5py come with it: imported only here
+    best = None
+    for name in names:
+        mine = [r for r in rows if r["scheme"] == name and r["status"] == "ok"]
+        cpu = cpu_at_error([float(r["error"]) for r in mine], [float(r["cpu_seconds_min"]) for r in mine], target)
+        if cpu is not None and (best is None or cpu < best[1]):
+            best = (name, cpu)
+    return best
+
+
+def equal_error_ratios(lgi, tmp):
+    """One line per study: cheapest Lie-group scheme / cheapest baseline at the target error."""
+    lines = []
+    for scene, t_end, target, bar, dts in EQUAL_ERROR_STUDIES:
+        out = os.path.join(tmp, scene + ".h5")
+        cmd = [lgi, "work-precision", "--scene", os.path.join(SCENES, scene + ".toml"),
+               "--schemes", ",".join(LIE_GROUP + BASELINES), "--tol", TOLERANCES,
+               "--dt", ",".join(map(repr, dts)), "--repeat", "5", "--out", out, "--quiet"]
+        if t_end is not None:
+            cmd += ["--t-end", repr(t_end)]
+        print(f"benchmark_ratios: lgi work-precision on {scene}", file=sys.stderr, flush=True)
+        subprocess.run(cmd, check=True)
+        with open(out[:-3] + ".csv") as f:
+            rows = list(csv.DictReader(f))
+        lie, base = cheapest(rows, LIE_GROUP, target), cheapest(rows, BASELINES, target)
+        span = f" over {t_end:g} s" if t_end is not None else ""
+        if lie is None or base is None:
+            lines.append(f"# {scene}{span} at error {target:g}: no "
+                         f"{'Lie-group scheme' if lie is None else 'baseline'} reached it (bar: <= {bar})")
+            continue
+        lines.append(f"# {scene}{span} at error {target:g}: {lie[0]} {lie[1] * 1e6:.1f} us / {base[0]} "
+                     f"{base[1] * 1e6:.1f} us = {lie[1] / base[1]:.3f} (bar: <= {bar})")
+    return lines
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bench", default="build/release/lgi_bench")
@@ -105,6 +164,8 @@ def main():
     ap.add_argument("--tex")
     ap.add_argument("--json")
     ap.add_argument("--processes", type=int, default=5)
+    ap.add_argument("--lgi", default="build/release/lgi")
+    ap.add_argument("--skip-equal-error", action="store_true")
     a = ap.parse_args()
     out = run_bench(a.bench, a.min_time)
     data = json.loads(out)
@@ -154,6 +215,13 @@ def main():
         base = name.rsplit("/", 1)[0] + "/scalar"
         if name != base and base in ensembles:
             print(f"# {name}: {rate:.0f} trajectories/s, {rate / ensembles[base]:.2f} x the scalar loop")
+    # The heavy tops' cost at equal error (the work-precision bars), from lgi work-precision.
+    if not a.skip_equal_error:
+        if os.path.exists(a.lgi):
+            with tempfile.TemporaryDirectory(prefix="lgi_equal_error_") as tmp:
+                print("\n".join(equal_error_ratios(a.lgi, tmp)))
+        else:
+            print(f"# cost at equal error: not measured (no lgi at {a.lgi}; --lgi PATH)")
     ctx = data["context"]
     print(f"# {ctx.get('host_name', '')} {ctx.get('num_cpus', '')} cpus @ {ctx.get('mhz_per_cpu', '')} MHz, "
           f"library build {ctx.get('library_build_type', '')}")

@@ -189,7 +189,8 @@ def test_table1_progress_on_stderr(tmp_path):
     assert "CPU milliseconds" in md
 
 
-def test_benchmark_ratios_progress_on_stderr(tmp_path):
+def fake_bench(tmp_path):
+    """A stand-in lgi_bench: lists three benchmarks, prints progress lines, writes its JSON report."""
     fake = tmp_path / "fake_bench"
     names = ["free_body_hlw/quat/rk4", "free_body_hlw/rkmk4", "so3_exp"]
     fake.write_text(f"""#!{PY}
@@ -208,10 +209,46 @@ for n in names:
 open(args["--benchmark_out"], "w").write(json.dumps({{"context": {{"num_cpus": 2}}, "benchmarks": bench}}))
 """)
     fake.chmod(0o755)
-    p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", fake, "--min-time", "0.001"])
+    return fake, names
+
+
+def test_benchmark_ratios_progress_on_stderr(tmp_path):
+    fake, names = fake_bench(tmp_path)
+    p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", fake, "--min-time", "0.001", "--skip-equal-error"])
     assert [l for l in p.stderr.splitlines() if re.match(r"benchmark_ratios: \d/3 ", l)] == \
         [f"benchmark_ratios: {i + 1}/3 {n}" for i, n in enumerate(names)]
     assert "2.00" in p.stdout
+    assert "equal error" not in p.stdout
+
+
+def test_benchmark_ratios_cost_at_equal_error(tmp_path):
+    """The heavy tops' bars: cheapest Lie-group scheme over cheapest baseline at the
+    target error, interpolated along each curve, from the CSV lgi work-precision writes
+    (a stand-in lgi here, whose rows fix the answer: rkmk-dop853 reaches 1e-10 at
+    tol 1e-10, in 20 us; quat/rkf78 between its two rows, at 40 us)."""
+    bench, _ = fake_bench(tmp_path)
+    fake_lgi = tmp_path / "fake_lgi"
+    fake_lgi.write_text(f"""#!{PY}
+import sys
+a = sys.argv[1:]
+assert a[0] == "work-precision" and "--quiet" in a and "--repeat" in a
+out = a[a.index("--out") + 1]
+head = "scheme,dt,tol,error,cpu_seconds_min,status"
+rows = ["rkmk-dop853,nan,1e-09,1e-09,1.5e-05,ok", "rkmk-dop853,nan,1e-10,1e-10,2e-05,ok",
+        "rkmk-dp54,nan,1e-10,1e-10,9e-05,ok", "split-axes@kahan-li8,0.1,nan,nan,1e-06,ok",
+        "quat/rkf78,nan,1e-10,1e-09,2e-05,ok", "quat/rkf78,nan,1e-12,1e-11,8e-05,ok",
+        "matrix/rkf78,nan,1e-10,1e-08,1e-06,failed: blow-up"]
+open(out[:-3] + ".csv", "w").write("\\n".join([head] + rows) + "\\n")
+""")
+    fake_lgi.chmod(0o755)
+    p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", bench, "--min-time", "0.001",
+             "--processes", "0", "--lgi", fake_lgi])
+    lines = [l for l in p.stdout.splitlines() if "at error" in l]
+    assert lines == [
+        "# heavy_top_hlw at error 1e-10: rkmk-dop853 20.0 us / quat/rkf78 40.0 us = 0.500 (bar: <= 0.5)",
+        "# heavy_top_trindade_1 over 2 s at error 1e-08: rkmk-dop853 15.0 us / quat/rkf78 20.0 us "
+        "= 0.750 (bar: <= 0.5)"], p.stdout
+    assert "lgi work-precision on heavy_top_hlw" in p.stderr
 
 
 # ── (h) demo.sh --out DIR writes into DIR only ───────────────────────────────
