@@ -11,7 +11,6 @@
 #include <cmath>
 #include <limits>
 
-#include "integrators/registry.hpp"
 #include "integrators/rkmk.hpp"
 #include "integrators/rkmk_adaptive.hpp"
 #include "integrators/system/model.hpp"
