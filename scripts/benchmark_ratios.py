@@ -119,10 +119,8 @@ EQUAL_ERROR_STUDIES = (
 TOLERANCES = "1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12,1e-13"
 
 
-def cheapest(rows, names, target):
+def cheapest(rows, names, target, cpu_at_error):
     """(scheme, CPU seconds) of the cheapest of `names` to reach `target`, or None."""
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "plots"))
-    from cost_table import cpu_at_error  # matplotlib and h5py come with it: imported only here
     best = None
     for name in names:
         mine = [r for r in rows if r["scheme"] == name and r["status"] == "ok"]
@@ -134,6 +132,8 @@ def cheapest(rows, names, target):
 
 def equal_error_ratios(lgi, tmp):
     """One line per study: cheapest Lie-group scheme / cheapest baseline at the target error."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "plots"))
+    from cost_table import cpu_at_error  # matplotlib and h5py come with it: imported only here
     lines = []
     for scene, t_end, target, bar, dts in EQUAL_ERROR_STUDIES:
         out = os.path.join(tmp, scene + ".h5")
@@ -146,7 +146,8 @@ def equal_error_ratios(lgi, tmp):
         subprocess.run(cmd, check=True)
         with open(out[:-3] + ".csv") as f:
             rows = list(csv.DictReader(f))
-        lie, base = cheapest(rows, LIE_GROUP, target), cheapest(rows, BASELINES, target)
+        lie = cheapest(rows, LIE_GROUP, target, cpu_at_error)
+        base = cheapest(rows, BASELINES, target, cpu_at_error)
         span = f" over {t_end:g} s" if t_end is not None else ""
         if lie is None or base is None:
             lines.append(f"# {scene}{span} at error {target:g}: no "
