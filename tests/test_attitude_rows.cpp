@@ -3,7 +3,8 @@
 // and fill the others with NaN (rkmk_pair_kernels.hpp's stage_attitude).
 //   - every term's torque at an R whose undeclared rows are NaN is its torque
 //     at the whole R, bit for bit (a term that reads more fails here);
-//   - a model's rows are the union over its terms in use (Declared);
+//   - a model's rows are the union over its terms in use (Declared), a
+//     magnet's narrowed by its field's zeros;
 //   - stage_attitude forms the declared rows as times_exp does, and NaN rows;
 //   - a term that reads a row it did not declare makes the run non-finite;
 //   - the RKMK schemes give the same bits as with every row formed.
@@ -38,15 +39,23 @@ bool same_bits(const Vec3& a, const Vec3& b) {
   return true;
 }
 
+/// The rows a term reads: its own attitude_rows() where its parameters narrow them, else its traits'.
+template <class Term>
+unsigned rows_of(const Term& term) {
+  if constexpr (requires { term.attitude_rows(); }) return term.attitude_rows();
+  else return Term::traits.attitude_rows;
+}
+
 template <class Term>
 void check_term(const Term& term, unsigned expected_rows, const char* name) {
   INFO(name);
-  CHECK(Term::traits.attitude_rows == expected_rows);
+  CHECK(rows_of(term) == expected_rows);
+  CHECK((rows_of(term) & ~Term::traits.attitude_rows) == 0u);  // within the traits' bound
   for (const Vec3& xi : {Vec3(0.3, -0.7, 0.5), Vec3(1.0, 0.5, 0.0), Vec3(-1.5, 2.0, 1.2)}) {
     const Mat3 R = lie::exp_so3(xi);
     const Vec3 Pi(0.4, -1.2, 2.0), Omega(0.8, -0.8, 1.3);
     const Vec3 whole = term.torque(R, Pi, Omega, 0.7);
-    const Vec3 declared = term.torque(with_rows(R, Term::traits.attitude_rows), Pi, Omega, 0.7);
+    const Vec3 declared = term.torque(with_rows(R, rows_of(term)), Pi, Omega, 0.7);
     REQUIRE(whole.allFinite());
     CHECK(same_bits(declared, whole));
   }
@@ -84,7 +93,9 @@ TEST_CASE("each term's torque reads only the rows of R it declares", "[attitude-
   check_term(system::GravityTerm(2.0, 9.81, Vec3(0.1, -0.2, 0.7)), 0b100, "gravity");
   check_term(system::HarmonicDriveTerm{Vec3(0.3, -0.1, 0.2), 2.0, 0.4}, 0b000, "drive");
   check_term(system::SpringTerm(3.0, 0.2, lie::exp_so3(Vec3(0.1, 0.2, -0.3))), 0b111, "spring");
-  check_term(system::MagneticDipoleTerm{Vec3(0.1, 0.5, -0.2), Vec3(0.3, 0.0, 1.0)}, 0b111, "magnetic");
+  check_term(system::MagneticDipoleTerm{Vec3(0.1, 0.5, -0.2), Vec3(0.3, -0.4, 1.0)}, 0b111, "magnetic, any field");
+  check_term(system::MagneticDipoleTerm{Vec3(0.1, 0.5, -0.2), Vec3(0.3, 0.0, 1.0)}, 0b101, "magnetic, B2 = 0");
+  check_term(system::MagneticDipoleTerm{Vec3(0.1, 0.5, -0.2), Vec3(0.0, 0.0, 1e-3)}, 0b100, "magnetic, vertical");
   auto f = [](double t, const Mat3& R, const Vec3& Pi, const Vec3&) -> Vec3 { return t * R.col(0).cross(Pi); };
   check_term(system::CallableTorque<decltype(f)>{f}, 0b111, "callable");
 }
@@ -96,9 +107,21 @@ TEST_CASE("a model reads the union of the rows of its terms in use", "[attitude-
   CHECK(model.attitude_rows() == 0u);
   std::get<system::Declared<system::GravityTerm>>(model.terms).active = true;
   CHECK(model.attitude_rows() == 0b100u);
-  std::get<system::Declared<system::MagneticDipoleTerm>>(model.terms).active = true;
-  CHECK(model.attitude_rows() == 0b111u);
+  auto& magnet = std::get<system::Declared<system::MagneticDipoleTerm>>(model.terms);
+  magnet.active = true;
+  magnet.term = {Vec3(0.0, 0.0, -39.27), Vec3(0.0, 0.0, 1e-3)};  // a vertical field: row 2, as gravity
+  CHECK(model.attitude_rows() == 0b100u);
+  magnet.term.field = Vec3(1e-3, 0.0, 0.0);
+  CHECK(model.attitude_rows() == 0b101u);
   CHECK(system::HeavyTop{}.attitude_rows() == 0b100u);
+}
+
+TEST_CASE("the magnet's field in the body is R transpose B to the bit, whatever B's zeros", "[attitude-rows]") {
+  const Mat3 R = lie::exp_so3(Vec3(0.3, -0.7, 0.5));
+  for (const Vec3& B : {Vec3(0.3, -0.4, 1.0), Vec3(0.3, 0.0, 1.0), Vec3(0.0, 0.0, 1e-3), Vec3(-2.0, 0.5, 0.0)}) {
+    const system::MagneticDipoleTerm magnet{Vec3(0.1, 0.5, -0.2), B};
+    CHECK(same_bits(magnet.field_in_body(R), Vec3(R.transpose() * B)));
+  }
 }
 
 TEST_CASE("stage_attitude forms the declared rows as times_exp does and NaN elsewhere", "[attitude-rows]") {

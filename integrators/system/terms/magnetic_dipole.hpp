@@ -32,7 +32,24 @@ struct MagneticDipoleTerm {
     return {-p.dipole_moment, p.field};
   }
 
-  Vec3 field_in_body(const Mat3& R) const { return R.transpose() * field; }  // B_b = Rᵀ B
+  /// B_b = Rᵀ B = Σ_k B_k (row k of R), over B's non-zero components only: the
+  /// rows of the others are not read (attitude_rows). The same bits as Rᵀ B
+  /// computed whole (tests/test_attitude_rows.cpp).
+  Vec3 field_in_body(const Mat3& R) const {
+    Vec3 out = Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (field(k) != 0.0) out += field(k) * R.row(k).transpose();
+    return out;
+  }
+  /// The rows of R the torque reads: those of B's non-zero components (a
+  /// vertical field, as gravity, reads row 2 only). TermTraits::attitude_rows
+  /// is the bound for any field.
+  unsigned attitude_rows() const {
+    unsigned rows = 0;
+    for (int k = 0; k < 3; ++k)
+      if (field(k) != 0.0) rows |= 1u << k;
+    return rows;
+  }
 
   Vec3 torque(const Mat3& R, const Vec3& /*Pi*/, const Vec3& /*Omega*/, double /*t*/) const {
     return potential_torque(R);

@@ -38,7 +38,9 @@ struct TermTraits {
   /// Γ = Rᵀe3, row 2: 0b100). The RKMK schemes form only these rows of a
   /// stage's attitude and fill the others with NaN, so a term that reads a row
   /// it did not declare makes the run fail, never silently wrong
-  /// (tests/test_attitude_rows.cpp checks every term).
+  /// (tests/test_attitude_rows.cpp checks every term). A term whose
+  /// parameters narrow the rows (a magnetic field along one axis) also has a
+  /// member `unsigned attitude_rows() const`, within this bound.
   unsigned attitude_rows = 0b111;
 };
 
