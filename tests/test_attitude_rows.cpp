@@ -39,23 +39,16 @@ bool same_bits(const Vec3& a, const Vec3& b) {
   return true;
 }
 
-/// The rows a term reads: its own attitude_rows() where its parameters narrow them, else its traits'.
-template <class Term>
-unsigned rows_of(const Term& term) {
-  if constexpr (requires { term.attitude_rows(); }) return term.attitude_rows();
-  else return Term::traits.attitude_rows;
-}
-
 template <class Term>
 void check_term(const Term& term, unsigned expected_rows, const char* name) {
   INFO(name);
-  CHECK(rows_of(term) == expected_rows);
-  CHECK((rows_of(term) & ~Term::traits.attitude_rows) == 0u);  // within the traits' bound
+  CHECK(system::attitude_rows_of(term) == expected_rows);
+  CHECK((system::attitude_rows_of(term) & ~Term::traits.attitude_rows) == 0u);  // within the traits' bound
   for (const Vec3& xi : {Vec3(0.3, -0.7, 0.5), Vec3(1.0, 0.5, 0.0), Vec3(-1.5, 2.0, 1.2)}) {
     const Mat3 R = lie::exp_so3(xi);
     const Vec3 Pi(0.4, -1.2, 2.0), Omega(0.8, -0.8, 1.3);
     const Vec3 whole = term.torque(R, Pi, Omega, 0.7);
-    const Vec3 declared = term.torque(with_rows(R, rows_of(term)), Pi, Omega, 0.7);
+    const Vec3 declared = term.torque(with_rows(R, system::attitude_rows_of(term)), Pi, Omega, 0.7);
     REQUIRE(whole.allFinite());
     CHECK(same_bits(declared, whole));
   }

@@ -49,10 +49,7 @@ struct RigidBody {
   /// over the terms in use; a Declared term that is off reads none.
   unsigned attitude_rows() const {
     unsigned rows = 0;
-    for_each_term([&](const auto& term) {
-      if constexpr (requires { term.attitude_rows(); }) rows |= term.attitude_rows();
-      else rows |= std::remove_cvref_t<decltype(term)>::traits.attitude_rows;
-    });
+    for_each_term([&](const auto& term) { rows |= attitude_rows_of(term); });
     return rows;
   }
 

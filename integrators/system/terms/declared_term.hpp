@@ -33,11 +33,7 @@ struct Declared {
   static constexpr TermTraits traits = T::traits;
   /// The rows of R the torque reads (TermTraits::attitude_rows, or the term's
   /// own attitude_rows() where its parameters narrow them): none when inactive.
-  unsigned attitude_rows() const {
-    if (!active) return 0u;
-    if constexpr (requires { term.attitude_rows(); }) return term.attitude_rows();
-    else return traits.attitude_rows;
-  }
+  unsigned attitude_rows() const { return active ? attitude_rows_of(term) : 0u; }
 
   Vec3 torque(const Mat3& R, const Vec3& Pi, const Vec3& Omega, double t) const {
     return active ? term.torque(R, Pi, Omega, t) : Vec3::Zero();

@@ -44,6 +44,14 @@ struct TermTraits {
   unsigned attitude_rows = 0b111;
 };
 
+/// The rows of R a term's torque reads: its own attitude_rows() where its
+/// parameters narrow them (or where it is a Declared slot), else its traits'.
+template <class T>
+unsigned attitude_rows_of(const T& term) {
+  if constexpr (requires { term.attitude_rows(); }) return term.attitude_rows();
+  else return T::traits.attitude_rows;
+}
+
 /// The scene's body, as the terms that depend on it need it.
 struct BodyProperties {
   Mat3 inertia = Mat3::Identity();
