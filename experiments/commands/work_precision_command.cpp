@@ -1,5 +1,6 @@
 // lgi work-precision: global error at t_end against a reference, and CPU
-// time (min and median over N timed runs that write nothing), for each scheme
+// time per run (min and median over N timed repeats, each a batch of
+// back-to-back runs that write nothing), for each scheme
 // and each step (fixed-step schemes: --dt) or tolerance (adaptive: --tol).
 // Layout of the result file: experiments/RESULTS.md.
 //
@@ -130,6 +131,7 @@ std::vector<Column> result_columns(const system::SceneInvariants& invariants,
   columns.push_back({"status", ColumnType::text, ""});
   columns.push_back({"below_reference_floor", ColumnType::integer, ""});
   columns.push_back({"error_floor", ColumnType::real, ""});
+  columns.push_back({"runs_per_repeat", ColumnType::integer, ""});
   return columns;
 }
 
@@ -188,20 +190,39 @@ void set_errors(const Study& st, const RunResult& run, ResultRow& row, Printed& 
   for (std::size_t c = 0; c < errors.size(); ++c) row.set(st.invariant_columns[c], errors[c]);
 }
 
-/// Timed runs: the same run again `repeat` times, nothing observed but the final state.
+/// A timed repeat lasts at least this long (CPU seconds).
+constexpr double repeat_seconds = 1e-3;
+
+/// Runs in one timed repeat: enough back-to-back runs to last repeat_seconds,
+/// judged from the first run's time. The thread CPU clock is a system call
+/// (~3 µs on a virtual machine, as long as a tenth of a short run), so it is
+/// read once around the batch instead of around each run, as timeit and
+/// Google Benchmark do.
+std::int64_t runs_per_repeat(double first_run_seconds) {
+  if (!(first_run_seconds > 0.0)) return 1;
+  return static_cast<std::int64_t>(std::clamp(std::ceil(repeat_seconds / first_run_seconds), 1.0, 1e5));
+}
+
+/// Timed runs: `repeat` batches of `runs` back-to-back runs of the row, each
+/// observing nothing but the final state; a repeat's time is its batch's CPU
+/// time over `runs` (the scheme's setup and its stepper loop, per run).
 /// False if a signal cut one short.
-bool set_timing(const Study& st, const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
-                ResultRow& row, Printed& p) {
+bool set_timing(const Study& st, const integrators::SchemeInfo& scheme, integrators::RunConfig cfg,
+                std::int64_t runs, ResultRow& row, Printed& p) {
+  cfg.cpu_clock = false;  // timed around the batch
   std::vector<double> times;
   for (int r = 0; r < st.repeat; ++r) {
-    const RunResult again = run_once(scheme, st.model, st.scene.initial, cfg);
-    if (again.stats.interrupted) return false;
-    if (!again.stats.ok) {
-      row.set("status", "failed in a timed repeat: " + again.stats.status);
-      p.status = "failed in a timed repeat";
-      return true;
+    const double cpu0 = integrators::detail::cpu_now();
+    for (std::int64_t k = 0; k < runs; ++k) {
+      const RunResult again = run_once(scheme, st.model, st.scene.initial, cfg);
+      if (again.stats.interrupted) return false;
+      if (!again.stats.ok) {
+        row.set("status", "failed in a timed repeat: " + again.stats.status);
+        p.status = "failed in a timed repeat";
+        return true;
+      }
     }
-    times.push_back(again.stats.cpu_seconds);
+    times.push_back((integrators::detail::cpu_now() - cpu0) / static_cast<double>(runs));
   }
   std::sort(times.begin(), times.end());
   const std::size_t n = times.size();
@@ -209,6 +230,7 @@ bool set_timing(const Study& st, const integrators::SchemeInfo& scheme, const in
   row.set("cpu_seconds_min", times.front());
   row.set("cpu_seconds_median", median);
   row.set("repeats", static_cast<std::int64_t>(n));
+  row.set("runs_per_repeat", runs);
   row.set("status", "ok");
   p.cpu_min = format_sci(times.front());
   p.cpu_median = format_sci(median);
@@ -225,6 +247,7 @@ std::optional<Printed> measure(const Study& st, const Job& job, const std::strin
   if (job.dt) row.set("dt", *job.dt);
   if (job.tol) row.set("tol", *job.tol);
   row.set("repeats", 0);
+  row.set("runs_per_repeat", 0);
   row.set("below_reference_floor", 0);
   Printed p{scheme.name, step_text, "-", "-", "-", "-", "-", ""};
   integrators::RunConfig cfg = make_config(st.t_end, job.dt, job.tol);
@@ -250,7 +273,7 @@ std::optional<Printed> measure(const Study& st, const Job& job, const std::strin
     p.steps = std::to_string(first.stats.steps);
     p.rhs = std::to_string(first.stats.work.rhs_evaluations);
     set_errors(st, first, row, p);
-    if (!set_timing(st, scheme, cfg, row, p)) return std::nullopt;
+    if (!set_timing(st, scheme, cfg, runs_per_repeat(first.stats.cpu_seconds), row, p)) return std::nullopt;
   }
   file.append(row);
   return p;
@@ -406,7 +429,7 @@ Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& co
       ->delimiter(',')
       ->type_name("T1,T2,...");
   sub->add_option("--t-end", o->t_end, "Final time. Default: the scene's [run] t_end (needed if it has none)");
-  sub->add_option("--repeat", o->repeat, "Timed runs per row (CPU time: min and median)")->capture_default_str();
+  sub->add_option("--repeat", o->repeat, "Timed repeats per row, each a batch of back-to-back runs lasting >= 1 ms (CPU time per run: min and median)")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV goes beside it, .csv in place of .h5 (out.h5 -> out.csv)")->required();
   add_force_quiet_flags(*sub, *o, "Overwrite existing output files");
   sub->footer(exit_status_help);
