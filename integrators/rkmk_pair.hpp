@@ -6,10 +6,10 @@
 // Stages (Munthe-Kaas, Appl. Numer. Math. 29 (1999) 115–127, Algorithm 1;
 // Iserles et al., Acta Numerica 9 (2000) §5.3, eq. (5.14); body form as in
 // rkmk.hpp, docs/math.md §2): for i = 1..s
-//   w_i = h Σ_j a_ij k̃_j,  Π_i = Π_n + h Σ_j a_ij K_j,  Ω_i = J⁻¹Π_i,  R_i = R_n exp(w_i),
+//   w_i = Σ_j (h a_ij) k̃_j,  Π_i = Π_n + Σ_j (h a_ij) K_j,  Ω_i = J⁻¹Π_i,  R_i = R_n exp(w_i),
 //   k̃_i = dexp⁻¹_body(w_i) Ω_i = Ω_i + ½ w_i × Ω_i + c(θ_i) w_i × (w_i × Ω_i),
 //   K_i = Π_i × Ω_i + τ(R_i, Π_i, Ω_i, t_n + c_i h),
-//   R_{n+1} = R_n exp(h Σ b_i k̃_i),  Π_{n+1} = Π_n + h Σ b_i K_i.
+//   R_{n+1} = R_n exp(Σ (h b_i) k̃_i),  Π_{n+1} = Π_n + Σ (h b_i) K_i.
 // RKMK is the pair applied to the chart ODE w' = dexp⁻¹(w) Ω, Π' = K in the
 // coordinates R = R_n exp(w), so the pair's order, its embedded solutions
 // and its continuous extension carry over (Munthe-Kaas 1999, Thm. 1; Engø,
@@ -160,9 +160,10 @@ class RkmkPair {
       w_new = w_last_;
       Pi_new = Pi_last_;
     } else {
-      const Slope z = rkmk_pair_detail::combination<b_weights, stages>(k_);
-      w_new = {h * z[0], h * z[1], h * z[2]};
-      Pi_new = Vec3(Pi_n_(0) + h * z[3], Pi_n_(1) + h * z[4], Pi_n_(2) + h * z[5]);
+      // Σ (h b_i) k_i, as the dense output's stage at the new point forms it.
+      const Slope z = rkmk_pair_detail::combination<b_weights, stages>(k_, h);
+      w_new = {z[0], z[1], z[2]};
+      Pi_new = Vec3(Pi_n_(0) + z[3], Pi_n_(1) + z[4], Pi_n_(2) + z[5]);
     }
     const double err = error_norm(h, Pi_new);
 
@@ -227,7 +228,7 @@ class RkmkPair {
   /// Ω = J⁻¹Π, written out for RigidBody models (Eigen's 3 × 3 product was not
   /// inlined in the stage loop); the model's omega() otherwise.
   template <class Model>
-  static Vec3 omega_of(const Model& model, const Vec3& Pi) {
+  [[gnu::always_inline]] static Vec3 omega_of(const Model& model, const Vec3& Pi) {
     if constexpr (requires { model.inertia.J_inv; }) {
       const Mat3& J = model.inertia.J_inv;
       // A diagonal J⁻¹ (J's off-diagonal entries exactly 0) gives the same
@@ -285,15 +286,17 @@ class RkmkPair {
       set_slope(0, Omega, first_K_);
       return 0;
     } else {
+      // z = Σ_J (h a_IJ) k_J: the products h a_IJ do not wait for the slopes,
+      // so w_i is one multiply-add after the last slope instead of two.
       Slope z{};
       [&]<std::size_t... J>(std::index_sequence<J...>) {
-        auto add = [&](double a, const Slope& kj) {
-          for (std::size_t d = 0; d < 6; ++d) z[d] += a * kj[d];
+        auto add = [&](double ha, const Slope& kj) {
+          for (std::size_t d = 0; d < 6; ++d) z[d] += ha * kj[d];
         };
-        ((a_ij<I, J>() != 0.0 ? add(a_ij<I, J>(), k_[J]) : void()), ...);
+        ((a_ij<I, J>() != 0.0 ? add(h_ * a_ij<I, J>(), k_[J]) : void()), ...);
       }(std::make_index_sequence<I>{});
-      const double w[3] = {h_ * z[0], h_ * z[1], h_ * z[2]};
-      const Vec3 Pi_i(Pi_n_(0) + h_ * z[3], Pi_n_(1) + h_ * z[4], Pi_n_(2) + h_ * z[5]);
+      const double w[3] = {z[0], z[1], z[2]};
+      const Vec3 Pi_i(Pi_n_(0) + z[3], Pi_n_(1) + z[4], Pi_n_(2) + z[5]);
       const Vec3 Omega_i = omega_of(model, Pi_i);
       const auto m = rkmk_pair_detail::map_coefficients(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
       rkmk_pair_detail::dexpinv(w, Omega_i, m, k_[I].data());

@@ -6,7 +6,8 @@
 //
 // exp(ŵ) = I + a ŵ + b ŵ² and dexp⁻¹_body(w) Ω = Ω + ½ w × Ω + c w × (w × Ω)
 // with their coefficients from lie/exp_series.hpp (the Taylor series below
-// θ = 1, or one sin/cos of θ/2), which rkmk.hpp and the ensemble kernel share.
+// θ = 1, shorter below θ = 1/2, or one sin/cos of θ/2), which rkmk.hpp and
+// the ensemble kernel share.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -27,10 +28,11 @@ struct MapCoefficients {
   double a, b, c;
 };
 
-/// a, b, c from θ² = |w|² (lie/exp_series.hpp: the series below θ = 1, else
-/// one sin/cos of θ/2).
+/// a, b, c from θ² = |w|² (lie/exp_series.hpp: the short series below
+/// θ = 1/2, the series below θ = 1, else one sin/cos of θ/2).
 inline MapCoefficients map_coefficients(double t2) {
   namespace ex = lie::exp_series;
+  if (t2 < ex::short_series_bound) return {ex::short_series_a(t2), ex::short_series_b(t2), ex::short_series_c(t2)};
   if (t2 < ex::series_bound) return {ex::series_a(t2), ex::series_b(t2), ex::series_c(t2)};
   const double theta = std::sqrt(t2);
   const double half = 0.5 * theta;
@@ -78,15 +80,18 @@ inline void dexpinv(const double* w, const Vec3& omega, const MapCoefficients& m
   lie::exp_series::dexpinv(w, o, m.c, out);
 }
 
-/// Σ_J W[J] k[J] over the first N slopes, zero weights skipped at compile time.
+/// Σ_J (scale W[J]) k[J] over the first N slopes, zero weights skipped at
+/// compile time: with scale = h, the sum a stage of the pair forms (its
+/// w_i and Π_i − Π_n), so that a stage at node 1 with row b and the step's
+/// new point round alike.
 template <const auto& W, std::size_t N, std::size_t Stored>
-inline Slope combination(const std::array<Slope, Stored>& k) {
+inline Slope combination(const std::array<Slope, Stored>& k, double scale = 1.0) {
   Slope sum{};
   [&]<std::size_t... J>(std::index_sequence<J...>) {
     auto add = [&](double weight, const Slope& kj) {
       for (std::size_t d = 0; d < 6; ++d) sum[d] += weight * kj[d];
     };
-    ((W[J] != 0.0 ? add(W[J], k[J]) : void()), ...);
+    ((W[J] != 0.0 ? add(scale * W[J], k[J]) : void()), ...);
   }(std::make_index_sequence<N>{});
   return sum;
 }

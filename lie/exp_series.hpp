@@ -13,7 +13,11 @@
 // first neglected terms are below 2e-20 relative (θ²⁰/21! for a, θ²⁰/22!
 // for b, |B₂₆| θ²⁴/26! for c; the terms alternate or shrink by (2π)⁻² each,
 // so no digit cancels): only + and ×, no sqrt, sin, cos or division, which
-// vectorises. Above, with s = sin(θ/2), k = cos(θ/2): a = 2 s k/θ,
+// vectorises. For θ < 1/2 the first 8 terms of each suffice (first neglected
+// terms below 5e-20 relative for a and b, 3e-18 for c), one level less of
+// Estrin's scheme: the series sits on the critical path of every RKMK stage,
+// from a stage's w to its attitude and torque (docs/math.md §2). The short
+// series give the same bits as the full ones there (tests/test_lie_so3.cpp). Above, with s = sin(θ/2), k = cos(θ/2): a = 2 s k/θ,
 // b = 2 (s/θ)², c = (1 − (θ/2) k/s)/θ² (c's own cancellation only: ε/θ²
 // absolute in c, so ε|Ω| in dexp⁻¹).
 #include <array>
@@ -81,6 +85,33 @@ inline T estrin(const std::array<double, N>& coefficients, const T& x) {
   return v[0];
 }
 
+/// Below this θ² (θ < 1/2) the short series (the first 8 terms) are used.
+inline constexpr double short_series_bound = 0.25;
+
+/// The first M of N coefficients.
+template <std::size_t M, std::size_t N>
+constexpr std::array<double, M> leading(const std::array<double, N>& coefficients) {
+  static_assert(M <= N);
+  std::array<double, M> out{};
+  for (std::size_t i = 0; i < M; ++i) out[i] = coefficients[i];
+  return out;
+}
+inline constexpr auto a_short = leading<8>(a_series);
+inline constexpr auto b_short = leading<8>(b_series);
+inline constexpr auto c_short = leading<8>(c_series);
+
+template <class T>
+inline T short_series_a(const T& t2) {
+  return estrin(a_short, t2);
+}
+template <class T>
+inline T short_series_b(const T& t2) {
+  return estrin(b_short, t2);
+}
+template <class T>
+inline T short_series_c(const T& t2) {
+  return estrin(c_short, t2);
+}
 template <class T>
 inline T series_a(const T& t2) {
   return estrin(a_series, t2);

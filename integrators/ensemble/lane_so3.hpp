@@ -75,14 +75,38 @@ inline V3<T> transposed_mat_vec(const M3<T>& A, const double (&x)[3]) {
            sum_packet(p(0, 2), p(1, 2), p(2, 2))}};
 }
 /// The coefficients a, b, c of exp and dexp⁻¹ (lie/exp_series.hpp) in every
-/// lane, as rkmk_pair_detail::map_coefficients computes them: the series
-/// where θ² < 1, else the closed forms from libm's sin and cos of θ/2, lane
-/// by lane; each side computed only where some lane takes it. a and b only
-/// when `with_attitude` (a free body never forms a stage attitude).
+/// lane, as rkmk_pair_detail::map_coefficients computes them: the short
+/// series where θ² < 1/4, the series where θ² < 1, else the closed forms from
+/// libm's sin and cos of θ/2, lane by lane; each side computed only where
+/// some lane takes it. a and b only when `with_attitude` (a free body never
+/// forms a stage attitude).
 template <class T>
 struct Coefficients {
   T a, b, c;
 };
+/// The series side: the short series where θ² < 1/4, the full ones elsewhere.
+template <class T, class Mask>
+inline Coefficients<T> series_coefficients(const T& t2, const Mask& in_short, bool with_attitude) {
+  namespace ex = lie::exp_series;
+  Coefficients<T> out{T(0.0), T(0.0), T(0.0)};
+  const bool some_short = any(in_short);
+  if (some_short) {
+    out.c = ex::short_series_c(t2);
+    if (with_attitude) {
+      out.a = ex::short_series_a(t2);
+      out.b = ex::short_series_b(t2);
+    }
+    if (all(in_short)) return out;
+  }
+  Coefficients<T> full{ex::series_a(t2), ex::series_b(t2), ex::series_c(t2)};
+  if (!some_short) return full;
+  full.c = select(in_short, out.c, full.c);
+  if (with_attitude) {
+    full.a = select(in_short, out.a, full.a);
+    full.b = select(in_short, out.b, full.b);
+  }
+  return full;
+}
 template <class T>
 inline Coefficients<T> map_coefficients(const T& t2, bool with_attitude) {
   namespace ex = lie::exp_series;
@@ -90,11 +114,7 @@ inline Coefficients<T> map_coefficients(const T& t2, bool with_attitude) {
   Coefficients<T> series{T(0.0), T(0.0), T(0.0)};
   const bool some_series = any(in_series);
   if (some_series) {
-    series.c = ex::series_c(t2);
-    if (with_attitude) {
-      series.a = ex::series_a(t2);
-      series.b = ex::series_b(t2);
-    }
+    series = series_coefficients(t2, less(t2, ex::short_series_bound), with_attitude);
     if (all(in_series)) return series;
   }
   const T theta = sqrt(t2);

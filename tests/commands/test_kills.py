@@ -161,7 +161,8 @@ def test_killed_work_precision(tmp_path, references, k):
         assert_incomplete(f, out)
         cols, n = table(f, "results")
         ref, m = table(g, "results")  # the same rows but the last scheme's
-        deterministic = [c for c in ref if not c.startswith("cpu_seconds")]
+        # CPU times and the batch sizes judged from them vary from run to run.
+        deterministic = [c for c in ref if not c.startswith("cpu_seconds") and c != "runs_per_repeat"]
         assert_prefix(cols, ref, min(n, m), deterministic)
 
 
