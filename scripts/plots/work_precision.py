@@ -129,7 +129,7 @@ def figure(data, kind):
                 ax.set_ylim(yl)
                 ax.set_xlabel("step h (s)")
             else:
-                ax.set_xlabel("CPU seconds (median of %d runs)" % int(np.nanmax(tab.get("repeats", np.array([1])))))
+                ax.set_xlabel("CPU seconds per run (median of %d repeats)" % int(np.nanmax(tab.get("repeats", np.array([1])))))
             ax.set_ylabel(ylabel, fontsize=7.5)
             ax.set_title(f"{scene}: {what}" + (f", $t_{{\\rm end}}$ = {t_end:g} s" if t_end is not None else ""),
                          loc="left", fontsize=8)
