@@ -32,7 +32,7 @@ struct MapCoefficients {
 /// θ = 1/2, the series below θ = 1, else one sin/cos of θ/2).
 inline MapCoefficients map_coefficients(double t2) {
   namespace ex = lie::exp_series;
-  if (t2 < ex::short_series_bound) return {ex::short_series_a(t2), ex::short_series_b(t2), ex::short_series_c(t2)};
+  if (t2 < ex::short_series_bound) return {ex::series_a<true>(t2), ex::series_b<true>(t2), ex::series_c<true>(t2)};
   if (t2 < ex::series_bound) return {ex::series_a(t2), ex::series_b(t2), ex::series_c(t2)};
   const double theta = std::sqrt(t2);
   const double half = 0.5 * theta;

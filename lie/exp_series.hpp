@@ -100,29 +100,21 @@ inline constexpr auto a_short = leading<8>(a_series);
 inline constexpr auto b_short = leading<8>(b_series);
 inline constexpr auto c_short = leading<8>(c_series);
 
-template <class T>
-inline T short_series_a(const T& t2) {
-  return estrin(a_short, t2);
-}
-template <class T>
-inline T short_series_b(const T& t2) {
-  return estrin(b_short, t2);
-}
-template <class T>
-inline T short_series_c(const T& t2) {
-  return estrin(c_short, t2);
-}
-template <class T>
+/// a, b and c by their series: every term, or with Short the first 8 (for θ² below short_series_bound).
+template <bool Short = false, class T>
 inline T series_a(const T& t2) {
-  return estrin(a_series, t2);
+  if constexpr (Short) return estrin(a_short, t2);
+  else return estrin(a_series, t2);
 }
-template <class T>
+template <bool Short = false, class T>
 inline T series_b(const T& t2) {
-  return estrin(b_series, t2);
+  if constexpr (Short) return estrin(b_short, t2);
+  else return estrin(b_series, t2);
 }
-template <class T>
+template <bool Short = false, class T>
 inline T series_c(const T& t2) {
-  return estrin(c_series, t2);
+  if constexpr (Short) return estrin(c_short, t2);
+  else return estrin(c_series, t2);
 }
 
 /// The closed forms from θ² = t2, θ, s = sin(θ/2) and k = cos(θ/2).

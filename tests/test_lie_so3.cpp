@@ -187,7 +187,7 @@ TEST_CASE("exp_series: the short series, the series and the closed forms of a, b
     const long double ref[3] = {std::sin(th) / th, (1.0L - std::cos(th)) / T2,
                                 (1.0L - 0.5L * th * std::cos(0.5L * th) / std::sin(0.5L * th)) / T2};
     const double full[3] = {ex::series_a(t2), ex::series_b(t2), ex::series_c(t2)};
-    const double shrt[3] = {ex::short_series_a(t2), ex::short_series_b(t2), ex::short_series_c(t2)};
+    const double shrt[3] = {ex::series_a<true>(t2), ex::series_b<true>(t2), ex::series_c<true>(t2)};
     const auto m = lgi::integrators::rkmk_pair_detail::map_coefficients(t2);
     const double used[3] = {m.a, m.b, m.c};
     std::ostringstream where;

@@ -84,6 +84,17 @@ template <class T>
 struct Coefficients {
   T a, b, c;
 };
+/// In each lane, x's coefficients where `take_x`, else y's (a and b only with the attitude).
+template <class T, class Mask>
+inline Coefficients<T> select_coefficients(const Mask& take_x, const Coefficients<T>& x, Coefficients<T> y,
+                                           bool with_attitude) {
+  y.c = select(take_x, x.c, y.c);
+  if (with_attitude) {
+    y.a = select(take_x, x.a, y.a);
+    y.b = select(take_x, x.b, y.b);
+  }
+  return y;
+}
 /// The series side: the short series where θ² < 1/4, the full ones elsewhere.
 template <class T, class Mask>
 inline Coefficients<T> series_coefficients(const T& t2, const Mask& in_short, bool with_attitude) {
@@ -91,21 +102,16 @@ inline Coefficients<T> series_coefficients(const T& t2, const Mask& in_short, bo
   Coefficients<T> out{T(0.0), T(0.0), T(0.0)};
   const bool some_short = any(in_short);
   if (some_short) {
-    out.c = ex::short_series_c(t2);
+    out.c = ex::series_c<true>(t2);
     if (with_attitude) {
-      out.a = ex::short_series_a(t2);
-      out.b = ex::short_series_b(t2);
+      out.a = ex::series_a<true>(t2);
+      out.b = ex::series_b<true>(t2);
     }
     if (all(in_short)) return out;
   }
-  Coefficients<T> full{ex::series_a(t2), ex::series_b(t2), ex::series_c(t2)};
+  const Coefficients<T> full{ex::series_a(t2), ex::series_b(t2), ex::series_c(t2)};
   if (!some_short) return full;
-  full.c = select(in_short, out.c, full.c);
-  if (with_attitude) {
-    full.a = select(in_short, out.a, full.a);
-    full.b = select(in_short, out.b, full.b);
-  }
-  return full;
+  return select_coefficients(in_short, out, full, with_attitude);
 }
 template <class T>
 inline Coefficients<T> map_coefficients(const T& t2, bool with_attitude) {
@@ -128,12 +134,7 @@ inline Coefficients<T> map_coefficients(const T& t2, bool with_attitude) {
     closed.b = ex::closed_b(theta, s);
   }
   if (!some_series) return closed;
-  closed.c = select(in_series, series.c, closed.c);
-  if (with_attitude) {
-    closed.a = select(in_series, series.a, closed.a);
-    closed.b = select(in_series, series.b, closed.b);
-  }
-  return closed;
+  return select_coefficients(in_series, series, closed, with_attitude);
 }
 
 /// Row i of R exp(ŵ) into out (lie::exp_series::times_exp_row).
