@@ -243,12 +243,17 @@ class RkmkPair {
     }
   }
 
-  /// a_ij of stage I (the extended tableau's rows past the step's stages).
-  template <std::size_t I, std::size_t J>
-  static constexpr double a_ij() {
-    if constexpr (I < stages) return Pair.a[I][J];
-    else return Pair.extended.a[I][J];
-  }
+  /// Row I of the extended tableau's a (the rows past the step's stages are
+  /// the new point's and the dense output's), as combination()'s weights.
+  template <std::size_t I>
+  static constexpr std::array<double, stored> a_row = [] {
+    std::array<double, stored> row{};
+    for (std::size_t j = 0; j < I; ++j) {
+      if constexpr (I < stages) row[j] = Pair.a[I][j];
+      else row[j] = Pair.extended.a[I][j];
+    }
+    return row;
+  }();
   template <std::size_t I>
   static constexpr double c_i() {
     if constexpr (I < stages) return Pair.c[I];
@@ -288,13 +293,7 @@ class RkmkPair {
     } else {
       // z = Σ_J (h a_IJ) k_J: the products h a_IJ do not wait for the slopes,
       // so w_i is one multiply-add after the last slope instead of two.
-      Slope z{};
-      [&]<std::size_t... J>(std::index_sequence<J...>) {
-        auto add = [&](double ha, const Slope& kj) {
-          for (std::size_t d = 0; d < 6; ++d) z[d] += ha * kj[d];
-        };
-        ((a_ij<I, J>() != 0.0 ? add(h_ * a_ij<I, J>(), k_[J]) : void()), ...);
-      }(std::make_index_sequence<I>{});
+      const Slope z = rkmk_pair_detail::combination<a_row<I>, I>(k_, h_);
       const double w[3] = {z[0], z[1], z[2]};
       const Vec3 Pi_i(Pi_n_(0) + z[3], Pi_n_(1) + z[4], Pi_n_(2) + z[5]);
       const Vec3 Omega_i = omega_of(model, Pi_i);

@@ -17,7 +17,8 @@
 // terms below 5e-20 relative for a and b, 3e-18 for c), one level less of
 // Estrin's scheme: the series sits on the critical path of every RKMK stage,
 // from a stage's w to its attitude and torque (docs/math.md §2). The short
-// series give the same bits as the full ones there (tests/test_lie_so3.cpp). Above, with s = sin(θ/2), k = cos(θ/2): a = 2 s k/θ,
+// series give the same bits as the full ones there (tests/test_lie_so3.cpp).
+// Above θ = 1, with s = sin(θ/2), k = cos(θ/2): a = 2 s k/θ,
 // b = 2 (s/θ)², c = (1 − (θ/2) k/s)/θ² (c's own cancellation only: ε/θ²
 // absolute in c, so ε|Ω| in dexp⁻¹).
 #include <array>
