@@ -156,23 +156,24 @@ class RkmkPair {
     // The propagated solution: for an FSAL pair the last stage sits there.
     std::array<double, 3> w_new;
     Vec3 Pi_new;
+    Slope z{};  // Σ (h b_i) k_i, as the dense output's stage at the new point forms it
     if constexpr (fsal) {
       w_new = w_last_;
       Pi_new = Pi_last_;
     } else {
-      // Σ (h b_i) k_i, as the dense output's stage at the new point forms it.
-      const Slope z = rkmk_pair_detail::combination<b_weights, stages>(k_, h);
+      z = rkmk_pair_detail::combination<b_weights, stages>(k_, h);
       w_new = {z[0], z[1], z[2]};
       Pi_new = Vec3(Pi_n_(0) + z[3], Pi_n_(1) + z[4], Pi_n_(2) + z[5]);
     }
-    const double err = error_norm(h, Pi_new);
+    const ErrorNorm e = error_norm(h, Pi_new, z);
+    const double err = e.err;
 
     AdaptiveStatus out;
     out.error_norm = err;
     const bool finite = std::isfinite(err);
     out.accepted = force_accept || (finite && err <= 1.0);
     // err^(−α) err_{n−1}^β as one exp of logarithms (two pow() cost 5% of a DOP853 step).
-    const double log_err = finite ? std::log(std::max(err, 1e-10)) : 0.0;
+    const double log_err = finite ? std::max(e.log_err, log_err_min) : 0.0;
     double factor = Control.fac_min;
     if (out.accepted) {
       if (finite) factor = Control.safety * std::exp(-alpha * log_err + Control.beta * log_err_previous_);
@@ -224,6 +225,7 @@ class RkmkPair {
   static constexpr std::size_t stored = rkmk_pair_detail::stored_stages<P>();
   static constexpr double alpha = Control.exponent - 0.75 * Control.beta;
   static constexpr double log_err_floor = -9.210340371976184;  // log(1e-4), Hairer's floor of err_{n−1}
+  static constexpr double log_err_min = -23.025850929940457;   // log(1e-10), the floor of err_n
 
   /// Ω = J⁻¹Π, written out for RigidBody models (Eigen's 3 × 3 product was not
   /// inlined in the stage loop); the model's omega() otherwise.
@@ -267,6 +269,10 @@ class RkmkPair {
   }
   static constexpr std::array<double, stages> b_weights = Pair.b;
   static constexpr std::array<double, stages> error_weights = difference(Pair.b, Pair.b_hat);
+  static constexpr std::array<double, stages> low_weights = [] {
+    if constexpr (requires { Pair.b_low; }) return Pair.b_low;
+    else return std::array<double, stages>{};
+  }();
   static constexpr std::array<double, stages> low_error_weights = [] {
     if constexpr (requires { Pair.b_low; }) return difference(Pair.b, Pair.b_low);
     else return std::array<double, stages>{};
@@ -341,27 +347,44 @@ class RkmkPair {
     return (static_cast<std::int64_t>(stage<I>(model)) + ...);
   }
 
-  /// E(e)² of the top of this file for the error weights W, given (tol M)².
-  template <const std::array<double, stages>& W>
-  double squared_error(double h, double momentum_scale2) const {
-    const Slope e = rkmk_pair_detail::combination<W, stages>(k_);
+  /// |e_ξ|² (tol M)² + |e_Π|² tol² for e = h Σ W_i k_i: 6 tol² (tol M)² E(e)²
+  /// (top of this file), the numerator over the denominator all estimates share.
+  double error_numerator(const Slope& e, double momentum_scale2) const {
     const double xi2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
     const double pi2 = e[3] * e[3] + e[4] * e[4] + e[5] * e[5];
-    return h * h * (xi2 / (tol_ * tol_) + pi2 / momentum_scale2) / 6.0;
+    return xi2 * momentum_scale2 + pi2 * (tol_ * tol_);
   }
 
-  /// err of the top of this file; M² = max(|Π_n|², |Π_{n+1}|², h²|K_1|²) needs no square root.
-  double error_norm(double h, const Vec3& Pi_new) const {
+  /// err (top of this file) and its logarithm, which the controller needs. With
+  /// E(e)² = n / D, D = 6 tol² (tol M)², err is sqrt(n5 / D), or n5 / sqrt(D (n5 +
+  /// 0.01 n3)) for DOP853, and log err a sum of logarithms: no division or square
+  /// root lies between the last stage and the next step's h (the controller's
+  /// chain of dependent operations). M² = max(|Π_n|², |Π_{n+1}|², h²|K_1|²).
+  /// z = h Σ b_i k_i (a pair without FSAL): DOP853's e3 = z − h Σ b̌_i k_i then
+  /// takes the three stages of b̌, as Hairer's code does, instead of eight.
+  struct ErrorNorm {
+    double err, log_err;
+  };
+  ErrorNorm error_norm(double h, const Vec3& Pi_new, const Slope& z) const {
     const double K1 = k_[0][3] * k_[0][3] + k_[0][4] * k_[0][4] + k_[0][5] * k_[0][5];
     const double momentum_scale2 =
         tol_ * tol_ * std::max({Pi_n_.squaredNorm(), Pi_new.squaredNorm(), h * h * K1, 1e-300});
-    const double e5 = squared_error<error_weights>(h, momentum_scale2);
+    const double D = 6.0 * (tol_ * tol_) * momentum_scale2;
+    const double n5 =
+        error_numerator(rkmk_pair_detail::combination<error_weights, stages>(k_, h), momentum_scale2);
     if constexpr (two_estimates) {
-      const double e3 = squared_error<low_error_weights>(h, momentum_scale2);
-      const double denominator = e5 + 0.01 * e3;
-      return denominator > 0.0 ? e5 / std::sqrt(denominator) : 0.0;
+      Slope e{};
+      if constexpr (fsal) {
+        e = rkmk_pair_detail::combination<low_error_weights, stages>(k_, h);
+      } else {
+        const Slope low = rkmk_pair_detail::combination<low_weights, stages>(k_, h);
+        for (std::size_t d = 0; d < 6; ++d) e[d] = z[d] - low[d];
+      }
+      const double n = n5 + 0.01 * error_numerator(e, momentum_scale2);
+      if (!(n > 0.0)) return {0.0, -HUGE_VAL};
+      return {n5 / std::sqrt(D * n), std::log(n5) - 0.5 * (std::log(D) + std::log(n))};
     } else {
-      return std::sqrt(e5);
+      return {std::sqrt(n5 / D), 0.5 * (std::log(n5) - std::log(D))};
     }
   }
 
