@@ -125,7 +125,7 @@ TEST_CASE("work-precision on a heavy top: converged reference and its floor", "[
   INFO(r.out << r.err);
   REQUIRE(r.status == 0);
   CHECK(read_string_attribute(out, "/reference", "kind") == "converged");
-  CHECK(read_string_attribute(out, "/reference", "scheme") == "rkmk-dp54");
+  CHECK(read_string_attribute(out, "/reference", "scheme") == "rkmk-dop853");
   const double estimated = read_double_attribute(out, "/reference", "estimated_error");
   CHECK(std::isfinite(estimated));
   CHECK(estimated > 0.0);
@@ -167,7 +167,7 @@ TEST_CASE("work-precision on a heavy top: converged reference and its floor", "[
   CHECK(std::isnan(read_dataset(out, "/results/dt").data[9]));
   CHECK(status[9] == "ok");
   CHECK(error[9] > estimated);
-  CHECK(r.out.find("reference: kind=converged scheme=rkmk-dp54") != std::string::npos);
+  CHECK(r.out.find("reference: kind=converged scheme=rkmk-dop853") != std::string::npos);
 }
 
 TEST_CASE("work-precision refuses bad input with exit 2 and no file", "[work-precision]") {

@@ -116,22 +116,24 @@ Reference compute_reference(const system::Scene& scene, const system::AnyModel& 
     ref.steps = 0;
     return ref;
   }
-  const integrators::SchemeInfo* dp54 = integrators::find_scheme("rkmk-dp54");
-  if (!dp54) throw RunError("work-precision: the reference scheme rkmk-dp54 is not registered");
+  const integrators::SchemeInfo* scheme = integrators::find_scheme(converged_reference_scheme);
+  if (!scheme)
+    throw RunError(std::string("work-precision: the reference scheme ") + converged_reference_scheme +
+                   " is not registered");
   std::string last_failure;
   for (const double tol : {1e-14, 1e-13, 1e-12}) {
-    const RunResult fine = run_once(*dp54, model, scene.initial, make_config(t_end, std::nullopt, tol));
+    const RunResult fine = run_once(*scheme, model, scene.initial, make_config(t_end, std::nullopt, tol));
     if (!fine.stats.ok) {
       last_failure = "at tol " + format_general(tol, 3) + ": " + fine.stats.status;
       continue;
     }
-    const RunResult coarse = run_once(*dp54, model, scene.initial, make_config(t_end, std::nullopt, 10.0 * tol));
+    const RunResult coarse = run_once(*scheme, model, scene.initial, make_config(t_end, std::nullopt, 10.0 * tol));
     if (!coarse.stats.ok) {
       last_failure = "at tol " + format_general(10.0 * tol, 3) + ": " + coarse.stats.status;
       continue;
     }
     ref.kind = "converged";
-    ref.scheme = dp54->name;
+    ref.scheme = scheme->name;
     ref.tol = tol;
     ref.comparison_tol = 10.0 * tol;
     ref.estimated_error = global_error(coarse.final, fine.final).max;
@@ -144,7 +146,8 @@ Reference compute_reference(const system::Scene& scene, const system::AnyModel& 
     }
     return ref;
   }
-  throw RunError("work-precision: no converged reference for " + scene.file + " (rkmk-dp54 " + last_failure + ")");
+  throw RunError("work-precision: no converged reference for " + scene.file + " (" + converged_reference_scheme + " " +
+                 last_failure + ")");
 }
 
 }  // namespace lgi::experiments

@@ -407,7 +407,7 @@ Subcommand add_work_precision_subcommand(CLI::App& app, const CommandContext& co
   auto o = std::make_shared<WorkPrecisionOptions>();
   auto* sub = app.add_subcommand(
       "work-precision",
-      "Error at t_end against a reference (exact flow for free bodies, else rkmk-dp54 at tol 1e-14 with its error "
+      "Error at t_end against a reference (exact flow for free bodies, else rkmk-dop853 at tol 1e-14 with its error "
       "estimated against tol 1e-13) and CPU time "
       "(min and median of N runs) for each scheme and step or tolerance");
   sub->add_option("--scene", o->scene, "Scene file (TOML)")->required();
