@@ -196,6 +196,9 @@ TEST_CASE("every adaptive Lie-group scheme meets its tolerance in proportion", "
       const double err = testing::global_error(x, exact);
       INFO(scheme.name << " tol " << tol << ": error " << err << ", steps " << stats.steps);
       CHECK(err < 100.0 * tol);  // global error within a small multiple of the local tolerance over 10 time units
+      // ... and not far below it: an estimate scaled wrongly (a lost h, tol or M
+      // factor in the error norm) would spend steps on accuracy nobody asked for.
+      CHECK(err > 1e-3 * tol);
       CHECK(err < previous);
       previous = err;
       pts.push_back({tol, err});
