@@ -10,8 +10,12 @@
 // The stage velocities are used as they are (no dexp⁻¹): the price is extra
 // order conditions, which the CG tableaus satisfy. Order: 3 (cg3), 4 (cg4a).
 // Conserves RᵀR = I to round-off, no dynamical invariant exactly.
+// R exp(ŵ) row by row with the series coefficients of rkmk_pair_kernels.hpp
+// (no sin or cos below θ = 1); a stage attitude only in the rows the torque
+// reads (row i of R_i needs only row i of the factors before it).
 #include <array>
 
+#include "integrators/rkmk_pair_kernels.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "integrators/tableaus/crouch_grossman.hpp"
 
@@ -28,6 +32,7 @@ class CrouchGrossman {
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
     std::array<Vec3, stages> omega;       // Ω_i
     std::array<Vec3, stages> k_momentum;  // K_i
+    const unsigned rows = rkmk_pair_detail::torque_rows(model);  // of a stage attitude the torque reads
     for (std::size_t i = 0; i < stages; ++i) {
       Vec3 dPi = Vec3::Zero();
       for (std::size_t j = 0; j < i; ++j) dPi += Tableau.a[i][j] * k_momentum[j];
@@ -36,7 +41,7 @@ class CrouchGrossman {
       if constexpr (Model::has_torque) {
         Mat3 R_i = s.R;
         for (std::size_t j = 0; j < i; ++j) {
-          if (Tableau.a[i][j] != 0.0) R_i = R_i * lie::exp_so3((h * Tableau.a[i][j]) * omega[j]);
+          if (Tableau.a[i][j] != 0.0) R_i = rkmk_pair_detail::times_exp(R_i, (h * Tableau.a[i][j]) * omega[j], rows);
         }
         k_momentum[i] = model.momentum_rate(R_i, Pi_i, omega[i], t + Tableau.c[i] * h);
       } else {
@@ -45,7 +50,7 @@ class CrouchGrossman {
     }
     Vec3 dPi = Vec3::Zero();
     for (std::size_t i = 0; i < stages; ++i) {
-      s.R = s.R * lie::exp_so3((h * Tableau.b[i]) * omega[i]);
+      if (Tableau.b[i] != 0.0) s.R = rkmk_pair_detail::times_exp(s.R, (h * Tableau.b[i]) * omega[i]);
       dPi += Tableau.b[i] * k_momentum[i];
     }
     s.Pi += h * dPi;

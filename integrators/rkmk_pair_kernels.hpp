@@ -74,6 +74,14 @@ inline Mat3 times_exp(const Mat3& R, const double* w, const MapCoefficients& m) 
   return out;
 }
 
+/// R exp(ŵ) for the rows in `rows` (NaN elsewhere; all three by default), its
+/// coefficients from map_coefficients: the series below θ = 1, no sin or cos.
+inline Mat3 times_exp(const Mat3& R, const Vec3& w, unsigned rows = 0b111u) {
+  Mat3 out;
+  stage_attitude(R, w.data(), map_coefficients(w.squaredNorm()), rows, out);
+  return out;
+}
+
 /// k̃ = dexp⁻¹_body(w) Ω into out[0..2].
 inline void dexpinv(const double* w, const Vec3& omega, const MapCoefficients& m, double* out) {
   const double o[3] = {omega(0), omega(1), omega(2)};

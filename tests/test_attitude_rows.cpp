@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 
+#include "integrators/commutator_free.hpp"
+#include "integrators/crouch_grossman.hpp"
 #include "integrators/rkmk.hpp"
 #include "integrators/rkmk_adaptive.hpp"
 #include "integrators/system/model.hpp"
@@ -140,9 +142,11 @@ TEST_CASE("a term that reads a row it did not declare makes the run non-finite",
   system::RigidBody<UndeclaredGravity> model{J, {UndeclaredGravity(1.0, 1.0, Vec3(0, 0, 1))}};
   CHECK_FALSE(run(integrators::Rkmk4{}, model, top_state(J), 0.01, 3).Pi.allFinite());
   CHECK_FALSE(run(integrators::RkmkDop853{1e-10}, model, top_state(J), 0.01, 3).Pi.allFinite());
+  CHECK_FALSE(run(integrators::Cf4{}, model, top_state(J), 0.01, 3).Pi.allFinite());
+  CHECK_FALSE(run(integrators::Cg4a{}, model, top_state(J), 0.01, 3).Pi.allFinite());
 }
 
-TEST_CASE("RKMK schemes give the same bits with only the declared rows formed", "[attitude-rows]") {
+TEST_CASE("RKMK, CF and CG schemes give the same bits with only the declared rows formed", "[attitude-rows]") {
   const system::Inertia J = system::make_inertia(Vec3(0.5, 0.85, 1.0).asDiagonal().toDenseMatrix());
   const system::RigidBody<system::GravityTerm> top{J, {system::GravityTerm(1.0, 1.0, Vec3(0.1, 0.0, 1.0))}};
   const system::RigidBody<AllRowsGravity> reference{J, {AllRowsGravity(1.0, 1.0, Vec3(0.1, 0.0, 1.0))}};
@@ -158,4 +162,7 @@ TEST_CASE("RKMK schemes give the same bits with only the declared rows formed", 
   check(integrators::RkmkDop853{1e-10}, 0.05, "rkmk-dop853");
   check(integrators::RkmkDp54{1e-10}, 0.05, "rkmk-dp54 (FSAL: the last stage forms every row)");
   check(integrators::RkmkVerner65{1e-10}, 0.05, "rkmk-verner65");
+  check(integrators::Cf4{}, 0.01, "cf4");
+  check(integrators::Cg4a{}, 0.01, "cg4a");
+  check(integrators::Cg3{}, 0.01, "cg3");
 }
