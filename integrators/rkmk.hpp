@@ -21,6 +21,7 @@
 // lie/exp_series.hpp the ensemble kernel shares.
 #include <array>
 
+#include "integrators/flatten_policy.hpp"
 #include "integrators/rkmk_pair_kernels.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "integrators/tableaus/runge_kutta.hpp"
@@ -38,7 +39,7 @@ class Rkmk {
   // one block, as the pairs' run_stages (rkmk_pair.hpp): same bits, ~15% less
   // time per step (README, Performance).
   template <class Model>
-  [[gnu::flatten]] StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
+  LGI_FLATTEN StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
     std::array<Vec3, stages> k_algebra;  // k̃_i
     std::array<Vec3, stages> k_momentum; // K_i
     const unsigned rows = rkmk_pair_detail::torque_rows(model);  // of R_i the torque reads

@@ -48,6 +48,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrators/flatten_policy.hpp"
 #include "integrators/rkmk_pair_kernels.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "integrators/tableaus/embedded_pairs.hpp"
@@ -343,7 +344,7 @@ class RkmkPair {
   // rkmk-dop853 on HLW's top at tol 1e-10 went from 30.8 to 27.7 µs
   // (interleaved A/B runs of lgi work-precision, README "Performance").
   template <class Model, std::size_t... I>
-  [[gnu::flatten]] std::int64_t run_stages(const Model& model, std::index_sequence<I...>) {
+  LGI_FLATTEN std::int64_t run_stages(const Model& model, std::index_sequence<I...>) {
     return (static_cast<std::int64_t>(stage<I>(model)) + ...);
   }
 
