@@ -78,8 +78,7 @@ class Rkmk {
       dPi += Tableau.b[i] * k_momentum[i];
     }
     const Vec3 hw = h * w;
-    s.R = rkmk_pair_detail::times_exp(s.R, hw.data(),
-                                      rkmk_pair_detail::map_coefficients(lie::exp_series::squared_norm(hw.data())));
+    s.R = rkmk_pair_detail::times_exp(s.R, hw);
     s.Pi += h * dPi;
     work.rhs_evaluations += static_cast<std::int64_t>(stages);
     return {};

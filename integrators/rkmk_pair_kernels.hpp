@@ -78,7 +78,7 @@ inline Mat3 times_exp(const Mat3& R, const double* w, const MapCoefficients& m) 
 /// coefficients from map_coefficients: the series below θ = 1, no sin or cos.
 inline Mat3 times_exp(const Mat3& R, const Vec3& w, unsigned rows = 0b111u) {
   Mat3 out;
-  stage_attitude(R, w.data(), map_coefficients(w.squaredNorm()), rows, out);
+  stage_attitude(R, w.data(), map_coefficients(lie::exp_series::squared_norm(w.data())), rows, out);
   return out;
 }
 
