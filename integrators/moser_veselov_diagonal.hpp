@@ -244,33 +244,42 @@ inline StepStatus solve_cayley_parameter_predicted(const DiagonalMoments& m, dou
 
 /// A guess of the next step's Cayley parameter f from the last six, by
 /// extrapolation with the order-5 backward-difference formula
-///   f_{k+1} ≈ 6 f_k − 15 f_{k−1} + 20 f_{k−2} − 15 f_{k−3} + 6 f_{k−4} − f_{k−5},
+///   u_{k+1} ≈ 6 u_k − 15 u_{k−1} + 20 u_{k−2} − 15 u_{k−3} + 6 u_{k−4} − u_{k−5},
 /// exact for a polynomial of degree 5 in t (Hairer, Nørsett & Wanner I, §III.1,
-/// the predictor of Adams methods). Along a trajectory f(t) = ½ h Ω + O(h³) is
-/// smooth, so at h|Ω| = 0.03 (Hairer & Vilmart's body at h = 0.01) the guess is
-/// within ~3e-12 of the root, and one Newton correction reaches round-off
-/// (solve_cayley_parameter_predicted). Its value is computed from the previous
-/// steps alone, so it stands off the step's chain of dependent operations
-/// (Π → f → Π), where the cold guess's sweeps stood. The history holds steps of
-/// one length h (to 1e-9 relative: a fixed-step run's h varies in its last
-/// bits); a step of another length, or a failed step, starts it anew. The
-/// guess only decides where Newton starts: it changes the accepted f at the
-/// level of its rounding, so the history is part of the scheme's memory in a
-/// checkpoint (save/restore), and a resumed run goes on bit for bit.
+/// the predictor of Adams methods), of u = f/h; the guess for a step of
+/// length h is h u_{k+1}. Along a trajectory f(t) = ½ h Ω + O(h³) is smooth, so
+/// at h|Ω| = 0.03 (Hairer & Vilmart's body at h = 0.01) the guess is within
+/// ~3e-12 of the root, and one Newton correction reaches round-off
+/// (solve_cayley_parameter_predicted). It extrapolates u = f/h, not f, because
+/// a fixed-step run's h = t_{k+1} − t_k is not constant: the grid t_k = t0 + k dt
+/// is rounded, so h jitters by ulp(t), a relative 1.8e-10 at t = 10⁴ for
+/// dt = 0.01. Extrapolated f carried that jitter, times the formula's weights,
+/// into the guess, which then missed the 1e-10 acceptance and cost more Newton
+/// work; past a relative jitter of 1e-9 (t ≥ 2¹⁶ at dt = 0.01) the history was
+/// dropped whenever h changed. u = ½ Ω + O(h²) moves with h only in its O(h²)
+/// part. The guess is computed from the previous steps alone, so it stands off
+/// the step's chain of dependent operations (Π → f → Π), where the cold guess's
+/// sweeps stood. The history holds steps of one length h to 1e-6 relative (far
+/// above the grid's jitter); a step of another length, or a failed step,
+/// starts it anew. The guess only decides where Newton starts: it changes the
+/// accepted f at the level of its rounding, so the history is part of the
+/// scheme's memory in a checkpoint (save/restore), and a resumed run goes on
+/// bit for bit.
 struct CayleyPredictor {
   static constexpr int points = 6;
-  std::array<Vec3, points> f{};  // f[0] = f_k, f[1] = f_{k−1}, …
+  // u[0] = f_k / h_k, u[1] = f_{k−1} / h_{k−1}, … (zeros: Eigen leaves a default Vec3 unset)
+  std::array<Vec3, points> u = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   int count = 0;                 // valid entries
   double h = 0.0;                // the step length of the history
   bool ready(double step) const { return count == points && same_length(step); }
-  bool same_length(double step) const { return std::abs(step - h) <= 1e-9 * std::abs(h); }
-  Vec3 guess() const {
-    return ((6.0 * f[0] - 15.0 * f[1]) + (20.0 * f[2] - 15.0 * f[3])) + (6.0 * f[4] - f[5]);
+  bool same_length(double step) const { return std::abs(step - h) <= 1e-6 * std::abs(h); }
+  Vec3 guess(double step) const {
+    return step * (((6.0 * u[0] - 15.0 * u[1]) + (20.0 * u[2] - 15.0 * u[3])) + (6.0 * u[4] - u[5]));
   }
   void record(double step, const Vec3& value) {
     if (count == 0 || !same_length(step)) count = 0, h = step;
-    for (int i = points - 1; i > 0; --i) f[static_cast<std::size_t>(i)] = f[static_cast<std::size_t>(i - 1)];
-    f[0] = value;
+    for (int i = points - 1; i > 0; --i) u[static_cast<std::size_t>(i)] = u[static_cast<std::size_t>(i - 1)];
+    u[0] = (1.0 / step) * value;
     count = std::min(count + 1, points);
   }
   void reset() { count = 0; }
@@ -278,13 +287,13 @@ struct CayleyPredictor {
   void save(std::vector<double>& out) const {
     out.push_back(static_cast<double>(count));
     out.push_back(h);
-    for (const Vec3& v : f) out.insert(out.end(), {v.x(), v.y(), v.z()});
+    for (const Vec3& v : u) out.insert(out.end(), {v.x(), v.y(), v.z()});
   }
   bool restore(std::span<const double> in) {
     if (in.size() != memory_size || !(in[0] >= 0.0 && in[0] <= points) || in[0] != std::floor(in[0])) return false;
     count = static_cast<int>(in[0]);
     h = in[1];
-    for (std::size_t i = 0; i < f.size(); ++i) f[i] = Vec3(in[2 + 3 * i], in[3 + 3 * i], in[4 + 3 * i]);
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = Vec3(in[2 + 3 * i], in[3 + 3 * i], in[4 + 3 * i]);
     return true;
   }
 };
@@ -354,7 +363,7 @@ inline StepStatus dmv_step_diagonal(const DiagonalMoments& m, State& s, Carry& c
                                     CayleyPredictor* predictor = nullptr) {
   Vec3 f;
   const StepStatus st = predictor && predictor->ready(h)
-                            ? solve_cayley_parameter_predicted(m, h, s.Pi, predictor->guess(), f)
+                            ? solve_cayley_parameter_predicted(m, h, s.Pi, predictor->guess(h), f)
                             : solve_cayley_parameter_diagonal(m, h, s.Pi, f);
   if (st.converged) apply_cayley_step(f, s, carry);
   if (predictor) {

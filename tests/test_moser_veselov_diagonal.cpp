@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "integrators/moser_veselov.hpp"
 #include "support/registered_run.hpp"
@@ -122,29 +123,46 @@ TEST_CASE("the predicted start: one correction to the cold solve's root, and the
   // Along a trajectory of equal steps the predictor's guess (six past roots,
   // CayleyPredictor) is accepted after one correction and lands on the root of
   // the cold solve to round-off; a guess that is off goes on with Newton to the same root.
+  // The steps are those of a fixed-step run's grid t_k = t0 + k dt, so from
+  // t0 = 1e4 on their lengths h = t_{k+1} − t_k jitter by ulp(t) (relative
+  // 1.8e-10 there, 1.5e-9 at 1e5): the guess, extrapolated in f/h, must not
+  // notice (extrapolated in f, it missed the acceptance at 1e4, and past a
+  // jitter of 1e-9 the history was dropped).
   const Vec3 I(0.6, 0.8, 1.0);
   const mv::DiagonalMoments m(I, I.cwiseInverse());
-  for (const double h : {1e-3, 1e-2, 3e-2}) {
+  for (const auto& [dt, t0] : {std::pair{1e-3, 0.0}, std::pair{1e-2, 0.0}, std::pair{3e-2, 0.0},
+                               std::pair{1e-2, 1e4}, std::pair{1e-2, 1e5}, std::pair{1e-3, 3e4}}) {
     system::State s{Mat3::Identity(), Vec3(1.8, 0.4, -0.9)};
     mv::Carry carry;
     mv::CayleyPredictor predictor;
-    int predicted = 0;
+    int predicted = 0, jittered = 0;
     for (int k = 0; k < 400; ++k) {
+      const double h = (t0 + static_cast<double>(k + 1) * dt) - (t0 + static_cast<double>(k) * dt);
+      jittered += h != dt;
       const bool ready = predictor.ready(h);
       Vec3 cold;
       REQUIRE(mv::solve_cayley_parameter_diagonal(m, h, s.Pi, cold).converged);
       if (ready) {
         Vec3 f;
-        const auto st = mv::solve_cayley_parameter_predicted(m, h, s.Pi, predictor.guess(), f);
-        INFO("h = " << h << ", step " << k);
+        const Vec3 p = predictor.guess(h);
+        const auto st = mv::solve_cayley_parameter_predicted(m, h, s.Pi, p, f);
+        INFO("dt = " << dt << ", t0 = " << t0 << ", step " << k);
         REQUIRE(st.converged);
         CHECK(st.iterations == 1);
         CHECK((f - cold).norm() <= 4e-16 * cold.norm());
+        // Accepted after that one correction δ (|δ|² ≤ 1e-20 |p − δ|²), not after more Newton
+        // work, at h|Ω| ≤ 0.03 (at dt = 0.03, h|Ω| ≈ 0.09, the guess is off by more).
+        const double a[3] = {h * s.Pi.x(), h * s.Pi.y(), h * s.Pi.z()};
+        const mv::DiagonalResidual r(m, a, p.x(), p.y(), p.z());
+        Vec3 d;
+        mv::diagonal_jacobian(m, a, p.x(), p.y(), p.z()).solve(r.r0, r.r1, r.r2, d.x(), d.y(), d.z());
+        if (dt <= 1e-2) CHECK(d.squaredNorm() <= 1e-20 * (p - d).squaredNorm());
         ++predicted;
       }
       REQUIRE(mv::dmv_step_diagonal(m, s, carry, h, &predictor).converged);
     }
     CHECK(predicted == 400 - mv::CayleyPredictor::points);  // the first six steps start cold
+    if (t0 > 0.0) CHECK(jittered > 100);                   // the grid's steps do differ there
   }
   // A poor guess (10% off): not accepted after one correction, Newton goes on to the same root.
   const Vec3 Pi(1.8, 0.4, -0.9);

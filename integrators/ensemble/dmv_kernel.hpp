@@ -14,12 +14,13 @@
 //     (horner_in_h2), 1/Ĩ = css J⁻¹ + cdd, all > 0, Ĩ = 1/(1/Ĩ) (dmv and
 //     lgvi: Ĩ = the moments of J), c and the Veltkamp split of Ĩ
 //     (DiagonalMoments);
-//   the guess ((6 f₀ − 15 f₁) + (20 f₂ − 15 f₃)) + (6 f₄ − f₅) (CayleyPredictor);
+//   the guess h (((6 u₀ − 15 u₁) + (20 u₂ − 15 u₃)) + (6 u₄ − u₅)), u_m = f_m/h_m
+//     (CayleyPredictor);
 //   a = h Π, ψ at the guess with Dekker's exact products (DiagonalResidual),
 //     the Jacobian, Cramer's rule, f = p − δ, accepted when
 //     |δ|² ≤ 1e-20 |f|² and |δ|² is finite;
 //   R ← R cay(2f), Π ← cay(2f)ᵀ Π as compensated sums (apply_cayley_step);
-//   the history shifted, f first.
+//   the history shifted, (1/h) f first.
 // tests/test_ensemble_dmv.cpp checks the lanes against the scalar schemes step by step.
 #include <bit>
 #include <cstdint>
@@ -159,7 +160,7 @@ inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
   for (int m = 0; m < 6; ++m)
     for (int i = 0; i < 3; ++i) hist[m][i] = ld(memory.row[rows::history + 3 * m + i]);
   const T count = ld(memory.row[rows::count]), h_history = ld(memory.row[rows::step]);
-  auto ok = equal(count, 6.0) & less_equal(abs(h - h_history), 1e-9 * abs(h_history));
+  auto ok = equal(count, 6.0) & less_equal(abs(h - h_history), 1e-6 * abs(h_history));
   // Not turning too far, and the truncated series positive.
   const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
   const T v0 = Jd[0] * P[0], v1 = Jd[1] * P[1], v2 = Jd[2] * P[2];
@@ -168,8 +169,8 @@ inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
   ok = ok & dmv_detail::moments_for<T>(model, memory, h, I, I_hi, I_lo, c);
   for (int i = 0; i < 3; ++i) {
     a[i] = h * P[i];
-    guess[i] = ((6.0 * hist[0][i] - 15.0 * hist[1][i]) + (20.0 * hist[2][i] - 15.0 * hist[3][i])) +
-               (6.0 * hist[4][i] - hist[5][i]);
+    guess[i] = h * (((6.0 * hist[0][i] - 15.0 * hist[1][i]) + (20.0 * hist[2][i] - 15.0 * hist[3][i])) +
+                    (6.0 * hist[4][i] - hist[5][i]));
   }
   ok = ok & dmv_detail::predicted_parameter(I, I_hi, I_lo, c, a, guess, f);
   T P1[3] = {P[0], P[1], P[2]}, R1[9], cP1[3] = {cP[0], cP[1], cP[2]}, cR1[9];
@@ -186,7 +187,7 @@ inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
   }
   for (int m = 5; m >= 0; --m)
     for (int i = 0; i < 3; ++i)
-      store(select(ok, m == 0 ? f[i] : hist[m - 1][i], hist[m][i]), memory.row[rows::history + 3 * m + i]);
+      store(select(ok, m == 0 ? (1.0 / h) * f[i] : hist[m - 1][i], hist[m][i]), memory.row[rows::history + 3 * m + i]);
   store(select(ok, T(1.0), T(0.0)), memory.row[rows::stepped]);
   return active_lanes_clear<T>(block, memory, ok);
 }

@@ -46,7 +46,7 @@ struct alignas(64) LaneBlock {
 /// the DMV family, dmv_kernel.hpp). Rows 0 … 31 are the scalar scheme's
 /// memory in its checkpoint layout (moser_veselov::StepMemory::save: the
 /// carries of Π and of R, column-major, the predictor's count, its h and its
-/// six Cayley parameters, newest first), so that a lane's memory passes to
+/// six Cayley parameters over their step lengths, newest first), so that a lane's memory passes to
 /// and from the scalar scheme as one copy; then the lane's per-run constants
 /// (the series in h² of css and cdd, DmvPreprocessed::free_body_series), and
 /// the kernel's verdict per lane.
@@ -55,7 +55,7 @@ inline constexpr int carry_Pi = 0;   // 3 rows
 inline constexpr int carry_R = 3;    // 9 rows: carry.R(i, j) at carry_R + i + 3 j
 inline constexpr int count = 12;     // the predictor's valid entries
 inline constexpr int step = 13;      // the step length of its history
-inline constexpr int history = 14;   // 18 rows: f_{k−m} component i at history + 3 m + i
+inline constexpr int history = 14;   // 18 rows: f_{k−m}/h_{k−m} component i at history + 3 m + i
 inline constexpr int memory = 32;    // rows 0 … 31: the scalar scheme's memory
 inline constexpr int css = 32;       // 4 rows: css in h², lowest degree first
 inline constexpr int cdd = 36;       // 4 rows
