@@ -42,14 +42,14 @@
 // h|Ω| = 0.03 (Hairer & Vilmart's body at h = 0.01) the guess is within ~1e-9
 // and one Newton correction passes the test.
 // Along a run of steps of one length the schemes start instead from an
-// extrapolation of the last six solutions (CayleyPredictor, within ~3e-12
+// extrapolation of the last six solutions over their step lengths (CayleyPredictor, within ~3e-12
 // there): one Newton correction from the exactly-rounded ψ, accepted when
 // it is below 1e-10 |f| (solve_cayley_parameter_predicted). This takes the
 // sweeps, a Jacobian and a residual off the step's dependent chain: with the
 // loop's changes of the same stop, dmv-pre10 on that body went from 0.94 to
 // 0.64 × quat/rk4 per step (scripts/benchmark_ratios.py; README), with the
-// energy error of 10⁸ steps on the book 4.5e-14 (5.5e-14 cold) and its
-// growth exponent over 8 books 0.55 (0.52 cold). The status has the corrections
+// energy error of 10⁸ steps on the book 6.1e-14 (5.5e-14 cold) and its
+// growth exponent over 8 books 0.51 (0.52 cold). The status has the corrections
 // made before the test passed and the relative residual
 // max_i |ψ_i| / max_i (sum of magnitudes)_i; a non-finite residual (diverged)
 // or 50 iterations end the solve unconverged. Same solution as the general
