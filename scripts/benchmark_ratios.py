@@ -12,6 +12,11 @@ median and range of their ratios: a process's stack placement (address-space
 randomisation) moves the DMV step's cost by up to ~20% (false store-to-load
 dependencies between addresses 4 KiB apart), so one process is one sample.
 
+The same bar over the issue's own protocol, one long run (10^7 steps, so t
+reaches 10^5, where a fixed-step run's h jitters by ulp(t)), is measured with
+`lgi simulate` (its cpu_seconds, minimum of 3 alternating runs of each scheme;
+--skip-long-run to leave it out).
+
 The cost at equal error on heavy tops (the performance bars there) is measured with
 `lgi work-precision` (--lgi, default build/release/lgi; --skip-equal-error to
 leave it out): on each study's scene, the CPU time (minimum of 5 repeats) at which
@@ -20,7 +25,7 @@ log-log interpolated along each curve as in the paper's "cost at equal error"
 table (scripts/plots/cost_table.py), and their ratio.
 
 usage: scripts/benchmark_ratios.py [--bench PATH] [--min-time S] [--processes N] [--tex FILE] [--json FILE]
-                                   [--lgi PATH | --skip-equal-error]
+                                   [--lgi PATH] [--skip-equal-error] [--skip-long-run]
 """
 import argparse
 import csv
@@ -158,6 +163,31 @@ def equal_error_ratios(lgi, tmp):
     return lines
 
 
+BENCH_SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "benchmarks", "scenes")
+LONG_RUN = ("free_body_hairer_vilmart", 0.01, 1e5)  # scene, h, t_end: 10^7 steps
+
+
+def long_run_ratio(lgi, tmp, repeats=3):
+    """dmv-pre10 / quat/rk4 per step over one long run each, from lgi simulate's cpu_seconds."""
+    import h5py  # only here: the per-step table needs no h5py
+    scene, dt, t_end = LONG_RUN
+    steps = round(t_end / dt)
+    print(f"benchmark_ratios: lgi simulate, {steps:.0e} steps, dmv-pre10 and quat/rk4", file=sys.stderr, flush=True)
+    best = {}
+    out = os.path.join(tmp, "long_run.h5")
+    for _ in range(repeats):
+        for scheme in ("dmv-pre10", "quat/rk4"):
+            subprocess.run([lgi, "simulate", "--scene", os.path.join(BENCH_SCENES, scene + ".toml"), "--scheme", scheme,
+                            "--dt", repr(dt), "--t-end", repr(t_end), "--save-every", str(10 * steps), "--out", out,
+                            "--force", "--quiet"], check=True)
+            with h5py.File(out, "r") as f:
+                cpu = float(f["diagnostics"].attrs["cpu_seconds"])
+            best[scheme] = min(best.get(scheme, cpu), cpu)
+    dmv, rk4 = (best[k] / steps * 1e9 for k in ("dmv-pre10", "quat/rk4"))
+    return (f"# {scene} over {steps:.0e} steps (lgi simulate): dmv-pre10 {dmv:.1f} ns / quat/rk4 {rk4:.1f} ns "
+            f"per step = {dmv / rk4:.3f} (bar: <= 0.45)")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bench", default="build/release/lgi_bench")
@@ -167,6 +197,7 @@ def main():
     ap.add_argument("--processes", type=int, default=5)
     ap.add_argument("--lgi", default="build/release/lgi")
     ap.add_argument("--skip-equal-error", action="store_true")
+    ap.add_argument("--skip-long-run", action="store_true")
     a = ap.parse_args()
     out = run_bench(a.bench, a.min_time)
     data = json.loads(out)
@@ -211,6 +242,12 @@ def main():
         r = dmv_bar_over_processes(a.bench, a.processes)
         print(f"# free_body_hairer_vilmart: dmv-pre10 / quat/rk4 over {len(r)} processes: median "
               f"{r[len(r) // 2]:.3f}, range {r[0]:.3f}-{r[-1]:.3f} (bar: <= 0.45)")
+    if not a.skip_long_run:
+        if os.path.exists(a.lgi):
+            with tempfile.TemporaryDirectory(prefix="lgi_long_run_") as tmp:
+                print(long_run_ratio(a.lgi, tmp))
+        else:
+            print(f"# long run: not measured (no lgi at {a.lgi}; --lgi PATH)")
     # The ensemble stepper (docs/ensemble.md): trajectories per second per core over the scalar loop, same run.
     for name, rate in ensembles.items():
         base = name.rsplit("/", 1)[0] + "/scalar"

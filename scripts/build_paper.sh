@@ -321,7 +321,7 @@ rm -f "$gen/benchmarks.tex"
 if [ -x "$bench" ]; then
   if [ "$mode" = quick ]; then bench_min=0.005 bench_procs=1; else bench_min=0.1 bench_procs=5; fi
   "$PY" "$root/scripts/benchmark_ratios.py" --bench "$bench" --min-time "$bench_min" --processes "$bench_procs" \
-    --tex "$gen/benchmarks.tex" \
+    --tex "$gen/benchmarks.tex" --skip-long-run \
     >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/benchmark_ratios.py failed"; }
 else
   missing_note benchmarks "No \\texttt{lgi\\_bench} next to this \\texttt{lgi} (configure with LGI\\_BUILD\\_BENCHMARKS=ON): no cost-per-step table."

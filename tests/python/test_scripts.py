@@ -214,7 +214,8 @@ open(args["--benchmark_out"], "w").write(json.dumps({{"context": {{"num_cpus": 2
 
 def test_benchmark_ratios_progress_on_stderr(tmp_path):
     fake, names = fake_bench(tmp_path)
-    p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", fake, "--min-time", "0.001", "--skip-equal-error"])
+    p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", fake, "--min-time", "0.001", "--skip-equal-error",
+             "--skip-long-run"])
     assert [l for l in p.stderr.splitlines() if re.match(r"benchmark_ratios: \d/3 ", l)] == \
         [f"benchmark_ratios: {i + 1}/3 {n}" for i, n in enumerate(names)]
     assert "2.00" in p.stdout
@@ -242,13 +243,40 @@ open(out[:-3] + ".csv", "w").write("\\n".join([head] + rows) + "\\n")
 """)
     fake_lgi.chmod(0o755)
     p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", bench, "--min-time", "0.001",
-             "--processes", "0", "--lgi", fake_lgi])
+             "--processes", "0", "--lgi", fake_lgi, "--skip-long-run"])
     lines = [l for l in p.stdout.splitlines() if "at error" in l]
     assert lines == [
         "# heavy_top_hlw at error 1e-10: rkmk-dop853 20.0 us / quat/rkf78 40.0 us = 0.500 (bar: <= 0.5)",
         "# heavy_top_trindade_1 over 2 s at error 1e-08: rkmk-dop853 15.0 us / quat/rkf78 20.0 us "
         "= 0.750 (bar: <= 0.5)"], p.stdout
     assert "lgi work-precision on heavy_top_hlw" in p.stderr
+
+
+def test_benchmark_ratios_long_run(tmp_path):
+    """The DMV bar over one long run: 10^7 steps of each scheme with lgi simulate, the
+    minimum of its cpu_seconds over 3 runs each, per step (a stand-in lgi whose files
+    hold 0.7 s for dmv-pre10, 1.0 s for quat/rk4, and 0.1 s less on each later run)."""
+    bench, _ = fake_bench(tmp_path)
+    calls = tmp_path / "calls"
+    fake_lgi = tmp_path / "fake_lgi"
+    fake_lgi.write_text(f"""#!{PY}
+import sys, h5py
+a = sys.argv[1:]
+assert a[0] == "simulate" and "--quiet" in a and a[a.index("--dt") + 1] == "0.01" and a[a.index("--t-end") + 1] == "100000.0"
+assert a[a.index("--scene") + 1].endswith("tests/benchmarks/scenes/free_body_hairer_vilmart.toml")
+scheme = a[a.index("--scheme") + 1]
+n = open({str(calls)!r}, "a+").write(scheme + "\\n")
+k = sum(1 for l in open({str(calls)!r}) if l.strip() == scheme)
+with h5py.File(a[a.index("--out") + 1], "w") as f:
+    f.create_group("diagnostics").attrs["cpu_seconds"] = (0.7 if scheme == "dmv-pre10" else 1.0) - 0.1 * (k - 1)
+""")
+    fake_lgi.chmod(0o755)
+    p = run([PY, SCRIPTS / "benchmark_ratios.py", "--bench", bench, "--min-time", "0.001",
+             "--processes", "0", "--lgi", fake_lgi, "--skip-equal-error"])
+    lines = [l for l in p.stdout.splitlines() if "steps (lgi simulate)" in l]
+    assert lines == ["# free_body_hairer_vilmart over 1e+07 steps (lgi simulate): dmv-pre10 50.0 ns / "
+                     "quat/rk4 80.0 ns per step = 0.625 (bar: <= 0.45)"], p.stdout
+    assert calls.read_text().split() == ["dmv-pre10", "quat/rk4"] * 3
 
 
 # ── (h) demo.sh --out DIR writes into DIR only ───────────────────────────────
