@@ -12,7 +12,7 @@ median and range of their ratios: a process's stack placement (address-space
 randomisation) moves the DMV step's cost by up to ~20% (false store-to-load
 dependencies between addresses 4 KiB apart), so one process is one sample.
 
-The same bar over the issue's own protocol, one long run (10^7 steps, so t
+The same bar over one long run, as the Fortran comparison was timed (10^7 steps, so t
 reaches 10^5, where a fixed-step run's h jitters by ulp(t)), is measured with
 `lgi simulate` (its cpu_seconds, minimum of 3 alternating runs of each scheme;
 --skip-long-run to leave it out).
