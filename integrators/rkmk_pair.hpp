@@ -185,8 +185,7 @@ class RkmkPair {
       if constexpr (fsal && Model::has_torque) {
         s.R = R_last_;  // R_n exp(w_s), formed at the last stage
       } else {
-        const double t2 = w_new[0] * w_new[0] + w_new[1] * w_new[1] + w_new[2] * w_new[2];
-        s.R = rkmk_pair_detail::times_exp(R_n_, w_new.data(), rkmk_pair_detail::map_coefficients(t2));
+        s.R = rkmk_pair_detail::times_exp(R_n_, w_new.data());
       }
       s.Pi = Pi_new;
       // FSAL: the last stage's K is the next step's K_1. Otherwise the next
@@ -217,7 +216,7 @@ class RkmkPair {
       for (std::size_t d = 0; d < 6; ++d) z[d] += bi * k_[i][d];
     }
     const double w[3] = {h_ * z[0], h_ * z[1], h_ * z[2]};
-    out.R = rkmk_pair_detail::times_exp(R_n_, w, rkmk_pair_detail::map_coefficients(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
+    out.R = rkmk_pair_detail::times_exp(R_n_, w);
     out.Pi = Vec3(Pi_n_(0) + h_ * z[3], Pi_n_(1) + h_ * z[4], Pi_n_(2) + h_ * z[5]);
   }
 

@@ -76,11 +76,12 @@ inline Mat3 times_exp(const Mat3& R, const double* w, const MapCoefficients& m) 
 
 /// R exp(ŵ) for the rows in `rows` (NaN elsewhere; all three by default), its
 /// coefficients from map_coefficients: the series below θ = 1, no sin or cos.
-inline Mat3 times_exp(const Mat3& R, const Vec3& w, unsigned rows = 0b111u) {
+inline Mat3 times_exp(const Mat3& R, const double* w, unsigned rows = 0b111u) {
   Mat3 out;
-  stage_attitude(R, w.data(), map_coefficients(lie::exp_series::squared_norm(w.data())), rows, out);
+  stage_attitude(R, w, map_coefficients(lie::exp_series::squared_norm(w)), rows, out);
   return out;
 }
+inline Mat3 times_exp(const Mat3& R, const Vec3& w, unsigned rows = 0b111u) { return times_exp(R, w.data(), rows); }
 
 /// k̃ = dexp⁻¹_body(w) Ω into out[0..2].
 inline void dexpinv(const double* w, const Vec3& omega, const MapCoefficients& m, double* out) {
