@@ -11,6 +11,11 @@
 // Construction clears the flag and installs the handler; destruction puts
 // back the handlers that were there before, also when the run leaves by an
 // exception.
+// A command makes its guard before it creates its first output file and keeps
+// it until the results are published: a signal that comes after the last step
+// (while the files are being finished) then only sets the flag, the files are
+// completed and the command exits 0, instead of dying half-way between
+// <out>.partial and <out>.
 #include "experiments/errors/exit_status.hpp"
 
 namespace lgi::experiments {

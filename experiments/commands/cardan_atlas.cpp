@@ -146,8 +146,9 @@ int run_cardan_poincare(const system::Scene& scene, const CardanPoincareRequest&
   CardanOrbitRequest request{r.scheme, r.t_end, r.dt, r.max_events, r.lyapunov || r.megno, r.seed};
   std::vector<CardanOrbit> orbits(static_cast<std::size_t>(r.ics));
   std::vector<char> done(orbits.size(), 0);
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
   {
-    const InterruptGuard interrupt_guard;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(r.threads)
     for (std::int64_t i = 0; i < r.ics; ++i) {
       if (interrupt_requested.load(std::memory_order_relaxed)) continue;

@@ -215,11 +215,9 @@ int run_chaos_map(const ChaosMapOptions& o) {
   const std::vector<Cell> cells = make_cells(o, scene, body, dt, ls, hs, h_min);
   const int threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
   const auto start = std::chrono::steady_clock::now();
-  std::vector<Orbit> orbits;
-  {
-    const InterruptGuard interrupt_guard;
-    orbits = run_orbits(o, cells, scene, dt, threads);
-  }
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
+  const std::vector<Orbit> orbits = run_orbits(o, cells, scene, dt, threads);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool interrupted = interrupt_signal() != 0;
   std::map<std::string, std::string> parameters = {

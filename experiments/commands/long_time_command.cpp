@@ -349,6 +349,10 @@ int long_time(const LongTimeOptions& o) {
   for (const auto& n : names) columns.push_back({n, ColumnType::real, ""});
   for (const auto& n : names) columns.push_back({n + "_window_max", ColumnType::real, ""});
 
+  // From before <out>.partial exists until the results are published, a
+  // signal only sets the flag: the loop stops at a step boundary, and one
+  // that comes after the last step lets the files be finished (exit 0).
+  const InterruptGuard interrupt_guard;
   ResumedResults opened = open_results(o, scene, *scheme, cfg, last_step, columns, names.size());
   ResultsFile& file = *opened.file;
   const std::optional<RunCheckpoint>& from = opened.checkpoint;
@@ -379,7 +383,6 @@ int long_time(const LongTimeOptions& o) {
   integrators::RunStats stats;
   bool interrupted = false;
   {
-    const InterruptGuard interrupt_guard;
     integrators::RunConfig c = cfg;
     c.stop = &interrupt_requested;  // every loop (the baselines' too) ends cleanly, with its statistics
     stats = scheme->run(model, state, c, timed);

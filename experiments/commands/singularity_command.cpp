@@ -114,6 +114,8 @@ int singularity_command(const SingularityOptions& o) {
   };
 
   const std::string partial = o.out + ".partial";
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
   H5 h5(partial);
   const std::string utc = hdf5::utc_now_iso8601();
   hdf5::write_h5md_metadata(h5.file(), /*units_module=*/false, h5.fail());
@@ -123,7 +125,6 @@ int singularity_command(const SingularityOptions& o) {
   std::vector<SummaryRow> rows;
   double tol_used = 0.0, dt_used = 0.0;
   // Ctrl-C / SIGTERM: the run in progress finishes, the study stops after it and keeps what is done.
-  const InterruptGuard interrupt_guard;
   bool stopped = false;  // a signal came before every run was done
   const auto interrupted = [&stopped] { return stopped = stopped || interrupt_requested.load(); };
   for (std::size_t ci = 0; ci < cases.size() && !interrupted(); ++ci) {

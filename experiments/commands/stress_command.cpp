@@ -75,7 +75,6 @@ std::vector<const SchemeInfo*> selected_schemes(const std::string& list) {
 /// returns the rows and, if a signal stopped the suite, why.
 std::vector<Row> run_suite(std::vector<Variant>& variants, const std::vector<const SchemeInfo*>& schemes,
                            double budget, bool progress, ResultsFile& file, std::string& stopped) {
-  const InterruptGuard interrupt_guard;
   std::vector<Row> rows;
   std::size_t k = 0;
   // Every run reads the flag as RunConfig::stop and ends after its current
@@ -135,6 +134,8 @@ int stress_command(const StressOptions& o) {
 
   std::vector<Variant> variants = build_suite({o.quick, shipped_scenes_dir(o.scenes_dir)});
   for (auto& v : variants) v.criterion.text = criterion_text(v.criterion);
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
   ResultsFile file(o.out, o.force, result_columns());
   write_parameters(file, o, schemes, budget, variants.size());
 

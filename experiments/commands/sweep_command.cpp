@@ -164,6 +164,8 @@ int run_sweep(const SweepOptions& o) {
   layout.trajectories = spec.trajectory_every > 0;
 
   const std::string partial = o.out + ".partial", writing = o.out + ".writing";
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
   SweepRanks& ranks = SweepRanks::world();
   // Rank 0 alone checks and opens the files; the others learn the outcome.
   std::unique_ptr<SweepPartialFile> file;
@@ -183,12 +185,8 @@ int run_sweep(const SweepOptions& o) {
   }
   ranks.broadcast(done);
   const int threads = o.threads > 0 ? o.threads : ranks.default_threads();
-  ChunkRunStats run;
-  {
-    const InterruptGuard interrupt_guard;
-    run = run_chunks(spec, plan, scheme, cfg, layout, std::move(done), file.get(), threads, o.quiet,
-                     interrupt_requested, ranks);
-  }
+  const ChunkRunStats run = run_chunks(spec, plan, scheme, cfg, layout, std::move(done), file.get(), threads, o.quiet,
+                                       interrupt_requested, ranks);
   if (!ranks.root()) return run.interrupted ? interrupted_exit_status() : exit_ok;
   const auto completed = std::count(file->done().begin(), file->done().end(), char{1});
   if (run.interrupted || completed < layout.count) {

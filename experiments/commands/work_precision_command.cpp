@@ -358,6 +358,8 @@ int work_precision(const WorkPrecisionOptions& o) {
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO) == 1;
 
   Study st{scene, model, invariants, {}, invariants.evaluate(scene.initial), {}, t_end, o.repeat};
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;  // the reference's runs finish; the rows' stop (measure)
   ResultsFile file(o.out, o.force, result_columns(invariants, st.invariant_columns));
   ResultAttributes params = scene_parameters(scene);
   params.text["subcommand"] = "work-precision";
@@ -370,7 +372,6 @@ int work_precision(const WorkPrecisionOptions& o) {
   file.write_parameters(params);
 
   const double cpu0 = integrators::detail::cpu_now();
-  const InterruptGuard interrupt_guard;  // the reference's runs finish; the rows' stop (measure)
   if (progress) std::cerr << "\rwork-precision: reference..." << std::flush;
   try {
     st.reference = compute_reference(scene, model, t_end);

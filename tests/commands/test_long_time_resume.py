@@ -85,8 +85,15 @@ def cut(args, out, sig, seconds, resume):
         p.wait(timeout=120)
     if p.returncode == 0:  # it finished between the poll and the signal: a signal to a zombie does nothing
         return False
+    if p.returncode == -signal.SIGINT and published(out):  # it came after the results were published
+        return False
     assert p.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 130), p.returncode
     return True
+
+
+def published(out):
+    """The results are in <out> and nothing is left under .partial."""
+    return os.path.exists(out) and not os.path.exists(out + ".partial")
 
 
 def assert_same_files(out, ref):
@@ -141,3 +148,44 @@ def test_resume_refusals(tmp_path):
     r = lgi("--scene", FREE, "--scheme", "rkmk4", "--dt", "2e-4", "--t-end", "1e4", "--out", out, "--resume")
     assert r.returncode == 2 and "another" in one_line(r.stderr)
     assert open(out + ".partial", "rb").read() == before
+
+
+def test_signal_at_any_moment_of_a_short_run(tmp_path):
+    """SIGINT at random moments of a run whose steps take a fraction of the
+    time it spends creating and finishing its files: the command either
+    stops with 130 and a .partial that --resume completes, or finishes with
+    0 (a signal after the last step only lets the files be finished). It
+    never dies half-way between <out>.partial and <out>; a signal after the
+    results are published, as the process exits, may still end it, with the
+    files complete."""
+    args = ["--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-3", "--t-end", "5", "--samples", "10"]
+    ref = str(tmp_path / "ref.h5")
+    r = lgi(*args, "--out", ref, "--quiet")
+    assert r.returncode == 0, r.stderr
+    rng = random.Random(4242)
+    window = 0.0  # the longest time seen from .partial's creation to the exit
+    outcomes = {}
+    for k in range(16):
+        out = str(tmp_path / f"run{k}.h5")
+        p = subprocess.Popen([LGI, "long-time", *args, "--out", out, "--quiet"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        end = time.monotonic() + 60
+        while not os.path.exists(out + ".partial") and p.poll() is None and time.monotonic() < end:
+            time.sleep(0.0002)
+        started = time.monotonic()
+        if k >= 2:  # the first two runs measure the window
+            time.sleep(rng.uniform(0.0, 1.5 * window))
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)
+        p.wait(timeout=60)
+        window = max(window, time.monotonic() - started)
+        outcomes[p.returncode] = outcomes.get(p.returncode, 0) + 1
+        if p.returncode == 130:
+            assert os.path.exists(out + ".partial") and not os.path.exists(out)
+            r = lgi(*args, "--out", out, "--resume", "--quiet")
+            assert r.returncode == 0, r.stderr
+        else:
+            assert p.returncode in (0, -signal.SIGINT), outcomes
+        assert published(out), (k, p.returncode)
+        assert_same_files(out, ref)
+    assert outcomes.get(130, 0) > 0, outcomes  # the moments reached the run itself
