@@ -133,15 +133,19 @@ void add_section_columns(const std::string& path, SectionKind kind, const Vec3& 
 
 /// The chaos indicators of every orbit, on `threads` threads (each orbit a
 /// function of its index alone), written as /sweep columns.
-void add_indicator_columns(const std::string& path, const PoincareOptions& o, const SweepPlan& plan,
+/// False if a signal stopped it (the orbits left out are not written).
+bool add_indicator_columns(const std::string& path, const PoincareOptions& o, const SweepPlan& plan,
                            const system::Scene& scene, double dt, int threads) {
   std::vector<double> lyapunov(static_cast<std::size_t>(o.ics)), megno(static_cast<std::size_t>(o.ics));
+  std::int64_t computed = 0;
 #pragma omp parallel num_threads(threads)
   {
     std::vector<double> flat;
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) reduction(+ : computed)
     for (std::int64_t i = 0; i < o.ics; ++i) {
       const auto k = static_cast<std::size_t>(i);
+      if (interrupt_requested.load(std::memory_order_relaxed)) continue;
+      ++computed;
       try {
         plan.inputs(i, flat);
         const system::State x0 = plan.initial_state(i, scene, flat);
@@ -152,10 +156,12 @@ void add_indicator_columns(const std::string& path, const PoincareOptions& o, co
       }
     }
   }
+  if (computed < o.ics) return false;
   SweepExtraColumns file(path);
   if (o.lyapunov) file.write_real("sweep", "lyapunov", lyapunov, 1);
   if (o.megno) file.write_real("sweep", "megno", megno, 1);
   file.close();
+  return true;
 }
 
 SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, const system::Scene& scene,
@@ -233,24 +239,26 @@ int run_poincare(const PoincareOptions& o) {
   layout.inputs = plan.input_columns();
   layout.error_names = system::SceneInvariants(scene, model).error_names();
   layout.event_names = {spec.events[0].name};
+  // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
   auto file = fresh_partial_file(o, layout, "lgi poincare\n" + spec.text + scene.toml_text);
   const int threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
-  ChunkRunStats run;
-  {
-    const InterruptGuard interrupt_guard;
-    run = run_chunks(spec, plan, scheme, cfg, layout, file->done(), file.get(), threads, o.quiet, interrupt_requested,
-                     SweepRanks::world());
-  }
+  const ChunkRunStats run = run_chunks(spec, plan, scheme, cfg, layout, file->done(), file.get(), threads, o.quiet,
+                                       interrupt_requested, SweepRanks::world());
   const std::string partial = o.out + ".partial", writing = o.out + ".writing";
-  if (run.interrupted) {
-    std::cerr << "lgi: poincare interrupted by signal; the completed orbits are in " << partial << '\n';
+  const auto stopped = [&](const char* during) {
+    std::cerr << "lgi: poincare interrupted by signal" << during << "; the completed orbits are in " << partial << '\n';
     return interrupted_exit_status();
-  }
+  };
+  if (run.interrupted) return stopped("");
   std::remove(writing.c_str());
   file->write_final(writing, attributes(o, spec, scene, cfg, e, run));
   file->close();
   add_section_columns(writing, kind, e, scene);
-  if (o.lyapunov || o.megno) add_indicator_columns(writing, o, plan, scene, dt, threads);
+  if ((o.lyapunov || o.megno) && !add_indicator_columns(writing, o, plan, scene, dt, threads)) {
+    std::remove(writing.c_str());
+    return stopped(" while it computed the indicators");
+  }
   hdf5::publish(writing, o.out, o.force, "the section is");
   std::remove(partial.c_str());
   if (!o.quiet)

@@ -4,7 +4,9 @@ consistent with Gamma, identical results for 1 and 2 threads and with or
 without the chaos indicators, the gamma section, a gamma_rate event in a
 sweep spec, and the refusals (an empty level set, a spring) with exit 2."""
 import os
+import signal
 import subprocess
+import time
 
 import h5py
 import numpy as np
@@ -145,3 +147,24 @@ def test_lagrange_crossings_on_the_nutation_circles(tmp_path):
         gap = np.argmax(np.diff(t))
         low, high = t[:gap + 1], t[gap + 1:]
         assert np.ptp(low) < 1e-6 and np.ptp(high) < 1e-6, (np.ptp(low), np.ptp(high))
+
+
+def test_sigint_while_the_indicators_are_computed(tmp_path):
+    """Ctrl-C after the crossings are written, while MEGNO and Lyapunov are
+    integrated: exit 130, the orbits kept in <out>.partial, nothing
+    published and no <out>.writing left behind."""
+    out = str(tmp_path / "s.h5")
+    p = subprocess.Popen([LGI, "poincare", "--quiet", "--scene", GENERAL, "--l", "1", "--h", "1.5", "--ics", "4",
+                          "--t-end", "6000", "--threads", "1", "--lyapunov", "--out", out],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    end = time.monotonic() + 120
+    while not os.path.exists(out + ".writing") and p.poll() is None and time.monotonic() < end:
+        time.sleep(0.001)
+    assert p.poll() is None, "the run ended before its indicators"
+    p.send_signal(signal.SIGINT)
+    err = p.communicate(timeout=120)[1]
+    assert p.returncode == 130, err
+    assert "while it computed the indicators" in err and err.count("\n") == 1, err
+    assert not os.path.exists(out) and not os.path.exists(out + ".writing")
+    with h5py.File(out + ".partial", "r") as f:
+        assert f["sweep"]["status"].shape[0] == 4
