@@ -28,6 +28,7 @@ void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& r) {
                              .family = "RKMK",
                              .notes = "adaptive (--tol), DOP853 with 8(5,3) estimator; dense output of order 7; PI "
                                       "controller"});
+  add_verner_high_order_pairs(r);  // registry_verner_pairs.cpp: a unit of its own, as they are large
   add_scheme<Cg3>(r, {.name = "cg3", .family = "Crouch-Grossman"});
   add_scheme<Cg4a>(r, {.name = "cg4a", .family = "Crouch-Grossman", .notes = "5 stages"});
   add_scheme<Cf4>(r, {.name = "cf4", .family = "commutator-free", .notes = "two exponentials per step"});

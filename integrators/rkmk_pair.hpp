@@ -1,7 +1,8 @@
 #pragma once
 // Adaptive RKMK on any embedded Runge–Kutta pair, with a PI step-size
 // controller and, where the pair has one, dense output (`rkmk-dp54`,
-// `rkmk-verner65`, `rkmk-dop853`; registry_lie_group_runge_kutta.cpp).
+// `rkmk-verner65`, `rkmk-dop853`, `rkmk-verner87`, `rkmk-verner98`;
+// registry_lie_group_runge_kutta.cpp, registry_verner_pairs.cpp).
 //
 // Stages (Munthe-Kaas, Appl. Numer. Math. 29 (1999) 115–127, Algorithm 1;
 // Iserles et al., Acta Numerica 9 (2000) §5.3, eq. (5.14); body form as in
