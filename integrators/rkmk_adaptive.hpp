@@ -17,10 +17,10 @@
 //                  step, no dense output (tableaus/verner98.hpp).
 // The two Verner pairs use DOP853's controller constants with their own
 // exponent 1/(p̂ + 1); at equal error they need 7–25% fewer evaluations than
-// DOP853 on the heavy tops (experiments/RESULTS.md, "Adaptive Lie-group pairs").
-// The controllers' β and bounds were chosen on the work-precision runs of
-// experiments/RESULTS.md ("Adaptive Lie-group pairs"); each is a PI
-// controller in the range HNW I §II.4 recommends (β ≤ 0.4/q).
+// DOP853 on the heavy tops (README, "Which scheme at a given accuracy (tops)").
+// The controllers' β and bounds were chosen on work-precision runs of the
+// heavy tops (README, Performance); each is a PI controller in the range
+// HNW I §II.4 recommends (β ≤ 0.4/q).
 #include <tuple>
 
 #include "integrators/rkmk_pair.hpp"
