@@ -23,7 +23,6 @@ FREE = os.path.join(SCENES, "free_body_hlw.toml")
 LIMIT = 256 * 1024  # bytes: above a new file's metadata, far below a finished run's file
 
 
-
 def holds_open(pid, path):
     """Whether process `pid` has `path` open (Linux: its /proc/<pid>/fd links)."""
     fd_dir = f"/proc/{pid}/fd"
@@ -31,6 +30,7 @@ def holds_open(pid, path):
         return any(os.path.realpath(os.path.join(fd_dir, fd)) == os.path.realpath(path) for fd in os.listdir(fd_dir))
     except OSError:  # it exited, or a descriptor closed while we looked
         return False
+
 
 def text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
