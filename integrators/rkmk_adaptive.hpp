@@ -36,17 +36,19 @@ inline constexpr PairControl dp54_control{.exponent = 1.0 / 5.0, .beta = 0.0, .s
                                           .fac_max = 5.0};
 inline constexpr PairControl verner65_control{.exponent = 1.0 / 6.0, .beta = 0.04, .safety = 0.9,
                                               .fac_min = 0.2, .fac_max = 5.0};
-inline constexpr PairControl verner87_control{.exponent = 1.0 / 8.0, .beta = 0.04, .safety = 0.9,
-                                              .fac_min = 1.0 / 3.0, .fac_max = 6.0};
-inline constexpr PairControl verner98_control{.exponent = 1.0 / 9.0, .beta = 0.04, .safety = 0.9,
-                                              .fac_min = 1.0 / 3.0, .fac_max = 6.0};
 inline constexpr PairControl dop853_control{.exponent = 1.0 / 8.0, .beta = 0.04, .safety = 0.9,
                                             .fac_min = 1.0 / 3.0, .fac_max = 6.0};
+/// DOP853's constants with the 9(8) pair's exponent 1/(p̂ + 1) (the 8(7) pair's is DOP853's own).
+inline constexpr PairControl verner98_control = [] {
+  PairControl c = dop853_control;
+  c.exponent = 1.0 / 9.0;
+  return c;
+}();
 
 using RkmkDp54 = RkmkPair<tableaus::dormand_prince54, dp54_control>;
 using RkmkVerner65 = RkmkPair<tableaus::verner65, verner65_control>;
 using RkmkDop853 = RkmkPair<tableaus::dop853, dop853_control>;
-using RkmkVerner87 = RkmkPair<tableaus::verner87, verner87_control>;
+using RkmkVerner87 = RkmkPair<tableaus::verner87, dop853_control>;
 using RkmkVerner98 = RkmkPair<tableaus::verner98, verner98_control>;
 
 /// Every adaptive RKMK scheme, for the generic tests (tests/test_scheme_order.cpp
