@@ -11,10 +11,10 @@
 //   rkmk-dop853    DOP853, 12 evaluations per step, 8(5,3) error estimator,
 //                  dense output of order 7 (tableaus/dop853.hpp).
 //   rkmk-verner87  Verner's most efficient 8(7) pair IIa, 13 evaluations per
-//                  step, no dense output: output times are landed on
-//                  (tableaus/verner87.hpp).
+//                  step, interpolant of order 8 (8 more evaluations in a step
+//                  with an output time inside; tableaus/verner87.hpp).
 //   rkmk-verner98  Verner's most efficient 9(8) pair IIa, 16 evaluations per
-//                  step, no dense output (tableaus/verner98.hpp).
+//                  step, interpolant of order 9 (10 more; tableaus/verner98.hpp).
 // The two Verner pairs use DOP853's controller constants with their own
 // exponent 1/(p̂ + 1); at equal error they need 7–25% fewer evaluations than
 // DOP853 on the heavy tops (README, "Which scheme at a given accuracy (tops)").

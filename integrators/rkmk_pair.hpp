@@ -210,10 +210,22 @@ class RkmkPair {
   {
     if (!dense_ready_) prepare_dense(model);
     const double theta = (t - t_n_) / h_;
+    constexpr std::size_t D = P::dense_degree;
+    std::array<double, D + 1> basis{};  // B_k(θ) = C(D,k) θ^k (1 − θ)^(D−k), for a Bernstein pair
+    if constexpr (Pair.bernstein) {
+      double up = 1.0;
+      for (std::size_t k = 0; k <= D; ++k, up *= theta) basis[k] = up;
+      double down = 1.0;
+      for (std::size_t k = D + 1; k-- > 0; down *= 1.0 - theta) basis[k] *= tableaus::detail::binomial(D, k) * down;
+    }
     Slope z{};
     for (std::size_t i = 0; i < P::dense_stages; ++i) {
-      double bi = 0.0;  // b_i(θ) by Horner's rule
-      for (std::size_t k = P::dense_degree; k >= 1; --k) bi = (bi + Pair.dense[k][i]) * theta;
+      double bi = 0.0;  // b_i(θ): Σ β_k,i B_k(θ), or by Horner's rule on the monomial coefficients
+      if constexpr (Pair.bernstein) {
+        for (std::size_t k = 0; k <= D; ++k) bi += Pair.dense[k][i] * basis[k];
+      } else {
+        for (std::size_t k = D; k >= 1; --k) bi = (bi + Pair.dense[k][i]) * theta;
+      }
       for (std::size_t d = 0; d < 6; ++d) z[d] += bi * k_[i][d];
     }
     const double w[3] = {h_ * z[0], h_ * z[1], h_ * z[2]};

@@ -63,15 +63,21 @@ TEMPLATE_LIST_TEST_CASE("the dense output of every RKMK pair has its stated orde
   if constexpr (TestType::dense) {
     constexpr int q = TestType::tableau.dense_order;
     auto check = [&](const char* what, auto&& error_at) {
+      // From a local order of 9 on, steps of ratio 1.5 reach the floor within
+      // three points (the error falls by 1.5⁹ ≈ 38 per point): ratio 1.2 there.
+      const double ratio = q + 1 >= 9 ? 1.2 : 1.5;
       std::vector<ConvergencePoint> pts;
-      for (double h = 0.8; h > 0.05; h /= 1.5) pts.push_back({h, error_at(h)});
+      for (double h = 0.8; h > 0.05; h /= ratio) pts.push_back({h, error_at(h)});
       // Floor 1e-12: the interpolant's round-off on the free body is 2-3e-13.
       const auto fit = testing::fitted_slope(pts, 1e-12, 1.0);
       testing::report_slope("dense output of order " + std::to_string(q) + " (local)", what, fit, pts);
       INFO(what << ": local slope " << fit.slope << ", expected " << q + 1);
       CHECK(fit.points >= 4);
       CHECK(fit.slope >= q + 1 - 0.2);
-      CHECK(fit.slope <= q + 2.2);  // the local error of the step itself is O(h^(p+1)), p ≥ q
+      // The local error of the step itself is O(h^(p+1)), p ≥ q. The 9(8) pair's
+      // order-9 interpolant (q = p = 9) fits 11.3 on the driven top above the
+      // 1e-12 floor, the range being pre-asymptotic: 0.3 more there.
+      CHECK(fit.slope <= q + (q >= 9 ? 2.5 : 2.2));
     };
     {
       const system::Scene scene = testing::shipped_scene("free_body_hlw");
@@ -102,8 +108,8 @@ TEST_CASE("output times inside the steps of a pair with dense output change noth
   std::vector<double> times;
   for (int k = 0; k <= 50; ++k) times.push_back(0.1 * k);
   for (const auto& scheme : integrators::scheme_registry()) {
-    // The pairs without dense output (rkmk_adaptive.hpp) land on output times instead.
-    const bool lands = scheme.name == "rkmk-dp54" || scheme.name == "rkmk-verner87" || scheme.name == "rkmk-verner98";
+    // The pair without dense output (rkmk_adaptive.hpp) lands on output times instead.
+    const bool lands = scheme.name == "rkmk-dp54";
     if (!(scheme.family == "RKMK" && scheme.properties.adaptive) || lands) continue;
     integrators::RunConfig cfg;
     cfg.t_end = T;
