@@ -6,13 +6,16 @@
 // RKV65.IIIXb.Efficient). 9 stages, the last at the new point with row b
 // (FSAL, so 8 evaluations per step); b has order 6, b̂ order 5, and the
 // error estimate is h Σ (b_i − b̂_i) k_i. The interpolant takes three extra
-// stages (10–12) and gives y(t_n + θh) = y_n + h Σ_{i ≤ 12} b_i(θ) k_i with
-// b_i(θ) = Σ_{k=1..6} d_k,i θ^k, of order 6.
-// Each coefficient is the quotient of its numerator and denominator as double
-// literals (within 1.5 units in the last place of the rational). The checks
-// below verify every order condition up to order 6 for b and that order 7
-// fails, order 5 (and not 6) for b̂, and order 6 (and not 7) for each θ^k
-// coefficient of the interpolant (embedded_pairs.hpp, rooted_trees.hpp).
+// stages (10–12) and gives y(t_n + θh) = y_n + h Σ_{i ≤ 12} b_i(θ) k_i, b_i(θ)
+// a polynomial of degree 6, of order 6, held by its Bernstein coefficients
+// (embedded_pairs.hpp; the monomial ones reach 1.2e5, these 760).
+// Each coefficient of the step is the quotient of its numerator and
+// denominator as double literals (within 1.5 units in the last place of the
+// rational); the interpolant's are 25-digit decimals of the exact Bernstein
+// coefficients. The checks below verify every order condition up to order 6
+// for b and that order 7 fails, order 5 (and not 6) for b̂, and order 6 (and
+// not 7) for each θ^k coefficient of the interpolant (converted from β_k,i;
+// embedded_pairs.hpp, rooted_trees.hpp).
 #include "integrators/tableaus/embedded_pairs.hpp"
 
 namespace lgi::tableaus {
@@ -120,57 +123,53 @@ inline constexpr DenseEmbeddedTableau<9, 12, 6> verner65 = [] {
   t.b_hat[8] = 1.0 / 30.0;
   t.embedded_order = 5;
   t.first_same_as_last = true;
-  t.dense[1][0] = 1.0;
-  t.dense[2][0] = -940811006205413129.0 / 120948724610397495.0;
-  t.dense[3][0] = 88342864458754360181.0 / 3265615564480732365.0;
-  t.dense[4][0] = -99667000922033025307.0 / 2177077042987154910.0;
-  t.dense[5][0] = 7995049273203130972.0 / 217707704298715491.0;
-  t.dense[6][0] = -7303903485456272500.0 / 653123112896146473.0;
-  t.dense[2][3] = 2214248281250000.0 / 133130993475189.0;
-  t.dense[3][3] = -49918013252500000000.0 / 578720428636646583.0;
-  t.dense[4][3] = 1440368506953125000.0 / 8387252588936907.0;
-  t.dense[5][3] = -28873797587500000000.0 / 192906809545548861.0;
-  t.dense[6][3] = 27678103515625000000.0 / 578720428636646583.0;
-  t.dense[2][4] = 893038428789062500.0 / 32943296570459319.0;
-  t.dense[3][4] = -125047567320625000000.0 / 889469007402401613.0;
-  t.dense[4][4] = 82988785418183593750.0 / 296489669134133871.0;
-  t.dense[5][4] = -72330565909375000000.0 / 296489669134133871.0;
-  t.dense[6][4] = 69335281738281250000.0 / 889469007402401613.0;
-  t.dense[2][5] = 40331864555500.0 / 142160006043.0;
-  t.dense[3][5] = -5647463071672000.0 / 3838320163161.0;
-  t.dense[4][5] = 3747982556193250.0 / 1279440054387.0;
-  t.dense[5][5] = -3266630520520000.0 / 1279440054387.0;
-  t.dense[6][5] = 3131355943750000.0 / 3838320163161.0;
-  t.dense[2][6] = -143250206750000.0 / 12603936879.0;
-  t.dense[3][6] = 461347522996000000.0 / 7827044801859.0;
-  t.dense[4][6] = -13312037070125000.0 / 113435431911.0;
-  t.dense[5][6] = 266854670860000000.0 / 2609014933953.0;
-  t.dense[6][6] = -255803940625000000.0 / 7827044801859.0;
-  t.dense[2][7] = 3753451420391.0 / 338141155.0;
-  t.dense[3][7] = -3679035166143248.0 / 63908678295.0;
-  t.dense[4][7] = 4883240297928691.0 / 42605785530.0;
-  t.dense[5][7] = -425608752364336.0 / 4260578553.0;
-  t.dense[6][7] = 407983850042500.0 / 12781735659.0;
-  t.dense[2][8] = -69713.0 / 23220.0;
-  t.dense[3][8] = 4685161.0 / 313470.0;
-  t.dense[4][8] = -135239.0 / 4860.0;
-  t.dense[5][8] = 228046.0 / 10449.0;
-  t.dense[6][8] = -186250.0 / 31347.0;
-  t.dense[2][9] = -132664.0 / 6765.0;
-  t.dense[3][9] = 17011336.0 / 182655.0;
-  t.dense[4][9] = -10067296.0 / 60885.0;
-  t.dense[5][9] = 1579832.0 / 12177.0;
-  t.dense[6][9] = -1385000.0 / 36531.0;
-  t.dense[2][10] = -2734375000.0 / 149990751.0;
-  t.dense[3][10] = 391796875000.0 / 4049750277.0;
-  t.dense[4][10] = -6250000000.0 / 31393413.0;
-  t.dense[5][10] = 244140625000.0 / 1349916759.0;
-  t.dense[6][10] = -244140625000.0 / 4049750277.0;
-  t.dense[2][11] = -15453125.0 / 1139292.0;
-  t.dense[3][11] = 1393796875.0 / 15380442.0;
-  t.dense[4][11] = -2092203125.0 / 10253628.0;
-  t.dense[5][11] = 488281250.0 / 2563407.0;
-  t.dense[6][11] = -488281250.0 / 7690221.0;
+  // The interpolant in the Bernstein basis (embedded_pairs.hpp): β_k,i, 25 digits,
+  // from the exact conversion of the rational monomial coefficients of Verner's page.
+  t.bernstein = true;
+  t.dense[1][0] = 0.1666666666666666666666667;
+  t.dense[2][0] = -0.1852395904330383424150945;
+  t.dense[2][3] = 1.108806809218650795067170;
+  t.dense[2][4] = 1.807223364099838616675869;
+  t.dense[2][5] = 18.91383550978023833050567;
+  t.dense[2][6] = -757.7008576776555700278141;
+  t.dense[2][7] = 740.0166794034087135395670;
+  t.dense[2][8] = -0.2001521676715475165087568;
+  t.dense[2][9] = -1.307356491746735649174674;
+  t.dense[2][10] = -1.215352716426272621747635;
+  t.dense[2][11] = -0.9042531092409437908221363;
+  t.dense[3][0] = 0.2969031573142399250147493;
+  t.dense[3][3] = -0.9863712747293587818092357;
+  t.dense[3][4] = -1.607667989181982040645407;
+  t.dense[3][5] = -16.82535125749256536095363;
+  t.dense[3][6] = 674.0347864365065767880279;
+  t.dense[3][7] = -658.3033124575526789182208;
+  t.dense[3][8] = 0.1468496187832966472070693;
+  t.dense[3][9] = 0.7346155320139059976458350;
+  t.dense[3][10] = 1.191238575227338641157404;
+  t.dense[3][11] = 1.818309659111227102576116;
+  t.dense[4][0] = -0.08629583578327536917454942;
+  t.dense[4][3] = 0.8505443536553004546012145;
+  t.dense[4][4] = 1.386286245132484901611614;
+  t.dense[4][5] = 14.50843904011092816035684;
+  t.dense[4][6] = -581.2177386533569124126400;
+  t.dense[4][7] = 567.6525460019936405101648;
+  t.dense[4][8] = -0.06681883433821418317542349;
+  t.dense[4][9] = -0.2406898250800689825080069;
+  t.dense[4][10] = -1.215352716426272621747635;
+  t.dense[4][11] = -0.9042531092409437908221363;
+  t.dense[5][0] = 0.03438957868357036009278820;
+  t.dense[5][3] = 0.2582624555633503404659558;
+  t.dense[5][4] = 0.4209371189673537150642552;
+  t.dense[5][5] = 4.405396469669310170148837;
+  t.dense[5][6] = -176.4831190242986576151741;
+  t.dense[5][7] = 172.3641334014150730294023;
+  t.dense[5][8] = -0.1666666666666666666666667;
+  t.dense[6][0] = 0.03438957868357036009278820;
+  t.dense[6][3] = 0.2582624555633503404659558;
+  t.dense[6][4] = 0.4209371189673537150642552;
+  t.dense[6][5] = 4.405396469669310170148837;
+  t.dense[6][6] = -176.4831190242986576151741;
+  t.dense[6][7] = 172.3641334014150730294023;
   t.dense_order = 6;
   return t;
 }();

@@ -11,11 +11,13 @@
 // The interpolant takes stage 14, the evaluation at the new point (row b,
 // which is also the next step's first stage), and 7 more (15–21), and gives
 // y(t_n + θh) = y_n + h Σ_{i ≤ 21} b_i(θ) k_i, b_i(θ) a polynomial of degree 8
-// held by its Bernstein coefficients (embedded_pairs.hpp), of order 8. Its stages are evaluated only in a step with an output time
-// inside (integrators/rkmk_pair.hpp, prepare_dense).
+// held by its Bernstein coefficients (embedded_pairs.hpp), of order 8. Its
+// stages are evaluated only in a step with an output time inside
+// (integrators/rkmk_pair.hpp, prepare_dense).
 // The checks verify every order condition up to order 8 for b and that
 // order 9 fails, order 7 (and not 8) for b̂, and order 8 (and not 9) for each
-// θ^k coefficient of the interpolant (converted from β_k,i) (embedded_pairs.hpp, rooted_trees.hpp).
+// θ^k coefficient of the interpolant (converted from β_k,i; embedded_pairs.hpp,
+// rooted_trees.hpp).
 #include <cstddef>
 
 #include "integrators/tableaus/embedded_pairs.hpp"

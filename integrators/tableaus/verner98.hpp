@@ -11,12 +11,13 @@
 // The interpolant takes stage 17, the evaluation at the new point (row b,
 // which is also the next step's first stage), and 9 more (18–26), and gives
 // y(t_n + θh) = y_n + h Σ_{i ≤ 26} b_i(θ) k_i, b_i(θ) a polynomial of degree 9
-// held by its Bernstein coefficients (embedded_pairs.hpp), of order 9. Its stages are evaluated only in a step with an output time
-// inside (integrators/rkmk_pair.hpp, prepare_dense).
-// The checks verify every order condition up to order 9 for b, order 8
-// (and not 9) for b̂, and order 9 for each θ^k coefficient of the interpolant (converted from β_k,i)
-// (embedded_pairs.hpp, rooted_trees.hpp). The trees stop at order 9, so that
-// order 10 fails is not checked.
+// held by its Bernstein coefficients (embedded_pairs.hpp), of order 9. Its
+// stages are evaluated only in a step with an output time inside
+// (integrators/rkmk_pair.hpp, prepare_dense).
+// The checks verify every order condition up to order 9 for b, order 8 (and
+// not 9) for b̂, and order 9 for each θ^k coefficient of the interpolant
+// (converted from β_k,i; embedded_pairs.hpp, rooted_trees.hpp). The trees
+// stop at order 9, so that order 10 fails is not checked.
 #include <cstddef>
 
 #include "integrators/tableaus/embedded_pairs.hpp"
