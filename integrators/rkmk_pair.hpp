@@ -71,6 +71,12 @@ template <class P>
 concept dense_pair = requires { P::dense_stages; };
 
 template <class P>
+constexpr std::size_t dense_degree() {
+  if constexpr (dense_pair<P>) return P::dense_degree;
+  else return 0;
+}
+
+template <class P>
 constexpr std::size_t stored_stages() {
   if constexpr (dense_pair<P>) return P::dense_stages;
   else return P::stages;
@@ -216,7 +222,7 @@ class RkmkPair {
       double up = 1.0;
       for (std::size_t k = 0; k <= D; ++k, up *= theta) basis[k] = up;
       double down = 1.0;
-      for (std::size_t k = D + 1; k-- > 0; down *= 1.0 - theta) basis[k] *= tableaus::detail::binomial(D, k) * down;
+      for (std::size_t k = D + 1; k-- > 0; down *= 1.0 - theta) basis[k] *= binomials[k] * down;
     }
     Slope z{};
     for (std::size_t i = 0; i < P::dense_stages; ++i) {
@@ -237,6 +243,12 @@ class RkmkPair {
   using Slope = rkmk_pair_detail::Slope;
   static constexpr std::size_t stored = rkmk_pair_detail::stored_stages<P>();
   static constexpr double alpha = Control.exponent - 0.75 * Control.beta;
+  /// C(D, k), the Bernstein basis's factors (interpolate()).
+  static constexpr auto binomials = [] {
+    std::array<double, rkmk_pair_detail::dense_degree<P>() + 1> c{};
+    for (std::size_t k = 0; k < c.size(); ++k) c[k] = tableaus::detail::binomial(c.size() - 1, k);
+    return c;
+  }();
   static constexpr double log_err_floor = -9.210340371976184;  // log(1e-4), Hairer's floor of err_{n−1}
   static constexpr double log_err_min = -23.025850929940457;   // log(1e-10), the floor of err_n
 

@@ -93,6 +93,9 @@ constexpr bool extension_consistent(const P& p) {
     const double b = i < S ? p.b[i] : 0.0;
     if (abs_value(at_one - b) > 1e-14 * (scale > 1.0 ? scale : 1.0)) return false;
     if (p.dense[0][i] != 0.0) return false;  // b_i(0) = 0 (d_0 = β_0)
+    // b_i(1) = β_D,i: the same number, as both round the same rational.
+    const double ends = p.bernstein ? p.dense[P::dense_degree][i] - b : 0.0;
+    if (abs_value(ends) > 4.5e-16 * (abs_value(b) > 1.0 ? abs_value(b) : 1.0)) return false;
   }
   return true;
 }
