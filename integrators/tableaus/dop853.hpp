@@ -157,13 +157,7 @@ constexpr std::array<std::array<double, 16>, 8> dop853_dense_weights(const Expli
 
 /// DOP853 with its 8(5,3) estimator and dense output of order 7 (top of this file).
 inline constexpr DenseEmbeddedTableau<12, 16, 7> dop853 = [] {
-  DenseEmbeddedTableau<12, 16, 7> t;
-  t.extended = detail::dop853_extended();
-  for (std::size_t i = 0; i < 12; ++i) {
-    t.c[i] = t.extended.c[i];
-    t.b[i] = t.extended.b[i];
-    for (std::size_t j = 0; j < 12; ++j) t.a[i][j] = t.extended.a[i][j];
-  }
+  auto t = dense_pair_over<12, 16, 7>(detail::dop853_extended());
   t.order = 8;
   t.citation =
       "DOP853: Prince & Dormand, J. Comput. Appl. Math. 7 (1981) 67-75; Hairer, Norsett & Wanner, Solving ODEs I "

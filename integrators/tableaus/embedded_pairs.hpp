@@ -42,6 +42,21 @@ struct DenseEmbeddedTableau : EmbeddedTableau<S> {
   int dense_order = 0;
 };
 
+/// A pair over its extended tableau: the step's nodes, rows and weights b are
+/// the first S of the extension's (whose row S, for a pair without FSAL, is
+/// the new point's); the caller adds b̂ and the dense weights.
+template <std::size_t S, std::size_t X, std::size_t D>
+constexpr DenseEmbeddedTableau<S, X, D> dense_pair_over(const ExplicitTableau<X>& extended) {
+  DenseEmbeddedTableau<S, X, D> t;
+  t.extended = extended;
+  for (std::size_t i = 0; i < S; ++i) {
+    t.c[i] = extended.c[i];
+    t.b[i] = extended.b[i];
+    for (std::size_t j = 0; j < S; ++j) t.a[i][j] = extended.a[i][j];
+  }
+  return t;
+}
+
 namespace detail {
 constexpr double binomial(std::size_t n, std::size_t k) {
   double c = 1.0;

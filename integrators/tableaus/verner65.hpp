@@ -103,13 +103,7 @@ constexpr ExplicitTableau<12> verner65_extended() {
 
 /// Verner's most efficient 6(5) pair with its order-6 interpolant (top of this file).
 inline constexpr DenseEmbeddedTableau<9, 12, 6> verner65 = [] {
-  DenseEmbeddedTableau<9, 12, 6> t;
-  t.extended = detail::verner65_extended();
-  for (std::size_t i = 0; i < 9; ++i) {
-    t.c[i] = t.extended.c[i];
-    t.b[i] = t.extended.b[i];
-    for (std::size_t j = 0; j < 9; ++j) t.a[i][j] = t.extended.a[i][j];
-  }
+  auto t = dense_pair_over<9, 12, 6>(detail::verner65_extended());
   t.order = 6;
   t.citation =
       "Verner, Numer. Algorithms 53 (2010) 383-396: the most efficient 6(5) pair IIIXb with its order-6 interpolant "

@@ -18,8 +18,6 @@
 // order 9 fails, order 7 (and not 8) for b̂, and order 8 (and not 9) for each
 // θ^k coefficient of the interpolant (converted from β_k,i; embedded_pairs.hpp,
 // rooted_trees.hpp).
-#include <cstddef>
-
 #include "integrators/tableaus/embedded_pairs.hpp"
 
 namespace lgi::tableaus {
@@ -205,13 +203,7 @@ constexpr ExplicitTableau<21> verner87_extended() {
 
 /// Verner's most efficient 8(7) pair with its order-8 interpolant (top of this file).
 inline constexpr DenseEmbeddedTableau<13, 21, 8> verner87 = [] {
-  DenseEmbeddedTableau<13, 21, 8> t;
-  t.extended = detail::verner87_extended();
-  for (std::size_t i = 0; i < 13; ++i) {
-    t.c[i] = t.extended.c[i];
-    t.b[i] = t.extended.b[i];
-    for (std::size_t j = 0; j < 13; ++j) t.a[i][j] = t.extended.a[i][j];
-  }
+  auto t = dense_pair_over<13, 21, 8>(detail::verner87_extended());
   t.order = 8;
   t.citation =
       "Verner, Numer. Algorithms 53 (2010) 383-396: the most efficient 8(7) pair IIa with its order-8 interpolant (40-digit coefficients of Verner's page)";

@@ -18,8 +18,6 @@
 // not 9) for b̂, and order 9 for each θ^k coefficient of the interpolant
 // (converted from β_k,i; embedded_pairs.hpp, rooted_trees.hpp). The trees
 // stop at order 9, so that order 10 fails is not checked.
-#include <cstddef>
-
 #include "integrators/tableaus/embedded_pairs.hpp"
 
 namespace lgi::tableaus {
@@ -267,13 +265,7 @@ constexpr ExplicitTableau<26> verner98_extended() {
 
 /// Verner's most efficient 9(8) pair with its order-9 interpolant (top of this file).
 inline constexpr DenseEmbeddedTableau<16, 26, 9> verner98 = [] {
-  DenseEmbeddedTableau<16, 26, 9> t;
-  t.extended = detail::verner98_extended();
-  for (std::size_t i = 0; i < 16; ++i) {
-    t.c[i] = t.extended.c[i];
-    t.b[i] = t.extended.b[i];
-    for (std::size_t j = 0; j < 16; ++j) t.a[i][j] = t.extended.a[i][j];
-  }
+  auto t = dense_pair_over<16, 26, 9>(detail::verner98_extended());
   t.order = 9;
   t.citation =
       "Verner, Numer. Algorithms 53 (2010) 383-396: the most efficient 9(8) pair IIa with its order-9 interpolant (40-digit coefficients of Verner's page)";
