@@ -6,11 +6,19 @@
 // after it, a rising crossing is g0 < 0 ≤ g1 and a falling one g0 > 0 ≥ g1
 // (a zero at a step point is counted once, in the step that reaches it).
 //
-// Location. The crossing is a root of θ ↦ g_i(t0 + θ, Φ_θ(x0)) on (0, h],
-// where Φ_θ is the scheme's own step of size θ from x0, taken by a copy of
-// the scheme as it was before the step. The located state therefore lies on
-// a trajectory of the scheme (no interpolant of lower order is involved),
-// and its error is the scheme's local error, below the run's global error.
+// Location. The crossing is a root of θ ↦ g_i(t0 + θ, Φ_θ(x0)) on (0, h].
+//  - On the step map (fixed-step schemes, the adaptive ones without dense
+//    output, and RunConfig::event_location = step_map): Φ_θ is the scheme's
+//    own step of size θ from x0, taken by a copy of the scheme as it was
+//    before the step. The located state lies on a trajectory of the scheme,
+//    and its error is the scheme's local error, below the run's global error.
+//  - On the dense output (the RKMK pairs with an interpolant, by default):
+//    Φ_θ is the step's continuous extension (rkmk_pair.hpp), of order 7 for
+//    DOP853, 6, 8 and 9 for Verner's pairs, so the located state's error is
+//    the interpolant's local error, O(h^(q+1)). Its extra stages are
+//    evaluated once per step with a crossing; every iteration after that
+//    costs no field evaluation (a location step costs a whole step). This is
+//    how Hairer's DOP853 and OrdinaryDiffEq.jl's callbacks locate events.
 // Root finding is the Illinois variant of regula falsi (M. Dowell and
 // P. Jarratt, "A modified regula falsi method for computing the root of an
 // equation", BIT 11 (1971) 168–174): superlinear, and the bracket never
@@ -46,7 +54,7 @@ struct EventHit {
   std::int64_t step = 0; // the accepted step it lies in (1-based, as the loop's step numbers)
   double t = 0.0;
   State state{};
-  int iterations = 0;    // root-finding iterations (steps of the scheme)
+  int iterations = 0;    // root-finding iterations (steps of the scheme, or evaluations of its dense output)
   double residual = 0.0; // |g| at the reported crossing
 };
 
@@ -60,8 +68,9 @@ inline int crossing_direction(double g0, double g1, int wanted) {
 }
 
 /// Locates the crossing of event `i` in the step [t0, t0 + h] (top of this
-/// file). `advance(θ, x)` sets x to the scheme's step of size θ from x0 and
-/// returns whether it succeeded (an implicit solve converged); g0 and g1
+/// file). `advance(θ, x)` sets x to Φ_θ(x0), the scheme's step of size θ
+/// from x0 or its dense output at t0 + θ, and returns whether it succeeded
+/// (an implicit solve converged, the state is finite); g0 and g1
 /// are the event's values at both ends and x1 the state at t0 + h. Returns
 /// false if a step of the search failed (the hit then holds the bracket end
 /// reached so far).

@@ -12,7 +12,8 @@
 //                  dense output of order 7 (tableaus/dop853.hpp).
 //   rkmk-verner87  Verner's most efficient 8(7) pair IIa, 13 evaluations per
 //                  step, interpolant of order 8 (8 more evaluations in a step
-//                  with an output time inside; tableaus/verner87.hpp).
+//                  with an output time or an event crossing inside, which
+//                  the interpolant locates; tableaus/verner87.hpp).
 //   rkmk-verner98  Verner's most efficient 9(8) pair IIa, 16 evaluations per
 //                  step, interpolant of order 9 (10 more; tableaus/verner98.hpp).
 // The two Verner pairs use DOP853's controller constants with their own

@@ -47,6 +47,17 @@ class Checkpoints {
   const LoopCheckpoint* resume_from = nullptr;
 };
 
+/// Where a crossing inside an adaptive step is located (events.hpp).
+enum class EventLocation {
+  /// On the scheme's dense output where it has one (the RKMK pairs with an
+  /// interpolant: DOP853 and Verner's 6(5), 8(7) and 9(8)), the way Hairer's
+  /// DOP853 and OrdinaryDiffEq.jl locate events; on its step map otherwise.
+  dense_output,
+  /// Always on the scheme's step map: each iteration of the root search is a
+  /// step of the scheme from the step's start.
+  step_map,
+};
+
 struct RunConfig {
   double t0 = 0.0;
   double t_end = 0.0;
@@ -63,6 +74,8 @@ struct RunConfig {
   /// If set: crossings of these surfaces are located and passed to
   /// Observer::on_event() (top of this file).
   const EventFunctions* events = nullptr;
+  /// How an adaptive run locates them (fixed-step runs: always the step map).
+  EventLocation event_location = EventLocation::dense_output;
   /// Read the thread CPU clock at the start and end (RunStats::cpu_seconds).
   /// Off, cpu_seconds is 0: a sweep of short trajectories times them itself,
   /// since the clock is a system call (~1 µs) and a short trajectory ~20 µs.

@@ -27,14 +27,17 @@
 // steps, work, cpu_seconds and t_final are filled as for any other run.
 //
 // Events (RunConfig::events): after every accepted step the loop evaluates
-// the event functions and locates each crossing on the scheme's own step map
-// (events.hpp), then hands it to Observer::on_event() before the step's
-// observe(). Crossings in one step are reported in the order of the event
-// functions. The run's steps and states are the same with or without events;
-// the location steps add to WorkCounters::rhs_evaluations only (they are
-// taken as the run's steps are, with the same halving retries). A location
-// step whose implicit solve fails, or that leaves a non-finite state, ends
-// the run (not ok, status "event location failed ...").
+// the event functions and locates each crossing (events.hpp): on the
+// scheme's dense output if it has one (and RunConfig::event_location is
+// dense_output, the default), else on its own step map. It then hands the
+// crossing to Observer::on_event() before the step's observe(). Crossings in
+// one step are reported in the order of the event functions. The run's
+// steps and states are the same with or without events; the location steps
+// (or the interpolant's extra stages) add to WorkCounters::rhs_evaluations
+// only (location steps are taken as the run's steps are, with the same
+// halving retries). A location step whose implicit solve fails, or that
+// leaves a non-finite state, ends the run (not ok, status "event location
+// failed ...").
 //
 // Checkpoints (RunConfig::checkpoints, run_config.hpp): every `every`-th
 // accepted step that does not end the run, a scheme that can be resumed
@@ -163,7 +166,9 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
   }
   const EventFunctions* events = cfg.events;
   std::vector<double> g;
-  std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the attempt
+  std::optional<Scheme> scheme_before;  // with events on the step map: the scheme as it was before the attempt
+  bool on_interpolant = false;           // with events: located on the dense output
+  if constexpr (dense) on_interpolant = cfg.event_location == EventLocation::dense_output;
   if (events) detail::event_values(*events, t, s, g);
   while (stats.ok && span > 0.0 && t < cfg.t_end) {
     // The time this step may not pass: t_end, or the next output time before it.
@@ -176,7 +181,7 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
     const bool last = t + h >= target || (target - (t + h)) < land;
     const double h_try = last ? target - t : h;
     const State before = s;
-    if (events) scheme_before.emplace(scheme);
+    if (events && !on_interpolant) scheme_before.emplace(scheme);
     const AdaptiveStatus a = scheme.attempt(model, s, t, h_try, stats.work);
     detail::record_solve(a.solve, stats.work);
     if (a.solve.refused) {
@@ -203,11 +208,19 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
       break;
     }
     if (events) {
-      // The search takes steps of the pair's propagated solution whatever its
-      // error estimate says (a step no longer than an accepted one): step(),
-      // the forced attempt. A scheme without step() can only offer its
-      // accepted attempts, so a rejected trial there ends the search.
+      // On the dense output, an iteration evaluates the step's interpolant
+      // (its extra stages once per step). On the step map, the search takes
+      // steps of the pair's propagated solution whatever its error estimate
+      // says (a step no longer than an accepted one): step(), the forced
+      // attempt. A scheme without step() can only offer its accepted
+      // attempts, so a rejected trial there ends the search.
       auto advance = [&](double theta, State& x) {
+        if constexpr (dense) {
+          if (on_interpolant) {
+            scheme.interpolate(model, t_start + theta, x);
+            return detail::finite_state(x);
+          }
+        }
         Scheme copy = *scheme_before;
         x = before;
         if constexpr (detail::has_fixed_step<Scheme, Model>) {
