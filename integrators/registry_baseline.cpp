@@ -95,6 +95,7 @@ void add_baseline_schemes(std::vector<SchemeInfo>& r) {
                    .order = baselines::stepper_order(s),
                    .family = "baseline (Boost.Odeint)",
                    .properties = {.adaptive = baselines::stepper_is_adaptive(s),
+                                  .dense_output = baselines::stepper_has_dense_output(s),
                                   .baseline = true,
                                   .euler_angle_chart = c == Coordinates::euler_zxz},
                    .support = SceneSupport::any,

@@ -55,10 +55,12 @@ void add_scheme(std::vector<SchemeInfo>& registry, const SchemeEntry& entry) {
   constexpr SchemeFacts facts = Scheme::facts;
   std::string reference = facts.reference;
   if (*facts.tableau) reference += std::string(reference.empty() ? "" : "; ") + "tableau: " + facts.tableau;
+  SchemeProperties properties = facts.properties;
+  properties.dense_output = detail::has_dense_output<Scheme, system::FreeBody>;
   registry.push_back({.name = entry.name,
                       .order = facts.order,
                       .family = entry.family,
-                      .properties = facts.properties,
+                      .properties = properties,
                       .support = facts.support,
                       .reference = reference,
                       .notes = entry.notes,

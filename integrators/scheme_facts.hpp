@@ -19,6 +19,9 @@ struct SchemeProperties {
   bool conserves_vertical_momentum = false;  // Π·Γ for a heavy top
   bool implicit = false;
   bool adaptive = false;
+  /// An interpolant inside each step: output times are interpolated, not landed on, and event
+  /// crossings are located on it (stepper_loop.hpp). Set by the registry from the scheme's type.
+  bool dense_output = false;
   bool baseline = false;                     // a Boost.Odeint baseline in coordinates, not a Lie-group scheme
   bool euler_angle_chart = false;            // integrates Euler ZXZ angles: /particles/body/euler_zxz is written
 };

@@ -163,6 +163,7 @@ TEST_CASE("the pairs with dense output locate crossings on their interpolant", "
   const std::vector<double> zeros = exact_zeros(scene, 0, 30.0);
   using integrators::EventLocation;
   for (const char* scheme : {"rkmk-verner65", "rkmk-dop853", "rkmk-verner87", "rkmk-verner98"}) {
+    CHECK(integrators::find_scheme(scheme)->properties.dense_output);
     const Run dense = run(scheme, scene, 0.0, 1e-12, 30.0, &both, EventLocation::dense_output);
     const Run map = run(scheme, scene, 0.0, 1e-12, 30.0, &both, EventLocation::step_map);
     const Run none = run(scheme, scene, 0.0, 1e-12, 30.0, nullptr);

@@ -43,6 +43,7 @@ std::vector<SchemeField> scheme_record(const integrators::SchemeInfo& s, std::op
   if (scene_has_torque) r.push_back({"order_on_scene", scheme_order_on(s, *scene_has_torque)});
   r.push_back({"implicit", p.implicit, true});
   r.push_back({"adaptive", p.adaptive, true});
+  r.push_back({"dense_output", p.dense_output, true});
   r.push_back({"scenes", std::string(scheme_support_text(s.support))});
   r.push_back({"reference", s.reference});
   r.push_back({"notes", s.notes});

@@ -57,6 +57,7 @@ std::string property_list(const integrators::SchemeProperties& p, bool long_name
   add(p.conserves_vertical_momentum, "Pi.Gamma", "Pi.G");
   add(p.implicit, "implicit", "impl");
   add(p.adaptive, "adaptive", "adapt");
+  add(p.dense_output, "dense-output", "dense");
   return s.empty() ? "-" : s;
 }
 
@@ -158,7 +159,8 @@ void print_table(const std::vector<const SchemeInfo*>& schemes, const std::optio
     std::cout << "properties: exactly conserved where the quantity is an invariant of the scene "
                  "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top)\n";
   else
-    std::cout << "properties: sympl(ectic), sym(metric), impl(icit), adapt(ive); conserved exactly where an invariant:\n"
+    std::cout << "properties: sympl(ectic), sym(metric), impl(icit), adapt(ive), dense (output inside a step);\n"
+                 "  conserved exactly where an invariant:\n"
                  "  H energy, |Pi|, m spatial momentum (free body), Pi.G = Pi.Gamma (heavy top; p1 of a Cardan top)\n"
                  "--long: full names, references and notes\n";
 }

@@ -49,6 +49,8 @@ int stepper_order(Stepper s) {
 
 bool stepper_is_adaptive(Stepper s) { return s != Stepper::rk4; }
 
+bool stepper_has_dense_output(Stepper s) { return s == Stepper::dopri5; }
+
 RunStats run_baseline(Coordinates c, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
                       Observer& observer) {
   switch (c) {

@@ -45,6 +45,8 @@ std::optional<BaselineId> parse_baseline_name(std::string_view name);
 /// Nominal order of the stepper (0 for bs: variable order).
 int stepper_order(Stepper s);
 bool stepper_is_adaptive(Stepper s);
+/// Whether the stepper interpolates output times (its type's dense_output: dopri5).
+bool stepper_has_dense_output(Stepper s);
 
 /// Runs one baseline on any scene's model (dispatched once per run).
 RunStats run_baseline(Coordinates c, Stepper s, const system::AnyModel& model, State& state, const RunConfig& cfg,
