@@ -163,12 +163,16 @@ TEST_CASE("trajectory file: invalid layouts and samples are rejected", "[h5md]")
   TrajectoryWriter w(path, false, full_layout(), provenance());
   CHECK_THROWS_AS(w.append(sample(0, 1)), std::invalid_argument);  // wrong invariant count
   w.append(sample(1, 2));
-  CHECK_THROWS_AS(w.append(sample(1, 2)), std::invalid_argument);  // step does not increase
+  CHECK_THROWS_AS(w.append(sample(1, 2)), std::invalid_argument);  // neither step nor time increases
   CHECK_THROWS_AS(w.append(sample(0, 2)), std::invalid_argument);
   w.append(sample(2, 2));
+  auto inside = sample(2, 2);  // an output time interpolated inside the same step (lgi simulate --output-dt)
+  inside.time += 1e-4;
+  w.append(inside);
+  CHECK_THROWS_AS(w.append(inside), std::invalid_argument);  // the same step needs a later time
   w.finish(diagnostics("ok"));
   H f = open_file(path);
-  CHECK(int64s(f, "/particles/body/orientation/step") == std::vector<std::int64_t>{10, 20});
+  CHECK(int64s(f, "/particles/body/orientation/step") == std::vector<std::int64_t>{10, 20, 20});
 }
 
 namespace {

@@ -1,8 +1,10 @@
 #include "experiments/cli/simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
+#include "experiments/cli/output_grid.hpp"
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/step_settings.hpp"
 #include "experiments/errors/exit_status.hpp"
@@ -16,22 +18,29 @@ namespace {
 /// invariants); a file over 100 MB deserves a word before it is written.
 void warn_if_large(const integrators::RunConfig& cfg, const system::SceneInvariants& invariants, bool adaptive,
                    bool quiet) {
-  if (quiet || adaptive || cfg.dt <= 0.0) return;
-  const double samples = static_cast<double>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt)) /
-                             static_cast<double>(cfg.save_every) + 1.0;
+  if (quiet || (!cfg.output_times && (adaptive || cfg.dt <= 0.0))) return;
+  const double samples = cfg.output_times
+                             ? static_cast<double>(cfg.output_times->size())
+                             : static_cast<double>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt)) /
+                                       static_cast<double>(cfg.save_every) + 1.0;
   const double bytes_per_sample = 8.0 * (16.0 + static_cast<double>(invariants.scalar_names().size()));
   const double megabytes = samples * bytes_per_sample / 1e6;
   if (megabytes < 100.0) return;
-  std::cerr << "lgi: warning: --save-every " << cfg.save_every << " writes " << format_general(samples, 3)
-            << " samples, about " << format_general(megabytes, 3)
-            << " MB; give --save-every N to keep every N-th step\n";
+  if (cfg.output_times)
+    std::cerr << "lgi: warning: --output-dt writes " << format_general(samples, 3) << " samples, about "
+              << format_general(megabytes, 3) << " MB; give a larger --output-dt for fewer\n";
+  else
+    std::cerr << "lgi: warning: --save-every " << cfg.save_every << " writes " << format_general(samples, 3)
+              << " samples, about " << format_general(megabytes, 3)
+              << " MB; give --save-every N to keep every N-th step\n";
 }
 
 Provenance run_provenance(const system::Scene& scene, const integrators::SchemeInfo& scheme,
-                          const integrators::RunConfig& cfg, const std::string& command_line) {
-  const ResultAttributes run = run_parameters(scene, scheme, cfg, command_line);
+                          const integrators::RunConfig& cfg, const SimulationRequest& request) {
+  const ResultAttributes run = run_parameters(scene, scheme, cfg, request.command_line);
   Provenance prov{run.text, run.number, run.integer};
   prov.integer_attributes["save_every"] = cfg.save_every;
+  if (request.output_dt) prov.number_attributes["output_dt"] = *request.output_dt;
   if (cfg.retry_halving > 0) prov.integer_attributes["retry_halving"] = cfg.retry_halving;
   return prov;
 }
@@ -51,6 +60,10 @@ void check_simulation_flags(const SimulationRequest& request, const integrators:
     throw UsageError("--retry-halving: must be between 0 and 30");
   if (request.retry_halving > 0 && scheme.properties.adaptive)
     throw UsageError("--retry-halving: scheme '" + scheme.name + "' is adaptive and controls its own steps");
+  if (request.output_dt && !(*request.output_dt > 0.0 && std::isfinite(*request.output_dt)))
+    throw UsageError("--output-dt: must be a positive number");
+  if (request.output_dt && request.save_every != 1)
+    throw UsageError("--output-dt: give --output-dt or --save-every, not both");
 }
 
 integrators::RunConfig simulation_config(const SimulationRequest& request, const system::Scene& scene,
@@ -60,6 +73,7 @@ integrators::RunConfig simulation_config(const SimulationRequest& request, const
       resolve_run_config({request.dt, request.tol, request.t_end}, scene, scheme, /*allow_zero_t_end=*/true);
   cfg.save_every = request.save_every;
   cfg.retry_halving = request.retry_halving;
+  if (request.output_dt) check_output_dt(*request.output_dt, request.save_every, cfg, scheme);
   return cfg;
 }
 
@@ -91,18 +105,23 @@ SimulationOutcome run_simulation(const system::Scene& scene, const integrators::
   const system::AnyModel model = system::make_model(scene);
   check_scheme_supports(scheme, scene, model);
   const system::SceneInvariants invariants(scene, model);
+  integrators::RunConfig c = cfg;
+  std::vector<double> times;  // --output-dt's sample times, which c points to
+  if (request.output_dt) {
+    times = output_grid(cfg.t0, cfg.t_end, *request.output_dt);
+    c.output_times = &times;
+  }
   std::optional<TrajectoryWriter> writer;
   if (!request.out.empty()) {
-    warn_if_large(cfg, invariants, scheme.properties.adaptive, request.quiet);
+    warn_if_large(c, invariants, scheme.properties.adaptive, request.quiet);
     writer.emplace(request.out, request.force, trajectory_layout(invariants, scheme.properties.euler_angle_chart),
-                   run_provenance(scene, scheme, cfg, request.command_line));
+                   run_provenance(scene, scheme, c, request));
   }
   TrajectoryObserver observer(invariants, writer ? &*writer : nullptr, sink);
   OutputTimingObserver timed(observer);
 
   system::State state = scene.initial;
   SimulationOutcome outcome;
-  integrators::RunConfig c = cfg;
   c.stop = stop;  // every loop (the baselines' too) ends cleanly, with its statistics
   outcome.stats = scheme.run(model, state, c, timed);
   outcome.diagnostics = diagnostics_of(outcome.stats, timed.output_seconds());

@@ -25,10 +25,13 @@ struct SimulationRequest {
   bool force = false;
   bool quiet = true;  // no warning about a large file
   std::string command_line;
+  /// Samples at t0, t0 + D, …, t_end instead of every save_every-th step (cli/output_grid.hpp).
+  std::optional<double> output_dt{};
 };
 
 /// The checks of the request that need no scene (flag ranges, --retry-halving
-/// with an adaptive scheme); throws UsageError naming the flag.
+/// with an adaptive scheme, --output-dt with --save-every); throws UsageError
+/// naming the flag.
 void check_simulation_flags(const SimulationRequest& request, const integrators::SchemeInfo& scheme);
 
 /// Validates the request against the scene and the scheme and fills the run

@@ -294,7 +294,8 @@ void TrajectoryWriter::append(const TrajectorySample& s) {
   if (s.invariant_count != layout_.scalar_invariants.size())
     throw std::invalid_argument("trajectory '" + path_ + "': sample has " + std::to_string(s.invariant_count) +
                                 " invariants, layout has " + std::to_string(layout_.scalar_invariants.size()));
-  if (have_last_ && (s.step <= last_step_ || s.time < last_time_))
+  // Samples interpolated inside one step (lgi simulate --output-dt) share its step number, at later times.
+  if (have_last_ && (s.step < last_step_ || s.time < last_time_ || (s.step == last_step_ && !(s.time > last_time_))))
     throw std::invalid_argument("trajectory '" + path_ + "': sample at step " + std::to_string(s.step) + " (t = " +
                                 std::to_string(s.time) + ") does not follow step " + std::to_string(last_step_) +
                                 " (t = " + std::to_string(last_time_) + ")");

@@ -71,7 +71,7 @@ inline constexpr std::size_t max_scalar_invariants = 8;
 
 /// One saved state. Plain data with no heap member: building one per step costs nothing.
 struct TrajectorySample {
-  std::int64_t step = 0;  // strictly increasing from sample to sample
+  std::int64_t step = 0;  // non-decreasing from sample to sample; when equal, time increases
   double time = 0.0;      // non-decreasing
   std::array<double, 4> quaternion_wxyz{1.0, 0.0, 0.0, 0.0};  // unit quaternion body -> space, scalar first
   Eigen::Vector3d angular_momentum_body = Eigen::Vector3d::Zero();  // Π

@@ -77,7 +77,7 @@ class SimulationResult:
 
 
 def simulate(scene, scheme, t_end=None, dt=None, tol=None, save_every=1, out=None,
-             force=False, retry_halving=0):
+             force=False, retry_halving=0, output_dt=None):
     """Integrate a scene with a scheme: lgi simulate, returning NumPy arrays.
 
     scene:   an lgi.Scene, or the path of a scene file
@@ -90,6 +90,10 @@ def simulate(scene, scheme, t_end=None, dt=None, tol=None, save_every=1, out=Non
              (same layout and values; command_line and utc_start differ)
     force:   replace an existing `out`
     retry_halving: fixed-step schemes: redo a failed implicit step as halves, N deep
+    output_dt: keep the states at t0, t0 + output_dt, ... and t_end instead of every
+             save_every-th step (lgi simulate --output-dt): interpolated inside the steps
+             of a scheme with dense output, landed on by the other adaptive schemes; a
+             fixed-step scheme needs a whole multiple of its step
 
     The run settings resolve as on the command line (flags, then [run], else
     ValueError naming the flag: '--dt: ...'). A bad scheme name or a scheme that
@@ -101,4 +105,4 @@ def simulate(scene, scheme, t_end=None, dt=None, tol=None, save_every=1, out=Non
     if out is not None:
         out = str(out)
     return SimulationResult(_simulate(scene, scheme, t_end, dt, tol, save_every, out, force,
-                                      retry_halving))
+                                      retry_halving, output_dt))

@@ -103,22 +103,26 @@ std::string python_call(const system::Scene& scene, const std::string& scheme, c
   if (r.t_end) s << ", t_end=" << *r.t_end;
   if (r.dt) s << ", dt=" << *r.dt;
   if (r.tol) s << ", tol=" << *r.tol;
-  s << ", save_every=" << r.save_every << ", out='" << r.out << "')";
+  if (r.output_dt) s << ", output_dt=" << *r.output_dt;
+  else s << ", save_every=" << r.save_every;
+  s << ", out='" << r.out << "')";
   return s.str();
 }
 
-/// Samples a run will keep (for reserving): fixed-step runs know it.
-std::size_t expected_samples(const integrators::RunConfig& cfg) {
+/// Samples a run will keep (for reserving): fixed-step runs and output times know it.
+std::size_t expected_samples(const integrators::RunConfig& cfg, std::optional<double> output_dt) {
+  if (output_dt) return static_cast<std::size_t>(integrators::fixed_step_count(cfg.t_end - cfg.t0, *output_dt) + 1);
   if (cfg.dt <= 0.0 || cfg.tol > 0.0) return 1024;
   return static_cast<std::size_t>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt) / cfg.save_every + 2);
 }
 
 py::dict simulate(const py::object& scene_arg, const std::string& scheme_name, std::optional<double> t_end,
                   std::optional<double> dt, std::optional<double> tol, std::int64_t save_every,
-                  std::optional<std::string> out, bool force, int retry_halving) {
+                  std::optional<std::string> out, bool force, int retry_halving, std::optional<double> output_dt) {
   const std::shared_ptr<const system::Scene> scene = scene_argument(scene_arg);
   const integrators::SchemeInfo& scheme = scheme_argument(scheme_name);
-  experiments::SimulationRequest request{dt, tol, t_end, save_every, retry_halving, out.value_or(""), force, true, ""};
+  experiments::SimulationRequest request{dt,    tol,  t_end, save_every, retry_halving, out.value_or(""),
+                                         force, true, "",    output_dt};
   if (out) request.command_line = python_call(*scene, scheme.name, request);
   const integrators::RunConfig cfg = experiments::simulation_config(request, *scene, scheme);
   const system::AnyModel model = system::make_model(*scene);
@@ -126,7 +130,7 @@ py::dict simulate(const py::object& scene_arg, const std::string& scheme_name, s
   const system::SceneInvariants invariants(*scene, model);
   const experiments::TrajectoryLayout layout =
       experiments::trajectory_layout(invariants, scheme.properties.euler_angle_chart);
-  SampleRecorder recorder(layout, invariants.error_names().size(), expected_samples(cfg));
+  SampleRecorder recorder(layout, invariants.error_names().size(), expected_samples(cfg, output_dt));
   experiments::SimulationOutcome outcome;
   {
     const py::gil_scoped_release release;
@@ -151,6 +155,7 @@ void bind_simulate(py::module_& m) {
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("scheme"), py::arg("t_end") = py::none(),
         py::arg("dt") = py::none(), py::arg("tol") = py::none(), py::arg("save_every") = 1,
         py::arg("out") = py::none(), py::arg("force") = false, py::arg("retry_halving") = 0,
+        py::arg("output_dt") = py::none(),
         "The compiled part of lgi.simulate: a dict of arrays and diagnostics (see lgi.simulate).");
 }
 

@@ -141,6 +141,22 @@ def test_bad_scene_key_names_it_as_the_cli(lgi_exe, tmp_path):
         lgi.Scene(name="typo", body={"inertai": [1.0, 2.0, 3.0]}, initial={"angular_velocity": [0.0, 1.0, 0.0]})
 
 
+def test_output_dt_interpolates_a_dense_pair(tmp_path):
+    out = str(tmp_path / "d.h5")
+    plain = lgi.simulate(TOP, "rkmk-verner87", 1.0, tol=1e-10)
+    run = lgi.simulate(TOP, "rkmk-verner87", 1.0, tol=1e-10, output_dt=0.125, out=out)
+    assert list(run.t) == [0.125 * k for k in range(9)]
+    assert run.diagnostics["steps"] == plain.diagnostics["steps"]
+    assert np.array_equal(run.R[-1], plain.R[-1]) and np.array_equal(run.Pi[-1], plain.Pi[-1])
+    with h5py.File(out, "r") as f:
+        assert f["/parameters"].attrs["output_dt"] == 0.125
+        assert "output_dt=0.125" in f["/parameters"].attrs["command_line"]
+    with pytest.raises(ValueError, match="--output-dt"):
+        lgi.simulate(TOP, "rkmk4", 1.0, dt=0.01, output_dt=0.015)
+    with pytest.raises(ValueError, match="--output-dt"):
+        lgi.simulate(TOP, "rkmk4", 1.0, dt=0.01, output_dt=0.1, save_every=2)
+
+
 def test_scene_from_keywords_equals_the_file():
     book = lgi.Scene.from_file(BOOK)
     same = lgi.Scene(name=book.name, body={"inertia": np.diag(book.inertia)},
@@ -278,6 +294,9 @@ def test_schemes_match_lgi_schemes_json(lgi_exe):
     rkmk4 = next(s for s in mine if s["name"] == "rkmk4")
     assert rkmk4["order"] == 4 and rkmk4["kind"] == "lie-group" and rkmk4["reference"]
     assert not rkmk4["properties"]["adaptive"] and rkmk4["support"] == "all scenes"
+    dense = {s["name"] for s in mine if s["properties"]["dense_output"]}
+    assert {"rkmk-dop853", "rkmk-verner65", "rkmk-verner87", "rkmk-verner98", "quat/dopri5"} <= dense
+    assert not dense & {"rkmk-dp54", "rkmk4", "quat/rkf78"}
 
 
 def test_scenes_match_lgi_scenes(lgi_exe):
