@@ -9,10 +9,12 @@
 
 namespace lgi::experiments {
 
-void check_output_dt(double output_dt, std::int64_t save_every, const integrators::RunConfig& cfg,
-                     const integrators::SchemeInfo& scheme) {
+void check_output_dt_flag(double output_dt, std::int64_t save_every) {
   if (!(output_dt > 0.0) || !std::isfinite(output_dt)) throw UsageError("--output-dt: must be a positive number");
   if (save_every != 1) throw UsageError("--output-dt: give --output-dt or --save-every, not both");
+}
+
+void check_output_dt(double output_dt, const integrators::RunConfig& cfg, const integrators::SchemeInfo& scheme) {
   const double span = cfg.t_end - cfg.t0;
   const double samples = std::floor(span / output_dt) + 2.0;
   if (samples > max_output_times)

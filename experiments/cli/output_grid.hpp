@@ -17,11 +17,13 @@ namespace lgi::experiments {
 inline constexpr double max_output_times = 1e8;
 
 /// Throws UsageError naming --output-dt when D is not a positive finite
-/// number, is given with --save-every N > 1, asks for more than
-/// max_output_times samples, or (fixed-step schemes) is not a whole multiple
-/// of the step cfg.dt to 1e-9 relative.
-void check_output_dt(double output_dt, std::int64_t save_every, const integrators::RunConfig& cfg,
-                     const integrators::SchemeInfo& scheme);
+/// number or is given with --save-every N > 1 (the checks without a scene).
+void check_output_dt_flag(double output_dt, std::int64_t save_every);
+
+/// Throws UsageError naming --output-dt when D asks for more than
+/// max_output_times samples over the run, or (fixed-step schemes) is not a
+/// whole multiple of the step cfg.dt to 1e-9 relative.
+void check_output_dt(double output_dt, const integrators::RunConfig& cfg, const integrators::SchemeInfo& scheme);
 
 /// t0 + k D for k = 0, 1, … while below t_end (a last interval that is a
 /// whole interval to 1e-10 relative ends at t_end itself), then t_end:
