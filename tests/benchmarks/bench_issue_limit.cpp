@@ -1,0 +1,90 @@
+// What bounds a dmv-pre10 step (README, Performance, "The arithmetic limit"):
+//  - cpu/scalar_peak: the core's rate of scalar double additions and
+//    multiplications, 7 independent chains of each (enough to cover their
+//    latencies), as scalar_flops_per_ns. A step's operation count over this
+//    rate is its issue limit.
+//  - free_body_hairer_vilmart/dmv-pre10/one and .../two_interleaved: one
+//    trajectory stepped alone, and two stepped in alternation (ns per step of
+//    one trajectory). A step bound by its chain of dependent operations
+//    (Π → f → Π) would overlap with the other trajectory's and cost less per
+//    step in alternation; a step bound by throughput costs the same.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <variant>
+
+#include "experiments/io/scene_reader.hpp"
+#include "integrators/moser_veselov.hpp"
+#include "integrators/system/model.hpp"
+
+using namespace lgi;
+
+namespace {
+
+void scalar_peak(benchmark::State& state) {
+#if defined(__x86_64__)
+  constexpr std::int64_t rounds = 1 << 16;
+  static const double one = 1.0;
+  for (auto _ : state) {
+    // 7 addsd and 7 mulsd chains on xmm0–xmm13; xmm14 = 0 and xmm15 = 1 keep the values as they are.
+    asm volatile(
+        "pxor %%xmm14, %%xmm14\n\t"
+        "movsd %1, %%xmm15\n\t"
+        "mov %0, %%rcx\n\t"
+        "1:\n\t"
+        "addsd %%xmm14, %%xmm0\n\t mulsd %%xmm15, %%xmm7\n\t addsd %%xmm14, %%xmm1\n\t mulsd %%xmm15, %%xmm8\n\t"
+        "addsd %%xmm14, %%xmm2\n\t mulsd %%xmm15, %%xmm9\n\t addsd %%xmm14, %%xmm3\n\t mulsd %%xmm15, %%xmm10\n\t"
+        "addsd %%xmm14, %%xmm4\n\t mulsd %%xmm15, %%xmm11\n\t addsd %%xmm14, %%xmm5\n\t mulsd %%xmm15, %%xmm12\n\t"
+        "addsd %%xmm14, %%xmm6\n\t mulsd %%xmm15, %%xmm13\n\t"
+        "dec %%rcx\n\t"
+        "jnz 1b\n\t"
+        :
+        : "r"(rounds), "m"(one)
+        : "rcx", "xmm0", "xmm1", "xmm2", "xmm3", "xmm4", "xmm5", "xmm6", "xmm7", "xmm8", "xmm9", "xmm10", "xmm11",
+          "xmm12", "xmm13", "xmm14", "xmm15", "cc");
+  }
+  state.counters["scalar_flops_per_ns"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * static_cast<double>(rounds) * 14.0 * 1e-9, benchmark::Counter::kIsRate);
+#else
+  state.SkipWithError("x86-64 only");
+#endif
+}
+
+const system::Scene& hairer_vilmart() {
+  static const system::Scene scene =
+      experiments::read_scene(std::string(LGI_BENCH_SCENES_DIR) + "/free_body_hairer_vilmart.toml");
+  return scene;
+}
+
+// Trajectories of 2048 steps of h = 0.01 from Π0 (and from 1.01 Π0 for the second).
+template <int Trajectories>
+void dmv_pre10_steps(benchmark::State& state) {
+  constexpr int steps = 2048;
+  constexpr double h = 0.01;
+  const system::Scene& scene = hairer_vilmart();
+  const system::AnyModel model = system::make_model(scene);
+  const auto& body = std::get<system::FreeBody>(model);
+  for (auto _ : state) {
+    system::State x[Trajectories];
+    integrators::DmvPreprocessed<10> scheme[Trajectories];
+    integrators::WorkCounters work;
+    for (int j = 0; j < Trajectories; ++j) {
+      x[j] = scene.initial;
+      x[j].Pi *= 1.0 + 0.01 * j;
+      scheme[j].start(body, x[j], 0.0);
+    }
+    for (int k = 0; k < steps; ++k)
+      for (int j = 0; j < Trajectories; ++j)
+        if (!scheme[j].step(body, x[j], k * h, h, work).converged) state.SkipWithError("a step did not converge");
+    benchmark::DoNotOptimize(x);
+  }
+  state.counters["ns_per_step"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * steps * Trajectories * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+}  // namespace
+
+BENCHMARK(scalar_peak)->Name("cpu/scalar_peak");
+BENCHMARK(dmv_pre10_steps<1>)->Name("free_body_hairer_vilmart/dmv-pre10/one");
+BENCHMARK(dmv_pre10_steps<2>)->Name("free_body_hairer_vilmart/dmv-pre10/two_interleaved");
