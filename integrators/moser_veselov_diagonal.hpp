@@ -52,8 +52,8 @@
 // growth exponent over 8 books 0.51 (0.52 cold). The status has the corrections
 // made before the test passed and the relative residual
 // max_i |ψ_i| / max_i (sum of magnitudes)_i (for an accepted prediction,
-// max_i |ψ_i| / (2 max_i |a_i|), the same to O(|f|) without forming the sums:
-// 0.64 → ~0.57 × quat/rk4 per step); a non-finite residual (diverged)
+// max_i |ψ_i| / (2 max_i |a_i|), the same to O(|f|) without forming the sums,
+// 7% of a predicted step's instructions: README, "The arithmetic limit"); a non-finite residual (diverged)
 // or 50 iterations end the solve unconverged. Same solution as the general
 // path to round-off (tests/test_moser_veselov_diagonal.cpp).
 //
@@ -174,8 +174,8 @@ struct DiagonalResidual : DiagonalPsi {
 /// The status's residual of an accepted prediction (solve_cayley_parameter_predicted):
 /// max_i |ψ_i| / (2 max_i |a_i|). Near the root 2 w ≈ a, so each sum of
 /// magnitudes of DiagonalResidual is 2|a_i| (1 + O(|f|)), and this is its
-/// relative residual to O(|f|), without the twelve magnitudes and the test,
-/// which took ~10% of a predicted step.
+/// relative residual to O(|f|), without the twelve magnitudes and the test
+/// (7% of a predicted step's instructions).
 inline double prediction_residual(const DiagonalPsi& r, const double (&a)[3]) {
   const double psi = std::max(std::max(std::abs(r.r0), std::abs(r.r1)), std::abs(r.r2));
   const double big = 2.0 * std::max(std::max(std::abs(a[0]), std::abs(a[1])), std::abs(a[2]));

@@ -12,6 +12,10 @@ median and range of their ratios: a process's stack placement (address-space
 randomisation) moves the DMV step's cost by up to ~20% (false store-to-load
 dependencies between addresses 4 KiB apart), so one process is one sample.
 
+What bounds that step (README, "The arithmetic limit") is printed on one line from the
+limits/ benchmarks: the core's scalar peak, and dmv-pre10's step alone and with two
+trajectories stepped in alternation.
+
 The same bar over one long run, as the Fortran comparison was timed (10^7 steps, so t
 reaches 10^5, where a fixed-step run's h jitters by ulp(t)), is measured with
 `lgi simulate` (its cpu_seconds, minimum of 3 alternating runs of each scheme;
@@ -62,7 +66,7 @@ def write_tex(path, per_scene, maps, ctx):
         for sc in scenes:
             ns = per_scene[sc].get(s)
             cells += ["--", "--"] if ns is None else [f"{ns:.0f}", f"{ns / per_scene[sc][base[sc]]:.2f}"]
-        lines.append(f"\\texttt{{{s}}} & " + " & ".join(cells) + " \\\\")
+        lines.append(f"\\texttt{{{tex_escape(s)}}} & " + " & ".join(cells) + " \\\\")
     if maps:
         lines.append("\\midrule")
         for name, t, unit in maps:
@@ -207,11 +211,15 @@ def main():
     per_scene = {}
     maps = []
     ensembles = {}
+    limits = {}
     for b in data["benchmarks"]:
         if b.get("error_occurred"):
             continue  # e.g. an Euler-angle baseline on a scene that starts at its singularity
         if b["name"].startswith("ensemble/"):  # bench_ensemble.cpp: trajectories/s, scalar loop vs ensemble
             ensembles[b["name"]] = b["trajectories_per_second"]
+            continue
+        if b["name"].startswith("limits/"):  # bench_issue_limit.cpp: what bounds a dmv-pre10 step
+            limits[b["name"]] = b
             continue
         if b["name"].startswith("newton/"):
             continue  # the implicit schemes' Newton variants (bench_implicit_newton.cpp): not a per-scheme row
@@ -242,6 +250,11 @@ def main():
         r = dmv_bar_over_processes(a.bench, a.processes)
         print(f"# free_body_hairer_vilmart: dmv-pre10 / quat/rk4 over {len(r)} processes: median "
               f"{r[len(r) // 2]:.3f}, range {r[0]:.3f}-{r[-1]:.3f} (bar: <= 0.45)")
+    if {"limits/scalar_peak", "limits/dmv-pre10/one", "limits/dmv-pre10/two_interleaved"} <= limits.keys():
+        print(f"# limits: {limits['limits/scalar_peak']['scalar_flops_per_ns']:.1f} scalar additions and "
+              f"multiplications per ns at the core's peak; dmv-pre10 "
+              f"{limits['limits/dmv-pre10/one']['ns_per_step']:.1f} ns per step alone, "
+              f"{limits['limits/dmv-pre10/two_interleaved']['ns_per_step']:.1f} with two trajectories in alternation")
     if not a.skip_long_run:
         if os.path.exists(a.lgi):
             with tempfile.TemporaryDirectory(prefix="lgi_long_run_") as tmp:

@@ -1,15 +1,18 @@
 // What bounds a dmv-pre10 step (README, Performance, "The arithmetic limit"):
-//  - cpu/scalar_peak: the core's rate of scalar double additions and
+//  - limits/scalar_peak: the core's rate of scalar double additions and
 //    multiplications, 7 independent chains of each (enough to cover their
 //    latencies), as scalar_flops_per_ns. A step's operation count over this
 //    rate is its issue limit.
-//  - free_body_hairer_vilmart/dmv-pre10/one and .../two_interleaved: one
+//  - limits/dmv-pre10/one and limits/dmv-pre10/two_interleaved (Hairer &
+//    Vilmart's body, tests/benchmarks/scenes/, at h = 0.01): one
 //    trajectory stepped alone, and two stepped in alternation (ns per step of
 //    one trajectory). A step bound by its chain of dependent operations
 //    (Π → f → Π) would overlap with the other trajectory's and cost less per
 //    step in alternation; a step bound by throughput costs the same.
+// scripts/benchmark_ratios.py prints the three on one line, outside the per-scheme table.
 #include <benchmark/benchmark.h>
 
+#include <cstddef>
 #include <string>
 #include <variant>
 
@@ -57,7 +60,7 @@ const system::Scene& hairer_vilmart() {
 }
 
 // Trajectories of 2048 steps of h = 0.01 from Π0 (and from 1.01 Π0 for the second).
-template <int Trajectories>
+template <std::size_t Trajectories>
 void dmv_pre10_steps(benchmark::State& state) {
   constexpr int steps = 2048;
   constexpr double h = 0.01;
@@ -68,23 +71,23 @@ void dmv_pre10_steps(benchmark::State& state) {
     system::State x[Trajectories];
     integrators::DmvPreprocessed<10> scheme[Trajectories];
     integrators::WorkCounters work;
-    for (int j = 0; j < Trajectories; ++j) {
+    for (std::size_t j = 0; j < Trajectories; ++j) {
       x[j] = scene.initial;
-      x[j].Pi *= 1.0 + 0.01 * j;
+      x[j].Pi *= 1.0 + 0.01 * static_cast<double>(j);
       scheme[j].start(body, x[j], 0.0);
     }
     for (int k = 0; k < steps; ++k)
-      for (int j = 0; j < Trajectories; ++j)
+      for (std::size_t j = 0; j < Trajectories; ++j)
         if (!scheme[j].step(body, x[j], k * h, h, work).converged) state.SkipWithError("a step did not converge");
     benchmark::DoNotOptimize(x);
   }
   state.counters["ns_per_step"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * steps * Trajectories * 1e-9,
+      benchmark::Counter(static_cast<double>(state.iterations()) * steps * static_cast<double>(Trajectories) * 1e-9,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace
 
-BENCHMARK(scalar_peak)->Name("cpu/scalar_peak");
-BENCHMARK(dmv_pre10_steps<1>)->Name("free_body_hairer_vilmart/dmv-pre10/one");
-BENCHMARK(dmv_pre10_steps<2>)->Name("free_body_hairer_vilmart/dmv-pre10/two_interleaved");
+BENCHMARK(scalar_peak)->Name("limits/scalar_peak");
+BENCHMARK(dmv_pre10_steps<1>)->Name("limits/dmv-pre10/one");
+BENCHMARK(dmv_pre10_steps<2>)->Name("limits/dmv-pre10/two_interleaved");
