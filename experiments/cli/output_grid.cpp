@@ -27,8 +27,12 @@ void check_output_dt(double output_dt, const integrators::RunConfig& cfg, const 
                      format_general(cfg.dt, 10) + " (a fixed-step scheme is observed at its own step times)");
 }
 
+std::int64_t output_sample_count(double t0, double t_end, double output_dt) {
+  return integrators::fixed_step_count(t_end - t0, output_dt) + 1;
+}
+
 std::vector<double> output_grid(double t0, double t_end, double output_dt) {
-  const std::int64_t intervals = integrators::fixed_step_count(t_end - t0, output_dt);
+  const std::int64_t intervals = output_sample_count(t0, t_end, output_dt) - 1;
   std::vector<double> times;
   times.reserve(static_cast<std::size_t>(intervals) + 1);
   for (std::int64_t k = 0; k < intervals; ++k) times.push_back(t0 + static_cast<double>(k) * output_dt);

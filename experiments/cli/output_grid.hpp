@@ -6,6 +6,7 @@
 // them); one without dense output shortens a step to land on each; a
 // fixed-step scheme is observed on its own grid, so D must be a whole
 // multiple of its step.
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,9 @@ void check_output_dt_flag(double output_dt, std::int64_t save_every);
 /// max_output_times samples over the run, or (fixed-step schemes) is not a
 /// whole multiple of the step cfg.dt to 1e-9 relative.
 void check_output_dt(double output_dt, const integrators::RunConfig& cfg, const integrators::SchemeInfo& scheme);
+
+/// The number of times output_grid(t0, t_end, D) holds (after check_output_dt).
+std::int64_t output_sample_count(double t0, double t_end, double output_dt);
 
 /// t0 + k D for k = 0, 1, … while below t_end (a last interval that is a
 /// whole interval to 1e-10 relative ends at t_end itself), then t_end:

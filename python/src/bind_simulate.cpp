@@ -5,6 +5,7 @@
 
 #include <sstream>
 
+#include "experiments/cli/output_grid.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/simulation.hpp"
 #include "experiments/errors/exit_status.hpp"
@@ -111,7 +112,7 @@ std::string python_call(const system::Scene& scene, const std::string& scheme, c
 
 /// Samples a run will keep (for reserving): fixed-step runs and output times know it.
 std::size_t expected_samples(const integrators::RunConfig& cfg, std::optional<double> output_dt) {
-  if (output_dt) return static_cast<std::size_t>(integrators::fixed_step_count(cfg.t_end - cfg.t0, *output_dt) + 1);
+  if (output_dt) return static_cast<std::size_t>(experiments::output_sample_count(cfg.t0, cfg.t_end, *output_dt));
   if (cfg.dt <= 0.0 || cfg.tol > 0.0) return 1024;
   return static_cast<std::size_t>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt) / cfg.save_every + 2);
 }
