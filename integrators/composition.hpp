@@ -17,7 +17,10 @@
 // 400–407): a damped scene is then integrated backward over part
 // of each step, where the damper amplifies. Compositions are for conservative
 // and mildly dissipative scenes; on stiff_damped_spring use rkmk-radau5.
+#include <algorithm>
+#include <array>
 #include <concepts>
+#include <cstddef>
 
 #include "integrators/scheme_interface.hpp"
 #include "integrators/stepper_loop.hpp"
@@ -41,6 +44,52 @@ concept outer_inner_splitting = requires(Scheme& scheme, const Model& model, Sta
   scheme.outer(model, s, 0.0, 0.0, w);
   { scheme.inner(model, s, 0.0, 0.0, w) } -> std::same_as<StepStatus>;
 };
+
+/// Φ_{γ_n h} ∘ ⋯ ∘ Φ_{γ_1 h} (γ_1 first) of the symmetric base, from time t:
+/// the stages of a composition, or of a processor (processed_composition.hpp).
+/// Neighbouring half kicks (outer rotations) of a splitting are merged (top of
+/// this file). Stops at the first stage whose solve fails.
+template <class Base, class Model, std::size_t N>
+StepStatus compose_stages(Base& base, const Model& model, State& s, double t, double h,
+                          const std::array<double, N>& gamma, WorkCounters& work) {
+  StepStatus total;
+  auto merge = [&](const StepStatus& st) {
+    total.converged = total.converged && st.converged;
+    total.iterations = std::max(total.iterations, st.iterations);
+    total.residual = std::max(total.residual, st.residual);
+    if (!st.converged && !total.reason) total.reason = st.reason;
+  };
+  constexpr bool kick_flow = kick_flow_splitting<Base, Model>;
+  if constexpr (kick_flow || outer_inner_splitting<Base, Model>) {
+    auto outer = [&](double tau, double length) {
+      if constexpr (kick_flow) base.kick(model, s, tau, length, work);
+      else base.outer(model, s, tau, length, work);
+    };
+    auto inner = [&](double tau, double hi) {
+      if constexpr (kick_flow) return base.flow(model, s, tau, hi, work);
+      else return base.inner(model, s, tau, hi, work);
+    };
+    double tau = t;
+    outer(tau, 0.5 * gamma[0] * h);
+    for (std::size_t i = 0; i < N; ++i) {
+      const double hi = gamma[i] * h;
+      merge(inner(tau, hi));
+      if (!total.converged) return total;
+      tau += hi;
+      const double next = i + 1 < N ? gamma[i + 1] : 0.0;
+      outer(tau, 0.5 * (gamma[i] + next) * h);
+    }
+  } else {
+    double tau = t;
+    for (std::size_t i = 0; i < N; ++i) {
+      const double hi = gamma[i] * h;
+      merge(base.step(model, s, tau, hi, work));
+      if (!total.converged) return total;
+      tau += hi;
+    }
+  }
+  return total;
+}
 
 template <class Base, const auto& Coefficients>
 class Composition {
@@ -77,43 +126,7 @@ class Composition {
 
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    StepStatus total;
-    auto merge = [&](const StepStatus& st) {
-      total.converged = total.converged && st.converged;
-      total.iterations = std::max(total.iterations, st.iterations);
-      total.residual = std::max(total.residual, st.residual);
-      if (!st.converged && !total.reason) total.reason = st.reason;
-    };
-    constexpr bool kick_flow = kick_flow_splitting<Base, Model>;
-    if constexpr (kick_flow || outer_inner_splitting<Base, Model>) {
-      auto outer = [&](double tau, double length) {
-        if constexpr (kick_flow) base_.kick(model, s, tau, length, work);
-        else base_.outer(model, s, tau, length, work);
-      };
-      auto inner = [&](double tau, double hi) {
-        if constexpr (kick_flow) return base_.flow(model, s, tau, hi, work);
-        else return base_.inner(model, s, tau, hi, work);
-      };
-      double tau = t;
-      outer(tau, 0.5 * Coefficients.gamma[0] * h);
-      for (std::size_t i = 0; i < stages; ++i) {
-        const double hi = Coefficients.gamma[i] * h;
-        merge(inner(tau, hi));
-        if (!total.converged) return total;
-        tau += hi;
-        const double next = i + 1 < stages ? Coefficients.gamma[i + 1] : 0.0;
-        outer(tau, 0.5 * (Coefficients.gamma[i] + next) * h);
-      }
-    } else {
-      double tau = t;
-      for (std::size_t i = 0; i < stages; ++i) {
-        const double hi = Coefficients.gamma[i] * h;
-        merge(base_.step(model, s, tau, hi, work));
-        if (!total.converged) return total;
-        tau += hi;
-      }
-    }
-    return total;
+    return compose_stages(base_, model, s, t, h, Coefficients.gamma, work);
   }
 
  private:

@@ -193,15 +193,32 @@ struct OutputCursor {
     next_multiple += every;
     return due;
   }
+  /// Whether multiple(k, every) would be true, without moving the target.
+  bool multiple_due(std::int64_t k, std::int64_t every) const {
+    return k == next_multiple || (k > next_multiple && k % every == 0);
+  }
+  /// Whether an output time falls on t (observe_output_times would observe one).
+  bool output_time_due(double t) const {
+    const double tol = land_tolerance(t, span);
+    std::size_t i = next;
+    while (i < times->size() && direction * ((*times)[i] - t) < -tol) ++i;
+    return i < times->size() && std::abs((*times)[i] - t) <= tol;
+  }
+};
+/// A scheme whose loop state is not the trajectory's state
+/// (processed_composition.hpp): observers get observable(model, s, work).
+template <class Scheme, class Model>
+concept has_observable_state = requires(const Scheme& c, const Model& m, const State& x, WorkCounters& w) {
+  { c.observable(m, x, w) } -> std::same_as<State>;
 };
 /// After accepted step k, from t_start to t: the samples due (the output
 /// times, else every save_every-th step and the final one), then the stop
 /// flag. Returns true if the run ends here, interrupted, with its last state
 /// observed once (Observer::on_stop() first).
 template <class Scheme, class Model>
-bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
-                  double t_start, double t, bool final_step, const State& s, Observer& observer, RunStats& stats) {
-  const bool stopping = !final_step && stop_requested(cfg);
+bool observe_due(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
+                 double t_start, double t, bool final_step, bool stopping, const State& s, Observer& observer,
+                 RunStats& stats) {
   if (stopping) observer.on_stop();
   bool observed = false;
   if (out.times) {
@@ -217,6 +234,21 @@ bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, Outp
   if (!observed) observe_sample(scheme, observer, k, t, s);
   mark_interrupted(stats, k, t);
   return true;
+}
+/// For a scheme with an observable state, that state is formed only when a
+/// sample is due (it costs a processor: processed_composition.hpp).
+template <class Scheme, class Model>
+bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
+                  double t_start, double t, bool final_step, const State& s, Observer& observer, RunStats& stats) {
+  const bool stopping = !final_step && stop_requested(cfg);
+  if constexpr (has_observable_state<Scheme, Model>) {
+    const bool due = stopping || (out.times ? out.output_time_due(t) : final_step || out.multiple_due(k, cfg.save_every));
+    if (!due) return false;
+    const State x = scheme.observable(model, s, stats.work);
+    return observe_due(scheme, model, cfg, out, k, t_start, t, final_step, stopping, x, observer, stats);
+  } else {
+    return observe_due(scheme, model, cfg, out, k, t_start, t, final_step, stopping, s, observer, stats);
+  }
 }
 /// The checkpoint the run resumes from (RunConfig::checkpoints), or null.
 inline const LoopCheckpoint* resume_point(const RunConfig& cfg) {

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "integrators/composition.hpp"
+#include "integrators/processed_composition.hpp"
 #include "integrators/registry.hpp"
 
 namespace lgi::integrators {
@@ -89,6 +90,34 @@ void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_
   add.template operator()<tableaus::suzuki4>();
   add.template operator()<tableaus::kahan_li6>();
   add.template operator()<tableaus::kahan_li8>();
+}
+
+/// Registers BASE@bcm-processed6 and BASE@bcm-processed8 for a symmetric
+/// scheme of order 2 (processed_composition.hpp).
+template <SchemeWithFacts Base>
+void add_processed_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_entry) {
+  const SchemeInfo base = base_entry;  // a copy, as in add_compositions
+  auto add = [&]<const auto& Coefficients>() {
+    add_scheme<ProcessedComposition<Base, Coefficients>>(
+        registry, {.name = base.name + "@" + Coefficients.name,
+                   .family = "composition of " + base.name,
+                   .notes = std::to_string(Coefficients.stages) + " stages of " + base.name + " a step, a " +
+                            std::to_string(Coefficients.processor_stages) +
+                            "-stage processor (Blanes-Casas-Murua) at the start and at each output; no events" +
+                            (base.notes.empty() ? "" : "; " + base.notes),
+                   .base_scheme = base.name});
+    registry.back().reference += "; base: " + base.name;
+  };
+  add.template operator()<tableaus::bcm_processed6>();
+  add.template operator()<tableaus::bcm_processed8>();
+}
+
+/// Both for the base just registered (registry.back()).
+template <SchemeWithFacts Base>
+void add_compositions_and_processed(std::vector<SchemeInfo>& registry) {
+  const SchemeInfo base = registry.back();
+  add_compositions<Base>(registry, base);
+  add_processed_compositions<Base>(registry, base);
 }
 
 }  // namespace lgi::integrators

@@ -14,7 +14,7 @@ void add_variational_schemes(std::vector<SchemeInfo>& r) {
                        .family = "Moser-Veselov",
                        .notes = "kick(h/2) o DMV(h) o kick(h/2) with the potential torque; equals dmv on a free body "
                                 "(and then conserves its energy too); " + newton});
-  add_compositions<Lgvi>(r, r.back());
+  add_compositions_and_processed<Lgvi>(r);
   const std::string pre_notes =
       "free body: DMV with modified moments of inertia, series in h^2 in H and |Pi|^2 (conserves H, |Pi|, "
       "R Pi; Poisson for Pi, not symplectic); with a potential: Strang splitting kick(h/2) o preDMV(h) o "

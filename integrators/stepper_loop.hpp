@@ -48,6 +48,12 @@
 // observing the initial state again: its steps, samples and counters are bit
 // for bit those of the uninterrupted run from there on.
 //
+// Observable state (a processed composition, processed_composition.hpp): the
+// loop steps the scheme's own variable and hands observers, and the caller at
+// the end, scheme.observable(model, s, work), formed only when a sample is due.
+// Checkpoints hold the loop's variable and the scheme's memory. Such a scheme
+// locates no events: a run given event functions fails before its first step.
+//
 // With all four null, the loop is the one it always was: the same steps,
 // the same arithmetic and the same observe() calls.
 #include <algorithm>
@@ -84,6 +90,13 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
   }
   const EventFunctions* events = cfg.events;
+  if constexpr (detail::has_observable_state<Scheme, Model>) {
+    if (events && stats.ok) {  // between outputs the loop never holds the trajectory's state
+      detail::mark_failed(stats, "events are not located by a processed composition: use a composition "
+                                 "without processing (BASE@kahan-li8)");
+      first = n;
+    }
+  }
   std::vector<double> g;
   std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the step
   State x_before;
@@ -134,6 +147,8 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     if (detail::observe_step(scheme, model, cfg, out, k + 1, t_start, t, k + 1 == n, s, observer, stats)) break;
     if (k + 1 < n) detail::offer_checkpoint<Scheme, Model, false>(scheme, cfg, k + 1, t, 0.0, s, stats);
   }
+  // The run's final state is the trajectory's (processed_composition.hpp).
+  if constexpr (detail::has_observable_state<Scheme, Model>) s = scheme.observable(model, s, stats.work);
   stats.t_final = t;
   stats.cpu_seconds = cfg.cpu_clock ? detail::cpu_now() - cpu0 : 0.0;
   return stats;

@@ -129,6 +129,15 @@ TEST_CASE("every fixed-step scheme shows the order lgi schemes states, with and 
         std::cout << "  " << s.name << " is nearly exact on " << p.name << " (error " << m.points.front().error
                   << " at h = 1): order measured on the other problems\n";
         continue;
+      } else if (experiments::verification::order_verdict(m.fit, m.points, order) ==
+                 experiments::verification::OrderVerdict::pre_asymptotic) {
+        // Above the order all the way down to the floor (the processed
+        // compositions on the Kovalevskaya top: slopes 7.3–9.3 for orders 6
+        // and 8, their leading error terms being small). Not counted: the
+        // order must be shown on another problem (the check after the loop).
+        std::cout << "  " << s.name << " is pre-asymptotic down to the floor on " << p.name << " (slope "
+                  << m.fit.slope << "): order measured on the other problems\n";
+        continue;
       } else {
         INFO(s.name << " on " << p.name << ": stated order " << order << ", slope " << m.fit.slope << " from "
                     << m.fit.points << " points");

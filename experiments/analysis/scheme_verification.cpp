@@ -77,7 +77,9 @@ Check order_check_fixed(const integrators::SchemeInfo& s, const Problem& p, int 
     c.passed = true;
     d << "exact: every error below " << floor_error;
   } else {
-    c.passed = fit.points >= 3 && std::abs(fit.slope - order) <= std::max(0.25, 0.05 * order);
+    const OrderVerdict v = order_verdict(fit, all, order);
+    c.passed = v != OrderVerdict::not_shown;
+    if (v == OrderVerdict::pre_asymptotic) d << "pre-asymptotic down to the floor " << floor_error << ", ";
     d << "slope " << fit.slope << " from " << fit.points << " points;" << format_points(all);
   }
   c.detail = d.str();
@@ -109,6 +111,14 @@ void order_checks(const integrators::SchemeInfo& s, const Options& o, Report& re
     report.checks.push_back(s.properties.adaptive ? order_check_adaptive(s, p, order)
                                                   : order_check_fixed(s, p, order));
   }
+  // A fixed-step order must be shown somewhere, not only be pre-asymptotic everywhere.
+  if (s.properties.adaptive) return;
+  const bool shown = std::any_of(report.checks.begin(), report.checks.end(), [](const Check& c) {
+    return c.name.starts_with("order") && c.passed && !c.detail.starts_with("pre-asymptotic");
+  });
+  if (!shown)
+    report.checks.push_back({"order " + std::to_string(s.order), "-", false,
+                             "not shown on any problem (pre-asymptotic or unsupported everywhere)"});
 }
 
 void symmetry_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
@@ -219,6 +229,14 @@ std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& s
     if (e < floor_error) break;
   }
   return all;
+}
+
+OrderVerdict order_verdict(const SlopeFit& fit, const std::vector<ConvergencePoint>& points, int order) {
+  const double band = std::max(0.25, 0.05 * order);
+  if (fit.points < 3) return OrderVerdict::not_shown;
+  if (std::abs(fit.slope - order) <= band) return OrderVerdict::shown;
+  const bool reached_floor = !points.empty() && points.back().error < floor_error;
+  return fit.slope > order + band && reached_floor ? OrderVerdict::pre_asymptotic : OrderVerdict::not_shown;
 }
 
 SlopeFit fit_finest(const std::vector<ConvergencePoint>& points) {

@@ -13,7 +13,9 @@
 //    down to the 1e-10 floor or h_min (5e-5 for p = 1, else 1e-3); the slope
 //    through the five finest points between 1e-10 and 1e-2 must be within
 //    max(0.25, 0.05 p) of the stated p (order_with_torque where stated, on
-//    the tops). Adaptive schemes: the slope against the mean step T/steps as
+//    the tops). A slope above that band on a problem where the steps reached
+//    the floor is pre-asymptotic down to round-off (order_verdict): that
+//    problem passes, and at least one other must show p. Adaptive schemes: the slope against the mean step T/steps as
 //    tol falls by √10 from 1e-3 to 1e-13 (HNW I §II.4), at least
 //    p − max(0.5, 0.15 p) and, for p ≤ 5, at most p + max(0.5, 0.25 p).
 //  - symmetry, if claimed: Φ₋ₕ ∘ Φₕ = id to 1e-13 (attitude and relative
@@ -90,6 +92,15 @@ std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& s
                                                 double t_end, int order);
 /// The slope through the five finest points between the 1e-10 floor and 1e-2.
 SlopeFit fit_finest(const std::vector<ConvergencePoint>& points);
+
+/// What a fixed-step fit says of a stated order p: shown (≥ 3 points, slope
+/// within max(0.25, 0.05 p) of p); pre-asymptotic (≥ 3 points, slope above
+/// that band, and the steps went down to the floor: the asymptotic regime
+/// lies at round-off, as for the processed compositions on the Kovalevskaya
+/// top, whose leading error terms are small); or not shown. A pre-asymptotic
+/// problem neither confirms nor refutes p; another problem must show it.
+enum class OrderVerdict { shown, pre_asymptotic, not_shown };
+OrderVerdict order_verdict(const SlopeFit& fit, const std::vector<ConvergencePoint>& points, int order);
 
 /// The largest relative drift of each invariant of a scene from its value at
 /// the first sample: the energy, the spatial momentum (|m − m0|/|m0|) and
