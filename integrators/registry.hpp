@@ -29,7 +29,9 @@ struct SchemeInfo {
   RunFunction run = nullptr;
   int order_with_torque = 0;  // order on scenes with torques where it differs (Strang splitting); 0: the same
   std::string base_scheme{};  // a composition's base scheme (`lgi schemes --json` "base"); empty otherwise
-  bool locates_events = true;  // driven by the stepper loop, which honours RunConfig::events (not the baselines)
+  // driven by the stepper loop, which honours RunConfig::events (not the baselines, nor the processed
+  // compositions: processed_composition.hpp)
+  bool locates_events = true;
   /// A run can be resumed from a checkpoint (RunConfig::checkpoints; scheme_interface.hpp, "Resume").
   bool resumable = false;
 };

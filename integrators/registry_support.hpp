@@ -68,6 +68,8 @@ void add_scheme(std::vector<SchemeInfo>& registry, const SchemeEntry& entry) {
                       .run = &run_scheme<Scheme>,
                       .order_with_torque = facts.order_with_torque,
                       .base_scheme = entry.base_scheme,
+                      // a processed composition's loop state is not the trajectory's between outputs
+                      .locates_events = !detail::has_observable_state<Scheme, system::FreeBody>,
                       .resumable = resumable_scheme<Scheme, system::FreeBody, facts.properties.adaptive>()});
 }
 

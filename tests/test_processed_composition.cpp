@@ -13,6 +13,7 @@
 #include "integrators/registry.hpp"
 #include "support/reference_solution.hpp"
 #include "support/registered_run.hpp"
+#include "support/run_command.hpp"
 
 using namespace lgi;
 
@@ -97,7 +98,10 @@ TEST_CASE("a processed composition refuses events and scenes with a damper", "[p
   cfg.events = &height;
   system::State x = top.scene.initial;
   integrators::NullObserver none;
-  const auto stats = testing::registered_scheme("split-axes@bcm-processed8").run(top.model, x, cfg, none);
+  const auto& processed = testing::registered_scheme("split-axes@bcm-processed8");
+  CHECK_FALSE(processed.locates_events);  // lgi poincare and the sweeps refuse it up front
+  CHECK(testing::registered_scheme("split-axes@kahan-li8").locates_events);
+  const auto stats = processed.run(top.model, x, cfg, none);
   CHECK_FALSE(stats.ok);
   CHECK(stats.status.find("processed composition") != std::string::npos);
   CHECK(stats.steps == 0);
@@ -106,4 +110,13 @@ TEST_CASE("a processed composition refuses events and scenes with a damper", "[p
   const system::Scene damped = experiments::read_scene(scenes + "/stiff_damped_spring.toml");
   const auto& scheme = testing::registered_scheme("split-exact@bcm-processed6");
   CHECK_FALSE(integrators::unsupported_reason(scheme, system::make_model(damped)).empty());
+}
+
+TEST_CASE("lgi poincare refuses a processed composition with a clear line and exit 2", "[processed][cli]") {
+  const auto r = testing::run_lgi("poincare --scene " + scenes +
+                                  "/heavy_top_hlw.toml --l 0.5 --h 1.5 --ics 2 --t-end 1 "
+                                  "--scheme split-symmetric@bcm-processed8 --out processed_poincare.h5 --force --quiet");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("--scheme") != std::string::npos);
+  CHECK(r.err.find("split-symmetric@bcm-processed8") != std::string::npos);
 }
