@@ -91,20 +91,26 @@ StepStatus compose_stages(Base& base, const Model& model, State& s, double t, do
   return total;
 }
 
+/// The facts of a composition of Base (processed or not) of the given order:
+/// the coefficients raise a symmetric order-2 base to their order; a base that
+/// drops to order 2 with torques stays at 2 there; the base's properties.
+template <class Base>
+constexpr SchemeFacts composed_facts(int order, const char* citation, SceneSupport support = Base::facts.support) {
+  static_assert(Base::facts.order == 2 && Base::facts.properties.symmetric,
+                "compositions raise the order of a symmetric scheme of order 2");
+  return {.order = order,
+          .order_with_torque = Base::facts.order_with_torque ? 2 : 0,
+          .properties = Base::facts.properties,
+          .support = support,
+          .reference = citation};
+}
+
 template <class Base, const auto& Coefficients>
 class Composition {
  public:
   static constexpr auto& coefficients = Coefficients;
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Coefficients)>::stages;
-  // The coefficients raise a symmetric order-2 base to their order; a base
-  // that drops to order 2 with torques stays at 2 there.
-  static_assert(Base::facts.order == 2 && Base::facts.properties.symmetric,
-                "compositions raise the order of a symmetric scheme of order 2");
-  static constexpr SchemeFacts facts{.order = Coefficients.order,
-                                     .order_with_torque = Base::facts.order_with_torque ? 2 : 0,
-                                     .properties = Base::facts.properties,
-                                     .support = Base::facts.support,
-                                     .reference = Coefficients.citation};
+  static constexpr SchemeFacts facts = composed_facts<Base>(Coefficients.order, Coefficients.citation);
 
   template <class Model>
   StepStatus start(const Model& model, const State& initial, double t0) {

@@ -44,15 +44,10 @@ class ProcessedComposition {
  public:
   static constexpr auto& coefficients = Coefficients;
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Coefficients)>::stages;
-  static_assert(Base::facts.order == 2 && Base::facts.properties.symmetric,
-                "processed compositions raise the order of a symmetric scheme of order 2");
-  static constexpr SchemeFacts facts{.order = Coefficients.order,
-                                     .order_with_torque = Base::facts.order_with_torque ? 2 : 0,
-                                     .properties = Base::facts.properties,
-                                     .support = Base::facts.support == SceneSupport::any
-                                                    ? SceneSupport::conservative_only
-                                                    : Base::facts.support,
-                                     .reference = Coefficients.citation};
+  // Conservative scenes only (top of file).
+  static constexpr SchemeFacts facts = composed_facts<Base>(
+      Coefficients.order, Coefficients.citation,
+      Base::facts.support == SceneSupport::any ? SceneSupport::conservative_only : Base::facts.support);
 
   template <class Model>
   StepStatus start(const Model& model, const State& initial, double t0) {
