@@ -16,6 +16,11 @@
 // (baselines/chart_scheme.hpp): interpolate(model, t, out) (dense output at
 // output times inside a step), euler_angles() and interpolated_euler_angles()
 // (Observer::observe_euler_zxz), refusal_reason() (StepStatus::refused).
+// Optional, for a scheme whose loop state is its own variable rather than the
+// trajectory's (a processed composition, processed_composition.hpp):
+//   template <class Model> State observable(const Model&, const State& y, WorkCounters&) const;
+// the trajectory's state for observers and for the run's end (stepper_loop.hpp);
+// such a scheme locates no events (SchemeInfo::locates_events is false).
 // Schemes never write files and never renormalise the attitude (a baseline
 // chart that projects, quat-normalized, says so in its name).
 //
