@@ -56,20 +56,23 @@ class ProcessedComposition {
   }
 
   /// One kernel step; the first step (or one of a new length) processes the state first (top of file).
+  /// A step that fails leaves the state and the processed length as they were, so that the
+  /// loop's retry with h/2 (RunConfig::retry_halving), which restores the state, finds them consistent.
   template <class Model>
   StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    if (processed_h_ == 0.0 || std::abs(std::abs(h) - processed_h_) > 1e-8 * processed_h_) {
-      const State before = s;
-      const double was = processed_h_;
-      if (processed_h_ != 0.0) {
-        const StepStatus back = postprocess(base_, model, s, t, work);
-        if (!back.converged) return restore(s, before, was, back);
-      }
-      processed_h_ = std::abs(h);
-      const StepStatus pre = compose_stages(base_, model, s, t, processed_h_, Coefficients.z, work);
-      if (!pre.converged) return restore(s, before, was, pre);
+    if (processed_h_ != 0.0 && std::abs(std::abs(h) - processed_h_) <= 1e-8 * processed_h_)
+      return compose_stages(base_, model, s, t, h, Coefficients.gamma, work);
+    const State before = s;
+    const double was = processed_h_;
+    if (processed_h_ != 0.0) {
+      const StepStatus back = postprocess(base_, model, s, t, work);
+      if (!back.converged) return restore(s, before, was, back);
     }
-    return compose_stages(base_, model, s, t, h, Coefficients.gamma, work);
+    processed_h_ = std::abs(h);
+    const StepStatus pre = compose_stages(base_, model, s, t, processed_h_, Coefficients.z, work);
+    if (!pre.converged) return restore(s, before, was, pre);
+    const StepStatus kernel = compose_stages(base_, model, s, t, h, Coefficients.gamma, work);
+    return kernel.converged ? kernel : restore(s, before, was, kernel);
   }
 
   /// The trajectory's state π_h(y) for the loop's state y (y itself before the first step).
