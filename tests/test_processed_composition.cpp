@@ -85,6 +85,30 @@ TEST_CASE("a step of another length is processed again: a clipped last step keep
   CHECK(distance(run.state, ref) < 1e-9);
 }
 
+TEST_CASE("a halving retry of a processed composition goes on from a consistent state", "[processed][composition]") {
+  // lgvi@bcm-processed8 on the fast top: its Newton solves fail at h = 0.05 (in
+  // the processor, whose stages come first), so every step is redone as two of
+  // 0.025. A failed step must leave both the state and the processed length as
+  // they were (processed_composition.hpp); if the length stayed at 0.05, the
+  // retry would map back with the wrong processor and leave an O(h²) error, not
+  // the run at h = 0.025 to round-off (its error is 5.8e-4 against split-symmetric@kahan-li8 at h = 1e-3).
+  const system::Scene scene = experiments::read_scene(scenes + "/heavy_top_trindade_1.toml");
+  const system::AnyModel model = system::make_model(scene);
+  const auto& scheme = testing::registered_scheme("lgvi@bcm-processed8");
+  integrators::NullObserver none;
+  integrators::RunConfig cfg;
+  cfg.t_end = 1.0;
+  cfg.dt = 0.05;
+  cfg.retry_halving = 2;
+  system::State halved = scene.initial;
+  const auto retried = scheme.run(model, halved, cfg, none);
+  REQUIRE(retried.ok);
+  CHECK(retried.work.rejected_steps == 20);
+  const auto plain = testing::run_registered(scheme, model, scene.initial, 1.0, 0.025);
+  REQUIRE(plain.stats.ok);
+  CHECK(distance(halved, plain.state) <= 1e-10 * plain.state.Pi.norm());
+}
+
 TEST_CASE("a processed composition refuses events and scenes with a damper", "[processed][composition]") {
   const Top top;
   struct Height final : integrators::EventFunctions {
