@@ -73,6 +73,18 @@ void add_scheme(std::vector<SchemeInfo>& registry, const SchemeEntry& entry) {
                       .resumable = resumable_scheme<Scheme, system::FreeBody, facts.properties.adaptive>()});
 }
 
+/// The registry line of one composition of `base`: BASE@NAME, in the family
+/// "composition of BASE", its notes `what` and then the base's.
+template <SchemeWithFacts Composed>
+void add_composed(std::vector<SchemeInfo>& registry, const SchemeInfo& base, const char* name,
+                  const std::string& what) {
+  add_scheme<Composed>(registry, {.name = base.name + "@" + name,
+                                  .family = "composition of " + base.name,
+                                  .notes = what + (base.notes.empty() ? "" : "; " + base.notes),
+                                  .base_scheme = base.name});
+  registry.back().reference += "; base: " + base.name;
+}
+
 /// Registers BASE@yoshida4, @suzuki4, @kahan-li6 and @kahan-li8 for a
 /// symmetric scheme of order 2 (Composition checks that at compile time).
 template <SchemeWithFacts Base>
@@ -80,13 +92,8 @@ void add_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_
   // A copy: base_entry is usually registry.back(), which push_back may move.
   const SchemeInfo base = base_entry;
   auto add = [&]<const auto& Coefficients>() {
-    add_scheme<Composition<Base, Coefficients>>(
-        registry, {.name = base.name + "@" + Coefficients.name,
-                   .family = "composition of " + base.name,
-                   .notes = std::to_string(Coefficients.stages) + " stages of " + base.name +
-                            (base.notes.empty() ? "" : "; " + base.notes),
-                   .base_scheme = base.name});
-    registry.back().reference += "; base: " + base.name;
+    add_composed<Composition<Base, Coefficients>>(registry, base, Coefficients.name,
+                                                  std::to_string(Coefficients.stages) + " stages of " + base.name);
   };
   add.template operator()<tableaus::yoshida4>();
   add.template operator()<tableaus::suzuki4>();
@@ -100,15 +107,11 @@ template <SchemeWithFacts Base>
 void add_processed_compositions(std::vector<SchemeInfo>& registry, const SchemeInfo& base_entry) {
   const SchemeInfo base = base_entry;  // a copy, as in add_compositions
   auto add = [&]<const auto& Coefficients>() {
-    add_scheme<ProcessedComposition<Base, Coefficients>>(
-        registry, {.name = base.name + "@" + Coefficients.name,
-                   .family = "composition of " + base.name,
-                   .notes = std::to_string(Coefficients.stages) + " stages of " + base.name + " a step, a " +
-                            std::to_string(Coefficients.processor_stages) +
-                            "-stage processor (Blanes-Casas-Murua) at the start and at each output; no events" +
-                            (base.notes.empty() ? "" : "; " + base.notes),
-                   .base_scheme = base.name});
-    registry.back().reference += "; base: " + base.name;
+    add_composed<ProcessedComposition<Base, Coefficients>>(
+        registry, base, Coefficients.name,
+        std::to_string(Coefficients.stages) + " stages of " + base.name + " a step, a " +
+            std::to_string(Coefficients.processor_stages) +
+            "-stage processor (Blanes-Casas-Murua) at the start and at each output; no events");
   };
   add.template operator()<tableaus::bcm_processed6>();
   add.template operator()<tableaus::bcm_processed8>();

@@ -40,9 +40,7 @@ struct ProcessedCoefficients {
 /// not required: the processor removes them.
 template <std::size_t S, std::size_t P>
 constexpr bool kernel_has_effective_order(const ProcessedCoefficients<S, P>& c, double tolerance = 1e-14) {
-  for (std::size_t i = 0; i < S; ++i)
-    if (c.gamma[i] != c.gamma[S - 1 - i]) return false;
-  if (!power_sum_is(c.gamma, 1, 1.0, tolerance)) return false;
+  if (!composition_consistent(CompositionCoefficients<S>{c.gamma, c.order})) return false;  // symmetric, Σγ = 1
   for (int k = 3; k < c.order; k += 2)
     if (!power_sum_is(c.gamma, k, 0.0, tolerance)) return false;
   return true;
@@ -73,17 +71,12 @@ constexpr std::array<double, P> balanced_processor(const std::array<double, H>& 
   for (std::size_t i = 0; i < P / 2; ++i) z[P / 2 + i] = -z[i];
   return z;
 }
-/// The symmetric kernel from its distinct first-half entries, repeated as listed.
-template <std::size_t S, std::size_t H>
-constexpr std::array<double, S> kernel_from_half(const std::array<double, H>& half) {
-  return symmetric_from_half<S>(half);
-}
 }  // namespace detail
 
 /// Order 6: an 11-stage kernel (a₁ four times, a₅, the middle) and a 12-stage
 /// processor (Blanes, Casas & Murua 2006; Acta Numerica 2024, Table 8.1, "BCM06", s = 11).
 inline constexpr ProcessedCoefficients<11, 12> bcm_processed6{
-    detail::kernel_from_half<11>(std::array<double, 5>{0.1705768865009222157, 0.1705768865009222157,
+    symmetric_from_half<11>(std::array<double, 5>{0.1705768865009222157, 0.1705768865009222157,
                                                         0.1705768865009222157, 0.1705768865009222157,
                                                         -0.423366140892658048}),
     // Tabulated as g_1..g_6 (g_1 = −(g_2 + … + g_6)); the preprocessing applies −g_1..−g_6, then g_1..g_6.
@@ -94,7 +87,7 @@ inline constexpr ProcessedCoefficients<11, 12> bcm_processed6{
 /// Order 8: a 13-stage kernel and a 20-stage processor (Blanes, Casas & Murua
 /// 2006; Acta Numerica 2024, Table 8.1, "BCM06", s = 13).
 inline constexpr ProcessedCoefficients<13, 20> bcm_processed8{
-    detail::kernel_from_half<13>(std::array<double, 6>{0.168, 0.168, 0.585550530805562, -0.460090457516872,
+    symmetric_from_half<13>(std::array<double, 6>{0.168, 0.168, 0.585550530805562, -0.460090457516872,
                                                         0.172863148729731, 0.179664539695039}),
     detail::balanced_processor<20>(std::array<double, 9>{
         0.008488123494574411, 0.337188967354338, -0.333987768164597, -0.588351189003849, -0.162324207599241,
