@@ -50,6 +50,7 @@ void register_scheme(SchemeInfo scheme);
 /// Registration, one function per family, each in its own registry_<family>.cpp.
 void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& registry);
 void add_verner_high_order_pairs(std::vector<SchemeInfo>& registry);  // rkmk-verner87, rkmk-verner98
+void add_cayley_pairs(std::vector<SchemeInfo>& registry);             // rkmk-cayley-dp54 … rkmk-cayley-verner98
 void add_variational_schemes(std::vector<SchemeInfo>& registry);        // dmv, lgvi, dmv-pre*
 void add_energy_momentum_schemes(std::vector<SchemeInfo>& registry);    // simo-wong
 void add_splitting_schemes(std::vector<SchemeInfo>& registry);          // split-exact

@@ -19,6 +19,7 @@ void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& r) {
   add_scheme<Rkmk2>(r, {.name = "rkmk2", .family = "RKMK"});
   add_scheme<Rkmk3>(r, {.name = "rkmk3", .family = "RKMK"});
   add_scheme<Rkmk4>(r, {.name = "rkmk4", .family = "RKMK"});
+  add_scheme<RkmkCayley4>(r, {.name = "rkmk-cayley4", .family = "RKMK", .notes = "classical RK4 in Cayley coordinates"});
   add_scheme<RkmkDp54>(
       r, {.name = "rkmk-dp54", .family = "RKMK", .notes = "adaptive (--tol); error estimated on the algebra and in Pi"});
   add_scheme<RkmkVerner65>(r, {.name = "rkmk-verner65",
@@ -29,6 +30,7 @@ void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& r) {
                              .notes = "adaptive (--tol), DOP853 with 8(5,3) estimator; dense output of order 7; PI "
                                       "controller"});
   add_verner_high_order_pairs(r);  // registry_verner_pairs.cpp: a unit of its own, as they are large
+  add_cayley_pairs(r);             // registry_cayley_pairs.cpp, for the same reason
   add_scheme<Cg3>(r, {.name = "cg3", .family = "Crouch-Grossman"});
   add_scheme<Cg4a>(r, {.name = "cg4a", .family = "Crouch-Grossman", .notes = "5 stages"});
   add_scheme<Cf4>(r, {.name = "cf4", .family = "commutator-free", .notes = "two exponentials per step"});

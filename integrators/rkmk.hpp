@@ -22,17 +22,18 @@
 #include <array>
 
 #include "integrators/flatten_policy.hpp"
+#include "integrators/rkmk_chart.hpp"
 #include "integrators/rkmk_pair_kernels.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "integrators/tableaus/runge_kutta.hpp"
 
 namespace lgi::integrators {
 
-template <const auto& Tableau>
+template <const auto& Tableau, RkmkChart Chart = ExponentialChart>
 class Rkmk {
  public:
   static constexpr auto& tableau = Tableau;
-  static constexpr SchemeFacts facts{.order = Tableau.order, .reference = munthe_kaas_reference, .tableau = Tableau.citation};
+  static constexpr SchemeFacts facts{.order = Tableau.order, .reference = Chart::reference, .tableau = Tableau.citation};
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Tableau)>::stages;
 
   // flatten: the maps, dexp⁻¹, the stage attitude and the torque inlined into
@@ -59,8 +60,8 @@ class Rkmk {
       if (i == 0) {
         k_algebra[i] = Omega_i;
       } else {
-        m = rkmk_pair_detail::map_coefficients(lie::exp_series::squared_norm(w.data()));
-        rkmk_pair_detail::dexpinv(w.data(), Omega_i, m, k_algebra[i].data());
+        m = Chart::coefficients(lie::exp_series::squared_norm(w.data()));
+        Chart::inverse_differential(w.data(), Omega_i, m, k_algebra[i].data());
       }
       if constexpr (Model::has_torque) {
         Mat3 R_i;
@@ -78,7 +79,7 @@ class Rkmk {
       dPi += Tableau.b[i] * k_momentum[i];
     }
     const Vec3 hw = h * w;
-    s.R = rkmk_pair_detail::times_exp(s.R, hw);
+    s.R = times_map<Chart>(s.R, hw.data());
     s.Pi += h * dPi;
     work.rhs_evaluations += static_cast<std::int64_t>(stages);
     return {};
@@ -89,5 +90,7 @@ using LieEuler = Rkmk<tableaus::euler>;
 using Rkmk2 = Rkmk<tableaus::heun>;
 using Rkmk3 = Rkmk<tableaus::kutta3>;
 using Rkmk4 = Rkmk<tableaus::classical_rk4>;
+/// RK4 in Cayley coordinates R = R_n cay(ŵ) (rkmk_chart.hpp).
+using RkmkCayley4 = Rkmk<tableaus::classical_rk4, CayleyChart>;
 
 }  // namespace lgi::integrators

@@ -52,8 +52,17 @@ using RkmkDop853 = RkmkPair<tableaus::dop853, dop853_control>;
 using RkmkVerner87 = RkmkPair<tableaus::verner87, dop853_control>;
 using RkmkVerner98 = RkmkPair<tableaus::verner98, verner98_control>;
 
+// The same pairs and controllers in Cayley coordinates R = R_n cay(ŵ)
+// (rkmk_chart.hpp): `rkmk-cayley-dp54` … `rkmk-cayley-verner98`.
+using RkmkCayleyDp54 = RkmkPair<tableaus::dormand_prince54, dp54_control, CayleyChart>;
+using RkmkCayleyVerner65 = RkmkPair<tableaus::verner65, verner65_control, CayleyChart>;
+using RkmkCayleyDop853 = RkmkPair<tableaus::dop853, dop853_control, CayleyChart>;
+using RkmkCayleyVerner87 = RkmkPair<tableaus::verner87, dop853_control, CayleyChart>;
+using RkmkCayleyVerner98 = RkmkPair<tableaus::verner98, verner98_control, CayleyChart>;
+
 /// Every adaptive RKMK scheme, for the generic tests (tests/test_scheme_order.cpp
 /// checks that the registry has no other).
-using RkmkPairs = std::tuple<RkmkDp54, RkmkVerner65, RkmkDop853, RkmkVerner87, RkmkVerner98>;
+using RkmkPairs = std::tuple<RkmkDp54, RkmkVerner65, RkmkDop853, RkmkVerner87, RkmkVerner98, RkmkCayleyDp54,
+                             RkmkCayleyVerner65, RkmkCayleyDop853, RkmkCayleyVerner87, RkmkCayleyVerner98>;
 
 }  // namespace lgi::integrators

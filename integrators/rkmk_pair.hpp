@@ -50,6 +50,7 @@
 #include <vector>
 
 #include "integrators/flatten_policy.hpp"
+#include "integrators/rkmk_chart.hpp"
 #include "integrators/rkmk_pair_kernels.hpp"
 #include "integrators/scheme_interface.hpp"
 #include "integrators/tableaus/embedded_pairs.hpp"
@@ -84,18 +85,19 @@ constexpr std::size_t stored_stages() {
 
 }  // namespace rkmk_pair_detail
 
-template <const auto& Pair, const PairControl& Control>
+template <const auto& Pair, const PairControl& Control, RkmkChart Chart = ExponentialChart>
 class RkmkPair {
   using P = std::remove_cvref_t<decltype(Pair)>;
 
  public:
   static constexpr auto& tableau = Pair;
+  using chart = Chart;
   static constexpr std::size_t stages = P::stages;
   static constexpr bool dense = rkmk_pair_detail::dense_pair<P>;
   static constexpr bool fsal = Pair.first_same_as_last;
   static constexpr SchemeFacts facts{.order = Pair.order,
                                      .properties = {.adaptive = true},
-                                     .reference = munthe_kaas_reference,
+                                     .reference = Chart::reference,
                                      .tableau = Pair.citation};
 
   explicit RkmkPair(double tol = 1e-8) : tol_(tol) {}
@@ -192,7 +194,7 @@ class RkmkPair {
       if constexpr (fsal && Model::has_torque) {
         s.R = R_last_;  // R_n exp(w_s), formed at the last stage
       } else {
-        s.R = rkmk_pair_detail::times_exp(R_n_, w_new.data());
+        s.R = times_map<Chart>(R_n_, w_new.data());
       }
       s.Pi = Pi_new;
       // FSAL: the last stage's K is the next step's K_1. Otherwise the next
@@ -235,7 +237,7 @@ class RkmkPair {
       for (std::size_t d = 0; d < 6; ++d) z[d] += bi * k_[i][d];
     }
     const double w[3] = {h_ * z[0], h_ * z[1], h_ * z[2]};
-    out.R = rkmk_pair_detail::times_exp(R_n_, w);
+    out.R = times_map<Chart>(R_n_, w);
     out.Pi = Vec3(Pi_n_(0) + h_ * z[3], Pi_n_(1) + h_ * z[4], Pi_n_(2) + h_ * z[5]);
   }
 
@@ -328,13 +330,13 @@ class RkmkPair {
       const double w[3] = {z[0], z[1], z[2]};
       const Vec3 Pi_i(Pi_n_(0) + z[3], Pi_n_(1) + z[4], Pi_n_(2) + z[5]);
       const Vec3 Omega_i = omega_of(model, Pi_i);
-      const auto m = rkmk_pair_detail::map_coefficients(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      rkmk_pair_detail::dexpinv(w, Omega_i, m, k_[I].data());
+      const auto m = Chart::coefficients(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      Chart::inverse_differential(w, Omega_i, m, k_[I].data());
       Vec3 K;
       if constexpr (Model::has_torque) {
         // FSAL: the last stage's attitude is the new point's, needed whole.
         if constexpr (fsal && I == stages - 1) {
-          R_last_ = rkmk_pair_detail::times_exp(R_n_, w, m);
+          R_last_ = rkmk_pair_detail::times_exp(R_n_, w, m);  // R_n φ(ŵ) from the chart's a, b
           K = model.momentum_rate(R_last_, Pi_i, Omega_i, t_n_ + c_i<I>() * h_);
         } else {
           Mat3 R_i;

@@ -117,7 +117,8 @@ def dmv_bar_over_processes(bench, processes):
 
 
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "scenes")
-LIE_GROUP = ("rkmk-dop853", "rkmk-verner87", "rkmk-verner98", "rkmk-verner65", "rkmk-dp54", "split-exact@kahan-li8",
+LIE_GROUP = ("rkmk-dop853", "rkmk-verner87", "rkmk-verner98", "rkmk-verner65", "rkmk-dp54", "rkmk-cayley-dop853",
+             "rkmk-cayley-verner87", "rkmk-cayley-verner98", "split-exact@kahan-li8",
              "split-symmetric@kahan-li8", "split-axes@kahan-li8", "split-symmetric@bcm-processed6",
              "split-symmetric@bcm-processed8")
 BASELINES = ("quat/rkf78", "quat/dopri5", "quat/bs", "rotvec/rkf78", "matrix/rkf78")

@@ -189,7 +189,7 @@ if has_sub work-precision; then
   mkdir -p "$data/wp"
   fixed_common="rkmk4 cg4a cf4 rkmk3 simo-wong split-exact lgvi lgvi@yoshida4 lgvi@kahan-li6 lgvi@kahan-li8 split-exact@suzuki4 split-exact@kahan-li8 split-axes@kahan-li8 split-symmetric split-symmetric@kahan-li8 split-symmetric@bcm-processed6 split-symmetric@bcm-processed8 lgvi@bcm-processed8 rkmk-gauss4 quat/rk4 quat-normalized/rk4 matrix/rk4 rotvec/rk4"
   fixed_free="dmv dmv-pre4 dmv-pre6 dmv-pre8 dmv-pre10 dmv@kahan-li8"
-  adaptive="rkmk-dp54 rkmk-verner65 rkmk-dop853 rkmk-verner87 rkmk-verner98 euler-zxz/dopri5 rotvec/dopri5 quat/dopri5 euler-zxz/rkf78 rotvec/rkf78 quat/rkf78"
+  adaptive="rkmk-dp54 rkmk-verner65 rkmk-dop853 rkmk-verner87 rkmk-verner98 rkmk-cayley-verner87 rkmk-cayley-verner98 euler-zxz/dopri5 rotvec/dopri5 quat/dopri5 euler-zxz/rkf78 rotvec/rkf78 quat/rkf78"
   if [ "$mode" = quick ]; then
     wp_cases=("dzhanibekov_book_axis2|4|2e-3,1e-3,5e-4|1e-5,1e-8" "heavy_top_trindade_1|2|2e-3,1e-3,5e-4|1e-5,1e-8"
               "heavy_top_hlw|2|1e-2,5e-3|1e-6,1e-10")

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -73,11 +74,18 @@ TEMPLATE_LIST_TEST_CASE("the dense output of every RKMK pair has its stated orde
       testing::report_slope("dense output of order " + std::to_string(q) + " (local)", what, fit, pts);
       INFO(what << ": local slope " << fit.slope << ", expected " << q + 1);
       CHECK(fit.points >= 4);
-      CHECK(fit.slope >= q + 1 - 0.2);
+      // In Cayley coordinates the chart's curvature adds terms of other orders
+      // (test_scheme_order.cpp, upper_band): DOP853's order-7 interpolant
+      // approaches 8 from below on the driven top, its slopes between
+      // successive steps 7.46, 7.65, 7.78, 7.87, 7.90, 7.94 down to 4e-15 (fit
+      // above the floor 7.70), and the 8(7) pair's order-8 interpolant fits
+      // 10.8 on the free body, the 9(8) pair's 11.9 on the driven top.
+      constexpr bool cayley = std::is_same_v<typename TestType::chart, integrators::CayleyChart>;
+      CHECK(fit.slope >= q + 1 - (cayley ? 0.35 : 0.2));
       // The local error of the step itself is O(h^(p+1)), p ≥ q. The 9(8) pair's
       // order-9 interpolant (q = p = 9) fits 11.3 on the driven top above the
       // 1e-12 floor, the range being pre-asymptotic: 0.3 more there.
-      CHECK(fit.slope <= q + (q >= 9 ? 2.5 : 2.2));
+      CHECK(fit.slope <= q + (cayley ? 3.0 : q >= 9 ? 2.5 : 2.2));
     };
     {
       const system::Scene scene = testing::shipped_scene("free_body_hlw");
@@ -146,5 +154,5 @@ TEST_CASE("output times inside the steps of a pair with dense output change noth
     INFO("largest error at the sampled output times " << worst << ", at t_end " << at_end);
     CHECK(worst <= std::max(10.0 * at_end, 1e-10));
   }
-  CHECK(dense_pairs == 4);  // DOP853 and Verner's 6(5), 8(7) and 9(8) (rkmk_adaptive.hpp)
+  CHECK(dense_pairs == 8);  // DOP853 and Verner's 6(5), 8(7) and 9(8), in exponential and Cayley coordinates (rkmk_adaptive.hpp)
 }

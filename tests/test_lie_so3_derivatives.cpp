@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrators/rkmk_chart.hpp"
 #include "lie/product_state.hpp"
 #include "lie/quaternion.hpp"
 #include "lie/so3.hpp"
@@ -116,6 +117,32 @@ TEST_CASE("dexp · dexp^-1 = I (body, space, Cayley); vector forms equal matrix 
     }
     CHECK(w_cay(maxabs(Mat3(dcay_body(s.xi) * dcayinv_body_matrix(s.xi) - I)), describe(s)) <= 2e-15);
     CHECK(w_cls(maxabs(Mat3(dcay_space(s.xi) - cay(s.xi) * dcay_body(s.xi))), describe(s)) <= 2e-15);
+  }
+}
+
+TEST_CASE("the RKMK charts' plain-number kernels are lie/so3.hpp's maps", "[lie][so3][rkmk]") {
+  // integrators/rkmk_chart.hpp: R φ(ŵ) and dφ⁻¹_body(w) Ω of the exponential and
+  // Cayley coordinates, against exp_so3 / dexpinv_body and cay / dcayinv_body
+  // (themselves checked against central differences below).
+  namespace it = lgi::integrators;
+  Worst w_map("R phi(w) - R map(w) (max entry)");
+  Worst w_inv("dphiinv(w) Omega - reference / |Omega|");
+  const Mat3 R = exp_so3(Vec3(0.3, -1.1, 0.7));
+  for (const Sample& s : samples()) {
+    if (s.theta >= 3.0) continue;  // RKMK steps stay far below π
+    INFO(describe(s));
+    const double* w = s.xi.data();
+    const auto me = it::ExponentialChart::coefficients(s.xi.squaredNorm());
+    const auto mc = it::CayleyChart::coefficients(s.xi.squaredNorm());
+    CHECK(w_map(maxabs(Mat3(it::times_map<it::ExponentialChart>(R, w) - R * exp_so3(s.xi))), describe(s)) <= 2e-15);
+    CHECK(w_map(maxabs(Mat3(it::times_map<it::CayleyChart>(R, w) - R * cay(s.xi))), describe(s)) <= 2e-15);
+    for (const Vec3& omega : {kEta, kEta2}) {
+      Vec3 out;
+      it::ExponentialChart::inverse_differential(w, omega, me, out.data());
+      CHECK(w_inv((out - dexpinv_body(s.xi, omega)).norm() / omega.norm(), describe(s)) <= 4e-15);
+      it::CayleyChart::inverse_differential(w, omega, mc, out.data());
+      CHECK(w_inv((out - dcayinv_body(s.xi, omega)).norm() / omega.norm(), describe(s)) <= 4e-15);
+    }
   }
 }
 
