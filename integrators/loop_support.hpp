@@ -235,16 +235,24 @@ bool observe_due(Scheme& scheme, const Model& model, const RunConfig& cfg, Outpu
   mark_interrupted(stats, k, t);
   return true;
 }
+/// The observable state a loop formed last, and after which step (the run's
+/// final state reuses it when no step came after: one processor less).
+struct FormedObservable {
+  State x;
+  std::int64_t step = -1;
+};
 /// For a scheme with an observable state, that state is formed only when a
-/// sample is due (it costs a processor: processed_composition.hpp).
+/// sample is due (it costs a processor: processed_composition.hpp), and kept in `formed`.
 template <class Scheme, class Model>
 bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
-                  double t_start, double t, bool final_step, const State& s, Observer& observer, RunStats& stats) {
+                  double t_start, double t, bool final_step, const State& s, Observer& observer, RunStats& stats,
+                  FormedObservable* formed = nullptr) {
   const bool stopping = !final_step && stop_requested(cfg);
   if constexpr (has_observable_state<Scheme, Model>) {
     const bool due = stopping || (out.times ? out.output_time_due(t) : final_step || out.multiple_due(k, cfg.save_every));
     if (!due) return false;
     const State x = scheme.observable(model, s, stats.work);
+    if (formed) *formed = {x, k};
     return observe_due(scheme, model, cfg, out, k, t_start, t, final_step, stopping, x, observer, stats);
   } else {
     return observe_due(scheme, model, cfg, out, k, t_start, t, final_step, stopping, s, observer, stats);

@@ -98,6 +98,7 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     }
   }
   std::vector<double> g;
+  detail::FormedObservable formed;      // for a scheme with an observable state
   std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the step
   State x_before;
   if (events) detail::event_values(*events, t, s, g);
@@ -144,11 +145,14 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
         break;
       }
     }
-    if (detail::observe_step(scheme, model, cfg, out, k + 1, t_start, t, k + 1 == n, s, observer, stats)) break;
+    if (detail::observe_step(scheme, model, cfg, out, k + 1, t_start, t, k + 1 == n, s, observer, stats, &formed))
+      break;
     if (k + 1 < n) detail::offer_checkpoint<Scheme, Model, false>(scheme, cfg, k + 1, t, 0.0, s, stats);
   }
-  // The run's final state is the trajectory's (processed_composition.hpp).
-  if constexpr (detail::has_observable_state<Scheme, Model>) s = scheme.observable(model, s, stats.work);
+  // The run's final state is the trajectory's (processed_composition.hpp):
+  // the one observed after the last step taken, if it was observed.
+  if constexpr (detail::has_observable_state<Scheme, Model>)
+    s = formed.step >= 0 && formed.step == stats.steps ? formed.x : scheme.observable(model, s, stats.work);
   stats.t_final = t;
   stats.cpu_seconds = cfg.cpu_clock ? detail::cpu_now() - cpu0 : 0.0;
   return stats;

@@ -71,6 +71,27 @@ TEST_CASE("a processed composition is observed on the trajectory, not on the ker
   }
 }
 
+TEST_CASE("a processed run's final state is its last sample, formed once", "[processed][composition]") {
+  // Evaluations of a run of n steps observed at the end only: P + n K + P
+  // (the processor before the first step, the kernels, one postprocessor);
+  // observed after every step, (n − 1) P more. So 2 E(n) − E(2n) = 2P, with
+  // P = (E_every(n) − E(n)) / (n − 1); a second postprocessor for the final
+  // state (the run's end before it reused the last sample) would make it 3P.
+  const Top top;
+  const std::string name = "split-symmetric@bcm-processed8";
+  Recorder every;
+  const auto e10 = testing::run_registered(name, top.model, top.scene.initial, 1.0, 0.1);
+  const auto e20 = testing::run_registered(name, top.model, top.scene.initial, 2.0, 0.1);
+  const auto all10 = testing::run_registered(name, top.model, top.scene.initial, 1.0, 0.1, &every, 1);
+  REQUIRE((e10.stats.ok && e20.stats.ok && all10.stats.ok));
+  const std::int64_t P = (all10.stats.work.rhs_evaluations - e10.stats.work.rhs_evaluations) / 9;
+  CHECK(P > 0);
+  CHECK((all10.stats.work.rhs_evaluations - e10.stats.work.rhs_evaluations) % 9 == 0);
+  CHECK(2 * e10.stats.work.rhs_evaluations - e20.stats.work.rhs_evaluations == 2 * P);
+  CHECK(distance(every.x.back(), all10.state) == 0.0);
+  CHECK(distance(e10.state, all10.state) == 0.0);
+}
+
 TEST_CASE("a step of another length is processed again: a clipped last step keeps the order",
           "[processed][composition]") {
   const Top top;
