@@ -10,6 +10,8 @@
 //                  k̃_i = dexp⁻¹_body(w_i) Ω_i = Ω_i + ½ w_i × Ω_i + c(|w_i|) w_i × (w_i × Ω_i),
 //                  K_i = Π_i × Ω_i + τ(R_i, Π_i, Ω_i, t_n + c_i h)
 //   R_{n+1} = R_n exp(h Σ b_i k̃_i),  Π_{n+1} = Π_n + h Σ b_i K_i.
+// With Chart = CayleyChart (rkmk_chart.hpp, `rkmk-cayley4`) exp and dexp⁻¹
+// become cay and dcay⁻¹ = Ω + ½ w × Ω + ¼ (w·Ω) w, at the same order.
 // Order: that of the tableau (the closed-form dexp⁻¹ is exact, so no
 // truncation condition applies). Conserves: RᵀR = I to round-off (the
 // attitude only moves by exp); no invariant of the dynamics exactly.

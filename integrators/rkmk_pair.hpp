@@ -38,8 +38,11 @@
 // evaluation at the new point are computed at the first interpolate() of a
 // step, and counted with the next step's evaluations.
 //
+// Coordinates: the exponential by default; with Chart = CayleyChart
+// (rkmk_chart.hpp) exp and dexp⁻¹ above become cay and dcay⁻¹
+// (`rkmk-cayley-*`), the same order (docs/math.md §2).
 // Order: that of the pair. Conserves RᵀR = I to round-off (the attitude only
-// moves by exp); no invariant of the dynamics exactly.
+// moves by exp or cay); no invariant of the dynamics exactly.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -192,7 +195,7 @@ class RkmkPair {
       last_rejected_ = false;
       if (finite) log_err_previous_ = std::max(log_err, log_err_floor);
       if constexpr (fsal && Model::has_torque) {
-        s.R = R_last_;  // R_n exp(w_s), formed at the last stage
+        s.R = R_last_;  // R_n φ(w_s), formed at the last stage
       } else {
         s.R = times_map<Chart>(R_n_, w_new.data());
       }
