@@ -62,9 +62,7 @@ static_assert(RkmkChart<ExponentialChart> && RkmkChart<CayleyChart>);
 /// R φ(ŵ), every row.
 template <RkmkChart Chart>
 inline lie::Mat3 times_map(const lie::Mat3& R, const double* w) {
-  lie::Mat3 out;
-  rkmk_pair_detail::stage_attitude(R, w, Chart::coefficients(lie::exp_series::squared_norm(w)), 0b111u, out);
-  return out;
+  return rkmk_pair_detail::times_exp(R, w, Chart::coefficients(lie::exp_series::squared_norm(w)));
 }
 
 }  // namespace lgi::integrators
