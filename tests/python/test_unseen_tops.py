@@ -1,0 +1,79 @@
+"""scripts/unseen_tops.py: random general heavy tops, each from its own seed, their scene
+files as the built lgi reads them, and the cost-at-equal-error ratios it prints."""
+import json
+import os
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "scripts" / "unseen_tops.py"
+PY = "/usr/bin/python3"
+LGI = Path(os.environ.get("LGI_EXECUTABLE", ROOT / "build" / "release" / "lgi"))
+ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1", MPLBACKEND="Agg")
+
+sys.path.insert(0, str(ROOT / "scripts"))
+import unseen_tops  # noqa: E402
+
+
+def test_tops_are_general_and_seeded_per_item():
+    tops = [unseen_tops.draw_top(1, k) for k in range(20)]
+    assert unseen_tops.draw_top(1, 7) == tops[7]  # the k-th top does not depend on the ones before it
+    assert unseen_tops.draw_top(2, 7) != tops[7]
+    for top in tops:
+        a, b, c = top["inertia"]
+        assert a + b > c and a + c > b and b + c > a  # a body's moments about a point
+        for x, y in ((a, b), (a, c), (b, c)):
+            assert abs(x - y) >= 0.05 * max(x, y) * (1 - 1e-12)  # no near-symmetric top
+        chi = sum(v * v for v in top["center_of_mass"]) ** 0.5
+        assert 0.2 <= chi <= 1.0 and min(abs(v) for v in top["center_of_mass"]) > 0.0
+        omega = sum(v * v for v in top["angular_velocity"]) ** 0.5
+        assert 1.0 <= omega <= 4.0
+
+
+def test_scene_file_round_trips():
+    top = unseen_tops.draw_top(3, 0)
+    scene = tomllib.loads(unseen_tops.scene_toml(top, 3, 0))
+    assert scene["body"]["inertia"] == top["inertia"]  # repr() keeps every bit
+    assert scene["body"]["center_of_mass"] == top["center_of_mass"]
+    assert scene["initial"]["angular_velocity"] == top["angular_velocity"]
+    assert scene["gravity"]["g"] == 1.0 and scene["run"]["t_end"] == 10.0
+
+
+def test_summary_counts_tops_at_the_bar():
+    per_top = [[("a", 1.0, "q", 2.0), ("a", 1.0, "q", 4.0)], [("a", 3.0, "q", 4.0), None]]
+    assert unseen_tops.summary(per_top, [1e-6, 1e-8], 0.5) == [
+        "# at error 1e-06: median 0.625, largest 0.750, 1 of 2 tops at or below 0.5",
+        "# at error 1e-08: median 0.250, largest 0.250, 1 of 1 tops at or below 0.5"]
+
+
+def test_runs_lgi_on_each_top(tmp_path):
+    if not LGI.exists():
+        pytest.skip(f"no lgi at {LGI}")
+    out = tmp_path / "ratios.json"
+    p = subprocess.run([PY, SCRIPT, "--count", "2", "--seed", "5", "--lgi", LGI, "--repeat", "1",
+                        "--tolerances", "1e-5,1e-6,1e-7,1e-8", "--dts", "0.1", "--lie", "rkmk-dp54,rkmk-cayley-dp54",
+                        "--baselines", "quat/dopri5", "--targets", "1e-6", "--keep", tmp_path / "files",
+                        "--json", out], capture_output=True, text=True, env=ENV, timeout=120)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert [l.split(":")[0] for l in lines] == ["# top 0", "# top 1", "# at error 1e-06"], p.stdout
+    assert "/ quat/dopri5" in lines[0] and "tops at or below 0.5" in lines[2]
+    assert "lgi work-precision on top 1" in p.stderr
+    assert (tmp_path / "files" / "top_5_1.toml").is_file() and (tmp_path / "files" / "top_5_1.h5").is_file()
+    data = json.loads(out.read_text())
+    assert data["seed"] == 5 and len(data["tops"]) == 2
+    assert data["tops"][0]["inertia"] == unseen_tops.draw_top(5, 0)["inertia"]
+    r = data["tops"][0]["ratios"][0]
+    assert r["baseline"] == "quat/dopri5" and r["ratio"] == pytest.approx(r["lie_group_s"] / r["baseline_s"])
+
+
+@pytest.mark.parametrize("args, flag", [(["--count", "0"], "--count"), (["--targets", "1e-6,x"], "--targets"),
+                                        (["--lgi", "/nonexistent/lgi"], "--lgi")])
+def test_bad_arguments_exit_2_naming_the_flag(args, flag):
+    p = subprocess.run([PY, SCRIPT, *args], capture_output=True, text=True, env=ENV, timeout=60)
+    assert p.returncode == 2
+    assert flag in p.stderr.splitlines()[-1]
