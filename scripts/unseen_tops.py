@@ -102,7 +102,8 @@ def main():
     ap.add_argument("--targets", default="1e-6,1e-8,1e-10")
     ap.add_argument("--bar", type=float, default=0.5)
     ap.add_argument("--tolerances", default=TOLERANCES)
-    ap.add_argument("--dts", default="0.1,0.05,0.025,0.012,0.006", help="fixed steps of the splittings")
+    # From 0.8: on a slow top a composition of order 8 reaches 1e-10 at dt = 0.2 already.
+    ap.add_argument("--dts", default="0.8,0.4,0.2,0.1,0.05,0.025,0.012,0.006", help="fixed steps of the splittings")
     ap.add_argument("--lie", default=",".join(LIE_GROUP))
     ap.add_argument("--baselines", default=",".join(BASELINES))
     ap.add_argument("--keep", help="directory for the scene and work-precision files (default: removed)")
