@@ -9,9 +9,18 @@
 //    one trajectory). A step bound by its chain of dependent operations
 //    (Π → f → Π) would overlap with the other trajectory's and cost less per
 //    step in alternation; a step bound by throughput costs the same.
+//  - limits/dmv-update/matrix and limits/dmv-update/quaternion: the state
+//    update of a free-body DMV step alone, Π ← cay(2f)ᵀ Π with R ← R cay(2f)
+//    (moser_veselov::apply_cayley_step), and with the attitude as a unit
+//    quaternion q ← q (1, f)/√(1 + |f|²) instead (written here only to be
+//    timed), both as compensated sums, over a sequence of slightly varying f;
+//    and .../quaternion_and_matrix, with R formed from q after every update,
+//    as a step would for the loop that reads R (README, "The arithmetic limit":
+//    the quaternion was not built).
 // scripts/benchmark_ratios.py prints the three on one line, outside the per-scheme table.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <variant>
@@ -97,8 +106,72 @@ void dmv_pre10_steps(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The quaternion of cay(2f) is (1, f)/r with r = √(1 + |f|²); with d = 1/(r (1 + r)),
+// 1/r = (1 + r) d and 1/r − 1 = −|f|² d, so q's increment q ⊗ ((1, f)/r − 1) is
+// (1/r − 1) q + (1/r) q ⊗ (0, f), without cancellation. Π as in apply_cayley_step.
+struct QuaternionState {
+  double q[4] = {1.0, 0.0, 0.0, 0.0}, q_carry[4] = {};
+  double P[3] = {}, P_carry[3] = {};
+};
+[[gnu::always_inline]] inline void apply_cayley_step_quaternion(const lie::Vec3& f, QuaternionState& s) {
+  const double x = f.x(), y = f.y(), z = f.z();
+  const double xx = x * x, yy = y * y, zz = z * z, ff = (xx + yy) + zz;
+  const double c = 2.0 / (1.0 + ff);
+  const double xy = x * y, xz = x * z, yz = y * z;
+  const double N[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
+  double dP[3];
+  for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * s.P[0] + N[3 + j] * s.P[1]) + N[6 + j] * s.P[2]);
+  for (int j = 0; j < 3; ++j) integrators::add_compensated(s.P[j], dP[j], s.P_carry[j]);
+  const double r = std::sqrt(1.0 + ff), d = 1.0 / (r * (1.0 + r));
+  const double inv_r = (1.0 + r) * d, inv_r_minus_1 = -ff * d;
+  const double w = s.q[0], a = s.q[1], b = s.q[2], e = s.q[3];
+  const double p[4] = {-((a * x + b * y) + e * z), w * x + (b * z - e * y), w * y + (e * x - a * z),
+                       w * z + (a * y - b * x)};  // q ⊗ (0, f)
+  for (int k = 0; k < 4; ++k) integrators::add_compensated(s.q[k], inv_r_minus_1 * s.q[k] + inv_r * p[k], s.q_carry[k]);
+}
+
+/// R of the unit quaternion q = (w, x, y, z) (docs/conventions.md), as a step
+/// that keeps q would form it for the loop after every step.
+[[gnu::always_inline]] inline void rotation_of(const double (&q)[4], lie::Mat3& R) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  const double xx = x * x, yy = y * y, zz = z * z, xy = x * y, xz = x * z, yz = y * z;
+  const double wx = w * x, wy = w * y, wz = w * z;
+  R << 1.0 - 2.0 * (yy + zz), 2.0 * (xy - wz), 2.0 * (xz + wy), 2.0 * (xy + wz), 1.0 - 2.0 * (xx + zz),
+      2.0 * (yz - wx), 2.0 * (xz - wy), 2.0 * (yz + wx), 1.0 - 2.0 * (xx + yy);
+}
+
+enum class Attitude { matrix, quaternion, quaternion_and_matrix };
+
+// 2048 updates with f near Hairer & Vilmart's body's at h = 0.01 (|f| ≈ 0.01).
+template <Attitude A>
+void dmv_update(benchmark::State& state) {
+  constexpr int steps = 2048;
+  for (auto _ : state) {
+    system::State x{lie::Mat3::Identity(), lie::Vec3(1.8, 0.4, -0.9)};
+    integrators::moser_veselov::Carry carry;
+    QuaternionState qs;
+    qs.P[0] = 1.8, qs.P[1] = 0.4, qs.P[2] = -0.9;
+    for (int k = 0; k < steps; ++k) {
+      const lie::Vec3 f(0.009, 0.0025 + 1e-12 * (k & 7), -0.0045);
+      if constexpr (A == Attitude::matrix) {
+        integrators::moser_veselov::apply_cayley_step(f, x, carry);
+      } else {
+        apply_cayley_step_quaternion(f, qs);
+        if constexpr (A == Attitude::quaternion_and_matrix) rotation_of(qs.q, x.R);
+      }
+    }
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(qs);
+  }
+  state.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(state.iterations()) * steps * 1e-9,
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
 BENCHMARK(scalar_peak)->Name("limits/scalar_peak");
 BENCHMARK(dmv_pre10_steps<1>)->Name("limits/dmv-pre10/one");
 BENCHMARK(dmv_pre10_steps<2>)->Name("limits/dmv-pre10/two_interleaved");
+BENCHMARK(dmv_update<Attitude::matrix>)->Name("limits/dmv-update/matrix");
+BENCHMARK(dmv_update<Attitude::quaternion>)->Name("limits/dmv-update/quaternion");
+BENCHMARK(dmv_update<Attitude::quaternion_and_matrix>)->Name("limits/dmv-update/quaternion_and_matrix");
