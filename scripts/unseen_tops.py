@@ -8,7 +8,9 @@ target error, the cheapest Lie-group scheme, the cheapest baseline and the ratio
 their CPU times (minimum over the timed repeats, log-log interpolated along each
 curve as in the paper's "cost at equal error" table, scripts/plots/cost_table.py).
 The last lines give, per target, the median and the largest ratio over the tops and
-how many are at or below --bar.
+how many are at or below --bar. If lgi fails on a top, the script stops with exit 1 (2 when lgi
+refused its input, e.g. an unknown scheme in --lie), after printing and writing (--json, with
+"complete": false) the tops done before it.
 
 A top (m = g = 1, t_end = 10):
 - moments about the fixed point (s2 + s3, s1 + s3, s1 + s2), s_i uniform in [0.1, 1],
@@ -120,23 +122,19 @@ def main():
     from cost_table import cpu_at_error  # matplotlib and h5py come with it: imported after the arguments
 
     lie, baselines = a.lie.split(","), a.baselines.split(",")
+    per_top, records, failed, status = [], [], None, 0
     with tempfile.TemporaryDirectory() as tmp:
         where = a.keep or tmp
         os.makedirs(where, exist_ok=True)
-        per_top, records = [], []
         for k in range(a.count):
             top = draw_top(a.seed, k)
-            scene = os.path.join(where, f"top_{a.seed}_{k}.toml")
-            with open(scene, "w") as f:
-                f.write(scene_toml(top, a.seed, k))
-            out = os.path.join(where, f"top_{a.seed}_{k}.h5")
             print(f"unseen_tops: lgi work-precision on top {k}", file=sys.stderr, flush=True)
-            subprocess.run([a.lgi, "work-precision", "--scene", scene, "--schemes", ",".join(lie + baselines),
-                            "--tol", a.tolerances, "--dt", a.dts, "--repeat", str(a.repeat), "--out", out,
-                            "--force", "--quiet"], check=True)
-            with open(out[:-3] + ".csv") as f:
-                rows = list(csv.DictReader(f))
-            found = ratios_of(rows, lie, baselines, targets, cpu_at_error)
+            try:
+                found = run_top(a, top, k, where, lie, baselines, targets, cpu_at_error)
+            except subprocess.CalledProcessError as e:
+                # lgi's exit 2 is input it refused (its line above names it, e.g. a scheme of --lie).
+                failed, status = f"unseen_tops: lgi work-precision failed on top {k} (exit {e.returncode})", e.returncode
+                break
             per_top.append(found)
             cells = [f"{t:g} " + ("not reached" if r is None else f"{r[1] / r[3]:.3f} {r[0]} / {r[2]}")
                      for t, r in zip(targets, found)]
@@ -145,12 +143,29 @@ def main():
             records.append({"top": k, **top, "ratios": [None if r is None else
                                                         {"lie_group": r[0], "lie_group_s": r[1], "baseline": r[2],
                                                          "baseline_s": r[3], "ratio": r[1] / r[3]} for r in found]})
-        for line in summary(per_top, targets, a.bar):
-            print(line)
+    # The tops done so far are reported and kept, also after a failed run.
+    for line in summary(per_top, targets, a.bar) if per_top else []:
+        print(line)
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"seed": a.seed, "targets": targets, "bar": a.bar, "tops": records}, f, indent=1)
+            json.dump({"seed": a.seed, "targets": targets, "bar": a.bar, "complete": failed is None, "tops": records},
+                      f, indent=1)
+    if failed:
+        print(failed + (f"; its files are in {a.keep}" if a.keep else "; --keep DIR keeps its files"), file=sys.stderr)
+        sys.exit(2 if status == 2 else 1)
 
+
+def run_top(a, top, k, where, lie, baselines, targets, cpu_at_error):
+    """Writes top k's scene, runs lgi work-precision on it, returns ratios_of() its rows."""
+    scene = os.path.join(where, f"top_{a.seed}_{k}.toml")
+    with open(scene, "w") as f:
+        f.write(scene_toml(top, a.seed, k))
+    out = os.path.join(where, f"top_{a.seed}_{k}.h5")
+    subprocess.run([a.lgi, "work-precision", "--scene", scene, "--schemes", ",".join(lie + baselines),
+                    "--tol", a.tolerances, "--dt", a.dts, "--repeat", str(a.repeat), "--out", out, "--force",
+                    "--quiet"], check=True)
+    with open(out[:-3] + ".csv") as f:
+        return ratios_of(list(csv.DictReader(f)), lie, baselines, targets, cpu_at_error)
 
 if __name__ == "__main__":
     main()

@@ -65,10 +65,33 @@ def test_runs_lgi_on_each_top(tmp_path):
     assert "lgi work-precision on top 1" in p.stderr
     assert (tmp_path / "files" / "top_5_1.toml").is_file() and (tmp_path / "files" / "top_5_1.h5").is_file()
     data = json.loads(out.read_text())
-    assert data["seed"] == 5 and len(data["tops"]) == 2
+    assert data["seed"] == 5 and len(data["tops"]) == 2 and data["complete"] is True
     assert data["tops"][0]["inertia"] == unseen_tops.draw_top(5, 0)["inertia"]
     r = data["tops"][0]["ratios"][0]
     assert r["baseline"] == "quat/dopri5" and r["ratio"] == pytest.approx(r["lie_group_s"] / r["baseline_s"])
+
+
+def test_a_failed_top_keeps_the_tops_before_it(tmp_path):
+    """A stand-in lgi that runs the real one but fails on top 1: exit 1, top 0 printed,
+    summarised and written to the JSON, which says the run is not complete."""
+    if not LGI.exists():
+        pytest.skip(f"no lgi at {LGI}")
+    fake = tmp_path / "lgi"
+    fake.write_text(f"""#!/bin/sh
+case "$*" in *top_5_1.toml*) echo "lgi: stand-in failure" >&2; exit 1;; esac
+exec {LGI} "$@"
+""")
+    fake.chmod(0o755)
+    out = tmp_path / "ratios.json"
+    p = subprocess.run([PY, SCRIPT, "--count", "3", "--seed", "5", "--lgi", fake, "--repeat", "1",
+                        "--tolerances", "1e-5,1e-6,1e-7,1e-8", "--dts", "0.1", "--lie", "rkmk-dp54",
+                        "--baselines", "quat/dopri5", "--targets", "1e-6", "--json", out],
+                       capture_output=True, text=True, env=ENV, timeout=120)
+    assert p.returncode == 1, p.stderr
+    assert [l.split(":")[0] for l in p.stdout.splitlines()] == ["# top 0", "# at error 1e-06"], p.stdout
+    assert "failed on top 1 (exit 1)" in p.stderr.splitlines()[-1]
+    data = json.loads(out.read_text())
+    assert data["complete"] is False and [t["top"] for t in data["tops"]] == [0]
 
 
 @pytest.mark.parametrize("args, flag", [(["--count", "0"], "--count"), (["--targets", "1e-6,x"], "--targets"),
@@ -77,3 +100,12 @@ def test_bad_arguments_exit_2_naming_the_flag(args, flag):
     p = subprocess.run([PY, SCRIPT, *args], capture_output=True, text=True, env=ENV, timeout=60)
     assert p.returncode == 2
     assert flag in p.stderr.splitlines()[-1]
+
+
+def test_a_scheme_lgi_refuses_exits_2():
+    if not LGI.exists():
+        pytest.skip(f"no lgi at {LGI}")
+    p = subprocess.run([PY, SCRIPT, "--count", "1", "--lgi", LGI, "--repeat", "1", "--lie", "no-such-scheme"],
+                       capture_output=True, text=True, env=ENV, timeout=60)
+    assert p.returncode == 2 and p.stdout == ""
+    assert "unknown scheme 'no-such-scheme'" in p.stderr and "failed on top 0 (exit 2)" in p.stderr
