@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "experiments/io/h5md_writer.hpp"
+#include "experiments/io/output_timing.hpp"
 #include "lgi/build_info.hpp"
 #include "support/h5md_trajectory.hpp"
 
@@ -213,4 +214,45 @@ TEST_CASE("trajectory file: minimal layout has only the mandatory series", "[h5m
   CHECK_FALSE(has_link(f, "/particles/body/euler_zxz"));
   CHECK(object_info(f, "/particles/body/orientation/step").rc == 5);
   CHECK(int64s(f, "/observables/energy/step") == std::vector<std::int64_t>{0, 10, 20});
+}
+
+namespace {
+/// An observer whose samples take wall time but no CPU time, as a sample does
+/// while the thread waits for a core on a loaded machine.
+class WaitingObserver final : public lgi::integrators::Observer {
+ public:
+  void observe(std::int64_t, double, const lgi::system::State&) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  }
+};
+
+void burn_cpu(double seconds) {
+  const double start = lgi::integrators::detail::cpu_now();
+  volatile double x = 1.0;
+  while (lgi::integrators::detail::cpu_now() - start < seconds) x = x * 1.0000001 + 1e-9;
+}
+}  // namespace
+
+TEST_CASE("output time is charged in CPU seconds, so waiting for a core leaves the stepping time", "[h5md][cpu]") {
+  WaitingObserver waiting;
+  OutputTimingObserver timed(waiting);
+  const double cpu0 = lgi::integrators::detail::cpu_now();
+  const lgi::system::State s{};
+  for (int k = 0; k < 3; ++k) {
+    burn_cpu(0.01);  // the stepping: CPU time
+    timed.observe(k, 0.0, s);
+  }
+  lgi::integrators::RunStats stats;
+  stats.steps = 3;
+  stats.cpu_seconds = lgi::integrators::detail::cpu_now() - cpu0;
+  const double output = timed.output_cpu_seconds(stats.cpu_seconds);
+  INFO("cpu " << stats.cpu_seconds << " output wall " << timed.output_wall_seconds() << " output cpu " << output);
+  // 90 ms of waiting against about 30 ms of CPU: subtracting the wall time would leave no stepping time.
+  CHECK(timed.output_wall_seconds() >= 0.09);
+  CHECK(output >= 0.0);
+  CHECK(output < timed.output_wall_seconds());
+  const Diagnostics diag = diagnostics_of_run(stats, output);
+  CHECK(diag.output_seconds == output);
+  CHECK(diag.cpu_seconds > 0.0);
+  CHECK(diag.cpu_seconds + output == Approx(stats.cpu_seconds).epsilon(1e-12));
 }

@@ -120,7 +120,7 @@ SimulationOutcome run_simulation(const system::Scene& scene, const integrators::
   SimulationOutcome outcome;
   c.stop = stop;  // every loop (the baselines' too) ends cleanly, with its statistics
   outcome.stats = scheme.run(model, state, c, timed);
-  outcome.diagnostics = diagnostics_of(outcome.stats, timed.output_seconds());
+  outcome.diagnostics = diagnostics_of(outcome.stats, timed.output_cpu_seconds(outcome.stats.cpu_seconds));
   outcome.error_summary = observer.invariant_error_summary();
   close_simulation(outcome, scheme.name, scene.file, writer ? &*writer : nullptr);
   return outcome;

@@ -366,8 +366,9 @@ int long_time(const LongTimeOptions& o) {
       file, o.flush_seconds,
       [&](RunCheckpoint& c) {
         observer.fill(c);
-        c.cpu_seconds = cpu_before + (integrators::detail::cpu_now() - cpu_start);
-        c.output_seconds = output_before + timed.output_seconds();
+        const double cpu_run = integrators::detail::cpu_now() - cpu_start;
+        c.cpu_seconds = cpu_before + cpu_run;
+        c.output_seconds = output_before + timed.output_cpu_seconds(cpu_run);
       },
       opened.next_sequence);
   if (scheme->resumable) {
@@ -393,11 +394,11 @@ int long_time(const LongTimeOptions& o) {
   }
   progress.done();
   observer.finish();
+  const double output_seconds = output_before + timed.output_cpu_seconds(stats.cpu_seconds);
   stats.cpu_seconds += cpu_before;
 
   Diagnostics diag;
-  const ResultAttributes diag_attributes =
-      long_time_diagnostics(stats, output_before + timed.output_seconds(), file.rows(), diag);
+  const ResultAttributes diag_attributes = long_time_diagnostics(stats, output_seconds, file.rows(), diag);
   if (!stats.ok) {
     file.abandon(diag_attributes);
     std::cerr << "lgi: " << scheme->name << " on " << scene.file << ": " << stats.status
