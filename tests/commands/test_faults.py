@@ -14,7 +14,7 @@ import time
 import h5py
 import numpy as np
 import pytest
-from pacing import LONG_SWEEP
+from pacing import LONG_SWEEP, slowdown
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -172,7 +172,7 @@ def test_resume_file_removed_mid_run(tmp_path):
         while not os.path.exists(out + ".partial"):
             assert p.poll() is None
             time.sleep(0.01)
-        time.sleep(0.8)
+        time.sleep(0.8 * slowdown(LGI))  # the same moment of the run in a slower (sanitizer) build
         assert p.poll() is None, "the sweep ended before it could be killed"
     finally:
         p.kill()

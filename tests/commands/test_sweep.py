@@ -119,7 +119,9 @@ def test_killed_sweep_is_readable_and_resumes_bit_for_bit(tmp_path):
     full, cut = str(tmp_path / "full.h5"), str(tmp_path / "cut.h5")
     sweep("--spec", s, "--out", full, "--threads", "2", "--quiet")
     p = subprocess.Popen([LGI, "sweep", "--spec", s, "--out", cut, "--threads", "1", "--quiet"])
-    time.sleep(1.5)
+    while not os.path.exists(cut + ".partial") and p.poll() is None:
+        time.sleep(0.01)
+    time.sleep(0.8 * slowdown(LGI))  # the same moment of the run in a slower (sanitizer) build
     assert p.poll() is None, "the sweep ended before it could be killed"
     p.send_signal(signal.SIGKILL)
     p.wait()
@@ -135,6 +137,20 @@ def test_killed_sweep_is_readable_and_resumes_bit_for_bit(tmp_path):
     sweep("--spec", s, "--out", cut, "--threads", "2", "--quiet", "--resume")
     assert not os.path.exists(cut + ".partial")
     assert columns(cut) == columns(full)
+
+
+def test_resume_refusals_name_the_way_out(tmp_path):
+    s = spec(tmp_path, MIXED)
+    out = str(tmp_path / "r.h5")
+    r = sweep("--spec", s, "--out", out, "--quiet", "--resume", check=False)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "--resume" in r.stderr and "no " in r.stderr
+    # A run killed while it created its .partial leaves a file that is not HDF5 yet.
+    with open(out + ".partial", "wb") as f:
+        f.write(b"\0" * 100)
+    r = sweep("--spec", s, "--out", out, "--quiet", "--resume", check=False)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+    assert out + ".partial" in r.stderr and "without --resume" in r.stderr
+    assert os.path.getsize(out + ".partial") == 100 and not os.path.exists(out)
 
 
 def test_interrupt_keeps_the_partial_file(tmp_path):
