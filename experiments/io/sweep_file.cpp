@@ -50,8 +50,11 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
   H5Pset_sieve_buf_size(fapl.get(), 0);
   file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
-  if (!file_.valid()) throw OutputFileError(path + ": cannot open the partial sweep to resume it (a run killed before its first "
-                                                 "write leaves none to resume); remove it and run again without --resume");
+  if (!file_.valid() && !hdf5::path_exists(path))
+    throw OutputFileError(path + ": the partial sweep was removed before it could be opened; run again without --resume");
+  if (!file_.valid())
+    throw OutputFileError(path + ": cannot open the partial sweep to resume it (a run killed before its first write "
+                                 "leaves none to resume); remove it and run again without --resume");
   std::optional<std::string> stored;
   if (H5Lexists(file_.get(), "/partial", H5P_DEFAULT) > 0) {
     Handle g(H5Gopen2(file_.get(), "/partial", H5P_DEFAULT), H5Gclose);
