@@ -24,6 +24,16 @@ def slowdown(lgi):
     return max(1.0, wall / RELEASE_SECONDS)
 
 
+def wait_part_way(p, partial):
+    """Waits until process p has created `partial` and then run 0.8 s more (scaled to the build's
+    speed), so that it is part-way through the long sweep; fails if it has ended by then."""
+    while not os.path.exists(partial):
+        assert p.poll() is None, "the sweep ended before its .partial appeared"
+        time.sleep(0.01)
+    time.sleep(0.8 * slowdown(p.args[0]))  # the same moment of the run in a slower (sanitizer) build
+    assert p.poll() is None, "the sweep ended before it could be killed"
+
+
 # A sweep long enough to be cut in the middle (about 4.5 s on one core, in
 # the ensemble's 16 AVX-512 lanes; longer on narrower vectors); SCENES stands
 # for the shipped scenes' folder.
