@@ -12,7 +12,6 @@
 #include "experiments/cli/step_settings.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
-#include "experiments/io/output_timing.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "lie/quaternion.hpp"
 
