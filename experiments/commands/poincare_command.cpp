@@ -27,6 +27,7 @@
 #include "experiments/analysis/cardan_section.hpp"
 #include "experiments/commands/sweep/sweep_chunks.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/libm_code_path.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/sweep_extra_columns.hpp"
@@ -176,6 +177,7 @@ SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, cons
                {"seed", static_cast<double>(o.seed)}, {"axis_1", e.x()}, {"axis_2", e.y()}, {"axis_3", e.z()}};
   a.provenance = {{"command_line", o.command_line},          {"threads", std::to_string(run.threads)},
                   {"ranks", "1"},                            {"resumed", "no"},
+                  {"libm", libm_code_path()},
                   {"utc_start", run.utc_start},              {"utc_end", hdf5::utc_now_iso8601()},
                   {"wall_seconds", format_general(run.wall_seconds, 6)},
                   {"partial_write_seconds", format_general(run.write_seconds, 6)}};

@@ -21,6 +21,7 @@
 #include "experiments/commands/sweep/sweep_chunks.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/h5md_writer.hpp"
+#include "experiments/io/libm_code_path.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/trajectory_observer.hpp"
@@ -118,6 +119,7 @@ SweepAttributes final_attributes(const SweepSpec& spec, const system::Scene& sce
   a.provenance = {{"command_line", o.command_line},
                   {"threads", std::to_string(run.threads)},
                   {"simd", simd_used(scene, scheme, cfg)},
+                  {"libm", libm_code_path()},
                   {"ranks", std::to_string(run.ranks)},
                   {"resumed", o.resume ? "yes" : "no"},
                   {"utc_start", run.utc_start},

@@ -13,6 +13,7 @@
 #include <ctime>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError, hdf5_library_version
+#include "experiments/io/libm_code_path.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments::hdf5 {
@@ -269,6 +270,7 @@ std::vector<std::pair<std::string, std::string>> default_provenance(const std::s
   return {{"compiler", lgi::build_info::compiler},
           {"cxx_flags", lgi::build_info::cxx_flags},
           {"build_type", lgi::build_info::build_type},
+          {"libm", libm_code_path()},
           {"hdf5_version", hdf5_library_version()},
           {"utc_start", utc_start}};
 }

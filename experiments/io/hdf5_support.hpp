@@ -135,7 +135,8 @@ Handle create_file(const std::string& path, const Fail& fail, std::size_t sieve_
 /// and with units_module the units module (modules/units: version, system "SI").
 void write_h5md_metadata(hid_t file, bool units_module, const Fail& fail);
 /// The /parameters text every file carries unless the caller set it, in
-/// this order: compiler, cxx_flags, build_type, hdf5_version, utc_start.
+/// this order: compiler, cxx_flags, build_type, libm (libm_code_path.hpp),
+/// hdf5_version, utc_start.
 std::vector<std::pair<std::string, std::string>> default_provenance(const std::string& utc_start);
 
 /// Shortest round-trip form; "nan", "inf", "-inf".

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/libm_code_path.hpp"
 #include "experiments/io/results_file.hpp"  // results_csv_path
 #include "experiments/io/sweep_hdf5.hpp"
 
@@ -66,6 +67,7 @@ void write_groups(const std::string& partial, const std::vector<TableGroup>& gro
   }
   hdf5::Handle params = hdf5::create_group(file.get(), "/parameters", fail);
   for (const auto& [k, v] : parameters) hdf5::write_vlen_string(params.get(), k.c_str(), v, false, fail);
+  if (!parameters.contains("libm")) hdf5::write_vlen_string(params.get(), "libm", libm_code_path(), false, fail);
   if (file.reset() < 0) fail("cannot close");
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // A finished table written at once: /<group>/<column> datasets (n, or n×k
-// for vector columns; float64 or int64) with /parameters attributes, and the
+// for vector columns; float64 or int64) with /parameters attributes (and
+// libm, libm_code_path.hpp, unless the caller gave it), and the
 // same table as CSV beside it (vector columns as <name>_1, <name>_2, ...).
 // For results computed in full before they are written (lgi equilibria,
 // lgi region, lgi chaos-map);
