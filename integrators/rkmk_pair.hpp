@@ -30,7 +30,9 @@
 //   α = 1/q − 0.75 β, q the order of err's leading term (p̂ + 1; 8 for 8(5,3)),
 //   err_{n−1} the last accepted err (at least 1e-4), no growth right after a
 //   rejection; rejected: h_new = h · max(f_min, s · err^(−α)). β = 0 is the
-//   I controller of HNW I eq. (4.13).
+//   I controller of HNW I eq. (4.13). Its logarithms, exponential and the
+//   initial step's power are controller_math.hpp's, not libm's: the same steps
+//   on every CPU.
 //
 // Dense output (interpolate()): the pair's continuous extension in the chart,
 //   w(θ) = h Σ b_i(θ) k̃_i,  Π(θ) = Π_n + h Σ b_i(θ) K_i,  R(θ) = R_n exp(w(θ)),
@@ -52,6 +54,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrators/controller_math.hpp"
 #include "integrators/flatten_policy.hpp"
 #include "integrators/rkmk_chart.hpp"
 #include "integrators/rkmk_pair_kernels.hpp"
@@ -142,7 +145,7 @@ class RkmkPair {
     double rate = O.norm();
     if (pn > 0.0) rate = std::max(rate, K.norm() / pn);
     if (!(rate > 0.0)) return span;
-    return std::min(span, 0.5 * std::pow(tol_, Control.exponent) / rate);
+    return std::min(span, 0.5 * controller_math::pow(tol_, Control.exponent) / rate);
   }
 
   /// One fixed step of the propagated solution, accepted whatever the error
@@ -189,7 +192,7 @@ class RkmkPair {
     const double log_err = finite ? std::max(e.log_err, log_err_min) : 0.0;
     double factor = Control.fac_min;
     if (out.accepted) {
-      if (finite) factor = Control.safety * std::exp(-alpha * log_err + Control.beta * log_err_previous_);
+      if (finite) factor = Control.safety * controller_math::exp(-alpha * log_err + Control.beta * log_err_previous_);
       factor = std::clamp(factor, Control.fac_min, Control.fac_max);
       if (last_rejected_) factor = std::min(factor, 1.0);
       last_rejected_ = false;
@@ -205,7 +208,7 @@ class RkmkPair {
       if constexpr (fsal) first_K_ = Vec3(k_[stages - 1][3], k_[stages - 1][4], k_[stages - 1][5]);
       first_valid_ = fsal;
     } else {
-      if (finite) factor = Control.safety * std::exp(-alpha * log_err);
+      if (finite) factor = Control.safety * controller_math::exp(-alpha * log_err);
       factor = std::clamp(factor, Control.fac_min, 1.0);
       last_rejected_ = true;
       ++work.rejected_steps;
@@ -412,9 +415,9 @@ class RkmkPair {
       }
       const double n = n5 + 0.01 * error_numerator(e, momentum_scale2);
       if (!(n > 0.0)) return {0.0, -HUGE_VAL};
-      return {n5 / std::sqrt(D * n), std::log(n5) - 0.5 * (std::log(D) + std::log(n))};
+      return {n5 / std::sqrt(D * n), controller_math::log(n5) - 0.5 * (controller_math::log(D) + controller_math::log(n))};
     } else {
-      return {std::sqrt(n5 / D), 0.5 * (std::log(n5) - std::log(D))};
+      return {std::sqrt(n5 / D), 0.5 * (controller_math::log(n5) - controller_math::log(D))};
     }
   }
 
