@@ -42,9 +42,13 @@ TEST_CASE("the diagonal fast path solves the DMV equation of the general Newton 
       const double h = turn / Pi.cwiseQuotient(I).norm();
       const Mat3 J = I.asDiagonal();
       const Mat3 J_inv = I.cwiseInverse().asDiagonal();
-      Vec3 f_general, f_fast;
+      Vec3 f_general;
+      mv::DiagonalSolution x;
+      const mv::DiagonalMoments m(I, I.cwiseInverse());
       const auto general = mv::solve_cayley_parameter(J, J_inv, h * Pi, f_general);
-      const auto fast = mv::solve_cayley_parameter_diagonal(mv::DiagonalMoments(I, I.cwiseInverse()), h, Pi, f_fast);
+      const auto fast = mv::solve_cayley_parameter_diagonal(m, h, Pi, x);
+      const Vec3 f_fast = x.f;
+      CHECK(x.f == m.mu.cwiseProduct(x.w));  // f = μ ∘ w, rounded once
       INFO("h|Omega| = " << turn << ", I = " << I.transpose() << ", Pi = " << Pi.transpose());
       REQUIRE(general.converged);
       REQUIRE(fast.converged);
@@ -85,12 +89,12 @@ TEST_CASE("the diagonal fast path fails cleanly where no DMV solution exists", "
   // A spin about a principal axis has sin θ = h|Ω| (moser_veselov.hpp): none past h|Ω| = 1.
   const Vec3 I(1.0, 2.0, 3.0);
   const Vec3 Pi(0.0, 0.0, 3.0);  // Ω = (0, 0, 1)
-  Vec3 f;
+  mv::DiagonalSolution x;
   const mv::DiagonalMoments m(I, I.cwiseInverse());
-  const auto ok = mv::solve_cayley_parameter_diagonal(m, 0.99, Pi, f);
+  const auto ok = mv::solve_cayley_parameter_diagonal(m, 0.99, Pi, x);
   CHECK(ok.converged);
-  CHECK(std::abs(2.0 * std::atan(f.z()) - std::asin(0.99)) < 1e-12);
-  const auto fail = mv::solve_cayley_parameter_diagonal(m, 1.01, Pi, f);
+  CHECK(std::abs(2.0 * std::atan(x.f.z()) - std::asin(0.99)) < 1e-12);
+  const auto fail = mv::solve_cayley_parameter_diagonal(m, 1.01, Pi, x);
   CHECK_FALSE(fail.converged);
   CHECK(fail.iterations <= mv::max_newton_iterations);
   CHECK(fail.residual > 0.0);
@@ -123,10 +127,11 @@ TEST_CASE("the predicted start: one correction to the cold solve's root, and the
   // Along a trajectory of equal steps the predictor's guess (six past roots,
   // CayleyPredictor) is accepted after one correction and lands on the root of
   // the cold solve to round-off; a guess that is off goes on with Newton to the same root.
+  // The solves' unknown is w = J f (moser_veselov_diagonal.hpp), and so is the guess.
   // The steps are those of a fixed-step run's grid t_k = t0 + k dt, so from
   // t0 = 1e4 on their lengths h = t_{k+1} − t_k jitter by ulp(t) (relative
-  // 1.8e-10 there, 1.5e-9 at 1e5): the guess, extrapolated in f/h, must not
-  // notice (extrapolated in f, it missed the acceptance at 1e4, and past a
+  // 1.8e-10 there, 1.5e-9 at 1e5): the guess, extrapolated in w/h, must not
+  // notice (extrapolated in f itself, it missed the acceptance at 1e4, and past a
   // jitter of 1e-9 the history was dropped).
   const Vec3 I(0.6, 0.8, 1.0);
   const mv::DiagonalMoments m(I, I.cwiseInverse());
@@ -140,24 +145,28 @@ TEST_CASE("the predicted start: one correction to the cold solve's root, and the
       const double h = (t0 + static_cast<double>(k + 1) * dt) - (t0 + static_cast<double>(k) * dt);
       jittered += h != dt;
       const bool ready = predictor.ready(h);
-      Vec3 cold;
-      REQUIRE(mv::solve_cayley_parameter_diagonal(m, h, s.Pi, cold).converged);
+      mv::DiagonalSolution cold_solution;
+      REQUIRE(mv::solve_cayley_parameter_diagonal(m, h, s.Pi, cold_solution).converged);
+      const Vec3 cold = cold_solution.w;
       if (ready) {
-        Vec3 f;
+        mv::DiagonalSolution x;
         const Vec3 p = predictor.guess(h);
-        const auto st = mv::solve_cayley_parameter_predicted(m, h, s.Pi, p, f);
+        const auto st = mv::solve_cayley_parameter_predicted(m, h, s.Pi, p, x);
+        const Vec3 w = x.w;
         INFO("dt = " << dt << ", t0 = " << t0 << ", step " << k);
         REQUIRE(st.converged);
         CHECK(st.iterations == 1);
-        CHECK((f - cold).norm() <= 4e-16 * cold.norm());
-        // Accepted after that one correction δ (|δ|² ≤ 1e-20 |p − δ|²), not after more Newton
-        // work, at h|Ω| ≤ 0.03 (at dt = 0.03, h|Ω| ≈ 0.09, the guess is off by more).
+        CHECK((w - cold).norm() <= 4e-16 * cold.norm());
+        // Accepted after that one correction δ ((c |δ|²)² ≤ 1e-38 |p − δ|², c the Newton
+        // bound), not after more Newton work, at h|Ω| ≤ 0.03 (at dt = 0.03, h|Ω| ≈ 0.09,
+        // the guess is off by more).
         const double a[3] = {h * s.Pi.x(), h * s.Pi.y(), h * s.Pi.z()};
         const mv::DiagonalResidual r(m, a, p.x(), p.y(), p.z());
         Vec3 d;
-        mv::diagonal_jacobian(m, a, p.x(), p.y(), p.z()).solve(r.r0, r.r1, r.r2, d.x(), d.y(), d.z());
+        r.jacobian(m, a).solve(r.r0, r.r1, r.r2, d.x(), d.y(), d.z());
         if (dt <= 1e-2) {
-          CHECK(d.squaredNorm() <= 1e-20 * (p - d).squaredNorm());
+          const double bound = m.newton_bound * d.squaredNorm();
+          CHECK(bound * bound <= 1e-38 * (p - d).squaredNorm());
           // The accepted guess's status residual, max|ψ_i| / (2 max|a_i|), is the stopping
           // test's relative residual there to O(|f|) (h|Ω|/2 ≤ 0.02 here).
           CHECK(st.residual > 0.0);
@@ -172,12 +181,13 @@ TEST_CASE("the predicted start: one correction to the cold solve's root, and the
   }
   // A poor guess (10% off): not accepted after one correction, Newton goes on to the same root.
   const Vec3 Pi(1.8, 0.4, -0.9);
-  Vec3 cold, f;
-  REQUIRE(mv::solve_cayley_parameter_diagonal(m, 0.01, Pi, cold).converged);
-  const auto st = mv::solve_cayley_parameter_predicted(m, 0.01, Pi, 1.1 * cold, f);
+  mv::DiagonalSolution cold_solution, x;
+  REQUIRE(mv::solve_cayley_parameter_diagonal(m, 0.01, Pi, cold_solution).converged);
+  const Vec3 cold = cold_solution.w;
+  const auto st = mv::solve_cayley_parameter_predicted(m, 0.01, Pi, 1.1 * cold, x);
   REQUIRE(st.converged);
   CHECK(st.iterations > 1);
-  CHECK((f - cold).norm() <= 4e-16 * cold.norm());
+  CHECK((x.w - cold).norm() <= 4e-16 * cold.norm());
   // A step of another length starts the history anew (and a failed step too).
   mv::CayleyPredictor p;
   for (int k = 0; k < 6; ++k) p.record(0.01, cold);

@@ -115,14 +115,18 @@ namespace {
 
 /// Along `steps` dmv steps on the book, the energy change that the solved f's
 /// error alone makes in each step, ΔE = E(Fᵀ Π; f) − E(Fᵀ Π; f*), against f*
-/// solved in long double (Newton on ψ of moser_veselov_diagonal.hpp from f);
+/// solved in long double (Newton on ψ of moser_veselov_diagonal.hpp from f) for
+/// the body the step solves for, the moments 1/μ (μ = 1/I rounded, DiagonalMoments),
+/// whose energy E is;
 /// returns z = Σ ΔE / √(Σ ΔE²). Unbiased errors give |z| of order 1; a bias of
 /// one sign grows z like √n, and it is what drifts the energy linearly.
 double solve_bias_z(std::int64_t steps) {
   using LD = long double;
   const system::Scene scene = testing::shipped_scene("dzhanibekov_book_axis2");
-  const lie::Vec3 I = scene.inertia.diagonal();
-  const integrators::moser_veselov::DiagonalMoments m(I, I.cwiseInverse());
+  const lie::Vec3 moments = scene.inertia.diagonal();
+  const integrators::moser_veselov::DiagonalMoments m(moments, moments.cwiseInverse());
+  const LD I_of[3] = {1.0L / static_cast<LD>(m.mu.x()), 1.0L / static_cast<LD>(m.mu.y()), 1.0L / static_cast<LD>(m.mu.z())};
+  auto I = [&](int i) { return I_of[i]; };
   const double h = 0.01;
   system::State s = scene.initial;
   integrators::moser_veselov::Carry carry;
@@ -135,15 +139,16 @@ double solve_bias_z(std::int64_t steps) {
     for (int i = 0; i < 3; ++i) {
       LD p = s.Pi(i);
       for (int k = 0; k < 3; ++k) p += c * N[k][i] * static_cast<LD>(s.Pi(k));
-      e += p * p / (2.0L * static_cast<LD>(I(i)));
+      e += p * p / (2.0L * I(i));
     }
     return e;
   };
   LD sum = 0.0L, sum2 = 0.0L;
   std::int64_t unconverged = 0;
   for (std::int64_t n = 0; n < steps; ++n) {
-    lie::Vec3 f;
-    unconverged += integrators::moser_veselov::solve_cayley_parameter_diagonal(m, h, s.Pi, f).converged ? 0 : 1;
+    integrators::moser_veselov::DiagonalSolution solved_now;
+    unconverged += integrators::moser_veselov::solve_cayley_parameter_diagonal(m, h, s.Pi, solved_now).converged ? 0 : 1;
+    const lie::Vec3 f = solved_now.f;
     LD g[3] = {f.x(), f.y(), f.z()}, r[3];
     const LD a[3] = {static_cast<LD>(h) * s.Pi.x(), static_cast<LD>(h) * s.Pi.y(), static_cast<LD>(h) * s.Pi.z()};
     for (int it = 0; it < 3; ++it) {  // Newton on ψ(f) = 2Jf + 2 f × Jf − (1 + |f|²) a, Jacobian by Cramer

@@ -11,23 +11,22 @@
 // happens in it. Operation for operation, the scalar path it repeats is:
 //   turns_too_far: (h h) |J⁻¹ ∘ Π|² < π² (DiagonalInertia::turns_too_far);
 //   the moments: x = h², css = 1 + x p(x), cdd = 0 + x q(x) by Horner
-//     (horner_in_h2), 1/Ĩ = css J⁻¹ + cdd, all > 0, Ĩ = 1/(1/Ĩ) (dmv and
-//     lgvi: Ĩ = the moments of J), c and the Veltkamp split of Ĩ
-//     (DiagonalMoments);
-//   the guess h (((6 u₀ − 15 u₁) + (20 u₂ − 15 u₃)) + (6 u₄ − u₅)), u_m = f_m/h_m
-//     (CayleyPredictor);
-//   a = h Π, ψ at the guess with Dekker's exact products (DiagonalResidual),
-//     the Jacobian, Cramer's rule, f = p − δ, accepted when
-//     |δ|² ≤ 1e-20 |f|² and |δ|² is finite;
+//     (horner_in_h2), μ = 1/Ĩ = css J⁻¹ + cdd, all > 0 (dmv and lgvi:
+//     μ = 1/(the moments of J)), 2μ, d_i = 2 (μ_j − μ_k) and the Newton bound
+//     c = (2μ₁ + 2μ₂) + 2μ₃ (DiagonalMoments);
+//   the guess h (((6 u₀ − 15 u₁) + (20 u₂ − 15 u₃)) + (6 u₄ − u₅)), u_m = w_m/h_m
+//     (CayleyPredictor; w = J f, the unknown of moser_veselov_diagonal.hpp);
+//   a = h Π, ψ at the guess with f = μ ∘ w (DiagonalPsi), the Jacobian,
+//     Cramer's rule, w = p − δ, accepted when (c |δ|²)² ≤ 1e-38 |w|² and |δ|²
+//     is finite; f = μ ∘ w;
 //   R ← R cay(2f), Π ← cay(2f)ᵀ Π as compensated sums (apply_cayley_step);
-//   the history shifted, (1/h) f first.
+//   the history shifted, (1/h) w first.
 // tests/test_ensemble_dmv.cpp checks the lanes against the scalar schemes step by step.
 #include <bit>
 #include <cstdint>
 #include <numbers>
 
 #include "integrators/compensated_sum.hpp"
-#include "integrators/exact_products.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lanes.hpp"
@@ -45,47 +44,44 @@ inline T horner_in_h2(const LaneMemory& memory, int first_row, int degree, doubl
   return offset + x * v;
 }
 
-/// The modified moments Ĩ at step h for every lane (1/Ĩ = css J⁻¹ + cdd with
-/// css, cdd the lane's series in x = h², DmvPreprocessed::free_step; for dmv
-/// and lgvi the moments of J, DiagonalInertia), Ĩ's split and c
-/// (DiagonalMoments), and where 1/Ĩ > 0; from the table of
+/// The inverse modified moments μ = 1/Ĩ at step h for every lane (css J⁻¹ + cdd
+/// with css, cdd the lane's series in x = h², DmvPreprocessed::free_step; for
+/// dmv and lgvi the inverse moments of J, DiagonalInertia), 2μ, d and the
+/// Newton bound c (DiagonalMoments), and where μ > 0; from the table of
 /// LaneMemory where it holds this h, else computed and entered. A hit gives
 /// what the computation gives, so the lanes do not depend on the table.
 template <class T>
-inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h, T (&I)[3], T (&I_hi)[3],
-                        T (&I_lo)[3], T (&c)[3]) {
+inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h, T (&mu)[3], T (&two_mu)[3],
+                        T (&d)[3], T& bound) {
   using B = typename T::batch_type;
   constexpr int K = T::batches;
   const auto slot = static_cast<int>((std::bit_cast<std::uint64_t>(h) * 0x9E3779B97F4A7C15ull) >> 61);
   double(*rows)[max_lanes] = memory.row + dmv_rows::moments + dmv_rows::moment_rows * slot;
   if (memory.moments_h[slot] == h) {
-    for (int i = 0; i < 3; ++i) {
-      I[i] = load<B, K>(rows[i]), I_hi[i] = load<B, K>(rows[3 + i]);
-      I_lo[i] = load<B, K>(rows[6 + i]), c[i] = load<B, K>(rows[9 + i]);
-    }
-    return equal(load<B, K>(rows[12]), 1.0);
+    for (int i = 0; i < 3; ++i)
+      mu[i] = load<B, K>(rows[i]), two_mu[i] = load<B, K>(rows[3 + i]), d[i] = load<B, K>(rows[6 + i]);
+    bound = load<B, K>(rows[10]);
+    return equal(load<B, K>(rows[9]), 1.0);
   }
   auto positive = equal(T(0.0), 0.0);  // dmv and lgvi: the moments of J, no test
   if (!model.preprocessed) {
-    for (int i = 0; i < 3; ++i) I[i] = T(model.moments[i]);
+    for (int i = 0; i < 3; ++i) mu[i] = 1.0 / T(model.moments[i]);
   } else {
     const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
     const double x = h * h;
     const T css = horner_in_h2<T>(memory, dmv_rows::css, model.series_degrees, x, 1.0);
     const T cdd = horner_in_h2<T>(memory, dmv_rows::cdd, model.series_degrees, x, 0.0);
     for (int i = 0; i < 3; ++i) {
-      const T moment_inv = css * Jd[i] + cdd;
-      positive = positive & greater(moment_inv, 0.0);
-      I[i] = 1.0 / moment_inv;
+      mu[i] = css * Jd[i] + cdd;
+      positive = positive & greater(mu[i], 0.0);
     }
   }
-  for (int i = 0; i < 3; ++i) veltkamp_split(I[i], I_hi[i], I_lo[i]);
-  c[0] = 2.0 * (I[2] - I[1]), c[1] = 2.0 * (I[0] - I[2]), c[2] = 2.0 * (I[1] - I[0]);
-  for (int i = 0; i < 3; ++i) {
-    store(I[i], rows[i]), store(I_hi[i], rows[3 + i]);
-    store(I_lo[i], rows[6 + i]), store(c[i], rows[9 + i]);
-  }
-  store(select(positive, T(1.0), T(0.0)), rows[12]);
+  for (int i = 0; i < 3; ++i) two_mu[i] = 2.0 * mu[i];
+  d[0] = 2.0 * (mu[1] - mu[2]), d[1] = 2.0 * (mu[2] - mu[0]), d[2] = 2.0 * (mu[0] - mu[1]);
+  bound = (two_mu[0] + two_mu[1]) + two_mu[2];
+  for (int i = 0; i < 3; ++i) store(mu[i], rows[i]), store(two_mu[i], rows[3 + i]), store(d[i], rows[6 + i]);
+  store(select(positive, T(1.0), T(0.0)), rows[9]);
+  store(bound, rows[10]);
   memory.moments_h[slot] = h;
   return positive;
 }
@@ -108,25 +104,23 @@ inline void apply_cayley_step(const T (&f)[3], T (&P)[3], T (&cP)[3], T (&R)[9],
   for (int k = 0; k < 9; ++k) add_compensated(R[k], dR[k], cR[k]);
 }
 
-/// The Cayley parameter from the predictor's guess p (one Newton correction on
-/// ψ with the moments I and their split), and whether it passes.
+/// The unknown w = J f from the predictor's guess p (one Newton correction on
+/// ψ with f = μ ∘ w, DiagonalPsi and diagonal_jacobian), its Cayley parameter
+/// f = μ ∘ w, and whether it passes.
 template <class T>
-inline auto predicted_parameter(const T (&I)[3], const T (&I_hi)[3], const T (&I_lo)[3], const T (&c)[3],
-                                const T (&a)[3], const T (&p)[3], T (&f)[3]) {
-  const T ff = (p[0] * p[0] + p[1] * p[1]) + p[2] * p[2];
-  const T w0 = I[0] * p[0], w1 = I[1] * p[1], w2 = I[2] * p[2];
-  const T p01 = p[0] * w1, p10 = p[1] * w0, p02 = p[0] * w2, p20 = p[2] * w0, p12 = p[1] * w2, p21 = p[2] * w1;
-  const T e0 = product_error(I_hi[0], I_lo[0], p[0], w0);
-  const T e1 = product_error(I_hi[1], I_lo[1], p[1], w1);
-  const T e2 = product_error(I_hi[2], I_lo[2], p[2], w2);
-  const T r0 = (2.0 * w0 - a[0]) + ((2.0 * (p12 - p21) - ff * a[0]) + 2.0 * e0);
-  const T r1 = (2.0 * w1 - a[1]) + ((2.0 * (p20 - p02) - ff * a[1]) + 2.0 * e1);
-  const T r2 = (2.0 * w2 - a[2]) + ((2.0 * (p01 - p10) - ff * a[2]) + 2.0 * e2);
-  // ∂ψ/∂f at p (diagonal_jacobian), row-major, and its adjugate (Cramer3).
-  const T ta0 = 2.0 * a[0], ta1 = 2.0 * a[1], ta2 = 2.0 * a[2];
-  const T j[9] = {2.0 * I[0] - ta0 * p[0], c[0] * p[2] - ta0 * p[1], c[0] * p[1] - ta0 * p[2],
-                  c[1] * p[2] - ta1 * p[0], 2.0 * I[1] - ta1 * p[1], c[1] * p[0] - ta1 * p[2],
-                  c[2] * p[1] - ta2 * p[0], c[2] * p[0] - ta2 * p[1], 2.0 * I[2] - ta2 * p[2]};
+inline auto predicted_parameter(const T (&mu)[3], const T (&two_mu)[3], const T (&d)[3], const T& bound,
+                                const T (&a)[3], const T (&p)[3], T (&w)[3], T (&f)[3]) {
+  const T q0 = mu[0] * p[0], q1 = mu[1] * p[1], q2 = mu[2] * p[2];
+  const T ff = (q0 * q0 + q1 * q1) + q2 * q2;
+  const T p01 = q0 * p[1], p10 = q1 * p[0], p02 = q0 * p[2], p20 = q2 * p[0], p12 = q1 * p[2], p21 = q2 * p[1];
+  const T r0 = (2.0 * p[0] - a[0]) + (2.0 * (p12 - p21) - ff * a[0]);
+  const T r1 = (2.0 * p[1] - a[1]) + (2.0 * (p20 - p02) - ff * a[1]);
+  const T r2 = (2.0 * p[2] - a[2]) + (2.0 * (p01 - p10) - ff * a[2]);
+  // ∂ψ/∂w at p (diagonal_jacobian), row-major, and its adjugate (Cramer3).
+  const T g0 = two_mu[0] * q0, g1 = two_mu[1] * q1, g2 = two_mu[2] * q2;
+  const T j[9] = {2.0 - a[0] * g0,        d[0] * p[2] - a[0] * g1, d[0] * p[1] - a[0] * g2,
+                  d[1] * p[2] - a[1] * g0, 2.0 - a[1] * g1,        d[1] * p[0] - a[1] * g2,
+                  d[2] * p[1] - a[2] * g0, d[2] * p[0] - a[2] * g1, 2.0 - a[2] * g2};
   const T adj0 = j[4] * j[8] - j[5] * j[7], adj3 = j[5] * j[6] - j[3] * j[8], adj6 = j[3] * j[7] - j[4] * j[6];
   const T det_inv = 1.0 / (j[0] * adj0 + j[1] * adj3 + j[2] * adj6);
   const T adj1 = j[2] * j[7] - j[1] * j[8], adj2 = j[1] * j[5] - j[2] * j[4];
@@ -135,11 +129,14 @@ inline auto predicted_parameter(const T (&I)[3], const T (&I_hi)[3], const T (&I
   const T d0 = det_inv * (adj0 * r0 + adj1 * r1 + adj2 * r2);
   const T d1 = det_inv * (adj3 * r0 + adj4 * r1 + adj5 * r2);
   const T d2 = det_inv * (adj6 * r0 + adj7 * r1 + adj8 * r2);
-  f[0] = p[0] - d0;
-  f[1] = p[1] - d1;
-  f[2] = p[2] - d2;
+  w[0] = p[0] - d0;
+  w[1] = p[1] - d1;
+  w[2] = p[2] - d2;
+  for (int i = 0; i < 3; ++i) f[i] = mu[i] * w[i];
   const T step2 = (d0 * d0 + d1 * d1) + d2 * d2;
-  return less_equal(step2, 1e-20 * ((f[0] * f[0] + f[1] * f[1]) + f[2] * f[2])) & equal(step2 - step2, 0.0);
+  const T error_bound = bound * step2;
+  return less_equal(error_bound * error_bound, 1e-38 * ((w[0] * w[0] + w[1] * w[1]) + w[2] * w[2])) &
+         equal(step2 - step2, 0.0);
 }
 
 }  // namespace dmv_detail
@@ -165,14 +162,14 @@ inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
   const double Jd[3] = {model.J_inv[0][0], model.J_inv[1][1], model.J_inv[2][2]};
   const T v0 = Jd[0] * P[0], v1 = Jd[1] * P[1], v2 = Jd[2] * P[2];
   ok = ok & less((h * h) * ((v0 * v0 + v1 * v1) + v2 * v2), T(std::numbers::pi * std::numbers::pi));
-  T I[3], I_hi[3], I_lo[3], c[3], a[3], guess[3], f[3];
-  ok = ok & dmv_detail::moments_for<T>(model, memory, h, I, I_hi, I_lo, c);
+  T mu[3], two_mu[3], d[3], bound, a[3], guess[3], w[3], f[3];
+  ok = ok & dmv_detail::moments_for<T>(model, memory, h, mu, two_mu, d, bound);
   for (int i = 0; i < 3; ++i) {
     a[i] = h * P[i];
     guess[i] = h * (((6.0 * hist[0][i] - 15.0 * hist[1][i]) + (20.0 * hist[2][i] - 15.0 * hist[3][i])) +
                     (6.0 * hist[4][i] - hist[5][i]));
   }
-  ok = ok & dmv_detail::predicted_parameter(I, I_hi, I_lo, c, a, guess, f);
+  ok = ok & dmv_detail::predicted_parameter(mu, two_mu, d, bound, a, guess, w, f);
   T P1[3] = {P[0], P[1], P[2]}, R1[9], cP1[3] = {cP[0], cP[1], cP[2]}, cR1[9];
   for (int k = 0; k < 9; ++k) R1[k] = R[k], cR1[k] = cR[k];
   dmv_detail::apply_cayley_step(f, P1, cP1, R1, cR1);
@@ -187,7 +184,7 @@ inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, Lan
   }
   for (int m = 5; m >= 0; --m)
     for (int i = 0; i < 3; ++i)
-      store(select(ok, m == 0 ? (1.0 / h) * f[i] : hist[m - 1][i], hist[m][i]), memory.row[rows::history + 3 * m + i]);
+      store(select(ok, m == 0 ? (1.0 / h) * w[i] : hist[m - 1][i], hist[m][i]), memory.row[rows::history + 3 * m + i]);
   store(select(ok, T(1.0), T(0.0)), memory.row[rows::stepped]);
   return active_lanes_clear<T>(block, memory, ok);
 }

@@ -55,7 +55,7 @@ inline constexpr int carry_Pi = 0;   // 3 rows
 inline constexpr int carry_R = 3;    // 9 rows: carry.R(i, j) at carry_R + i + 3 j
 inline constexpr int count = 12;     // the predictor's valid entries
 inline constexpr int step = 13;      // the step length of its history
-inline constexpr int history = 14;   // 18 rows: f_{k−m}/h_{k−m} component i at history + 3 m + i
+inline constexpr int history = 14;   // 18 rows: w_{k−m}/h_{k−m} component i at history + 3 m + i (w = J f)
 inline constexpr int memory = 32;    // rows 0 … 31: the scalar scheme's memory
 inline constexpr int css = 32;       // 4 rows: css in h², lowest degree first
 inline constexpr int cdd = 36;       // 4 rows
@@ -63,9 +63,9 @@ inline constexpr int stepped = 40;   // 1 where the kernel took the step, 0 wher
 inline constexpr int active = 41;    // 1 for a lane in use (EnsembleStepper::set_active), 0 for padding or a finished run
 // The kernel's table of modified moments by step length (as MomentsByStep in
 // moser_veselov.hpp: the h of a fixed-step run differ in their last bits):
-// per entry Ĩ, its Veltkamp split, c (3 rows each) and 1 where 1/Ĩ > 0.
+// per entry μ = 1/Ĩ, 2μ, d (3 rows each), 1 where μ > 0, and the Newton bound c.
 inline constexpr int moments = 42;
-inline constexpr int moment_rows = 13;
+inline constexpr int moment_rows = 11;
 inline constexpr int moment_entries = 8;
 inline constexpr int rows = moments + moment_rows * moment_entries;
 }  // namespace dmv_rows
