@@ -66,7 +66,7 @@
 // before), |Π| 4.7e-15 / 2.2e-14 (1.3e-13 at 10⁶ before); the energy still
 // grew nearly linearly, from a level twelve times lower. The diagonal path
 // then also took the residual's own rounding error out of the final correction
-// (moser_veselov_diagonal.hpp): 6.1e-14 after 10⁸ steps, growing like √n.
+// (moser_veselov_diagonal.hpp): 3.1e-14 after 10⁸ steps, growing like √n.
 //
 // ── Preprocessed DMV (`dmv-pre2r`, r = 2…5) ─────────────────────────────────
 // E. Hairer & G. Vilmart, "Preprocessed discrete Moser–Veselov algorithm for
