@@ -46,6 +46,47 @@ herr_t read_attribute(hid_t obj, const char* name, const H5A_info_t*, void*) {
   return status < 0 ? -1 : 0;
 }
 
+// Chunk lookups in one dataset at the most: an lgi file holds far fewer (10⁸ rows
+// in chunks of hundreds), so a dataset needing more has a damaged extent.
+constexpr hsize_t max_chunk_lookups = hsize_t{1} << 22;
+
+/// Every chunk of a chunked dataset looked up by its coordinates, which is how
+/// H5Dset_extent finds the chunks it drops when a resume shrinks the columns
+/// (H5D__chunk_prune_by_extent → H5B_find). A damaged chunk index can loop
+/// there for ever while a read of the whole dataset finishes
+/// (fuzz/fuzz_h5_readers.cpp found it on a long-time .partial;
+/// tests/fuzz_regressions/h5_readers/libhdf5_loop_in_chunk_prune.h5).
+herr_t look_up_chunks(hid_t dset, hid_t space) {
+  const hid_t plist = H5Dget_create_plist(dset);
+  if (plist < 0) return -1;
+  herr_t status = 0;
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (H5Pget_layout(plist) == H5D_CHUNKED && rank != 0) {
+    constexpr int max_rank = 8;
+    hsize_t chunk[max_rank], dims[max_rank], counts[max_rank], at[max_rank] = {}, offset[max_rank] = {};
+    hsize_t total = 1;
+    status = rank < 0 || rank > max_rank || H5Pget_chunk(plist, rank, chunk) != rank ||
+                     H5Sget_simple_extent_dims(space, dims, nullptr) != rank
+                 ? -1
+                 : 0;
+    for (int d = 0; status == 0 && d < rank; ++d) {
+      counts[d] = chunk[d] == 0 ? 0 : (dims[d] + chunk[d] - 1) / chunk[d];
+      if (chunk[d] == 0 || (counts[d] > 0 && total > max_chunk_lookups / counts[d])) status = -1;
+      total *= counts[d];
+    }
+    for (hsize_t k = 0; status == 0 && k < total; ++k) {  // the chunk coordinates, last dimension fastest
+      for (int d = 0; d < rank; ++d) offset[d] = at[d] * chunk[d];
+      unsigned filter_mask = 0;
+      haddr_t address = 0;
+      hsize_t bytes = 0;
+      if (H5Dget_chunk_info_by_coord(dset, offset, &filter_mask, &address, &bytes) < 0) status = -1;
+      for (int d = rank - 1; d >= 0 && ++at[d] == counts[d]; --d) at[d] = 0;
+    }
+  }
+  H5Pclose(plist);
+  return status;
+}
+
 herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void*) {
   const hid_t obj = H5Oopen(root, name, H5P_DEFAULT);
   if (obj < 0) return -1;
@@ -55,7 +96,7 @@ herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void*)
     const hid_t type = H5Dget_type(obj), space = H5Dget_space(obj);
     const hid_t memory = type >= 0 ? H5Tget_native_type(type, H5T_DIR_DEFAULT) : -1;
     const hssize_t n = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
-    if (type < 0 || space < 0 || memory < 0 || n < 0) {
+    if (type < 0 || space < 0 || memory < 0 || n < 0 || look_up_chunks(obj, space) < 0) {
       status = -1;
     } else if (H5Tget_class(type) != H5T_VLEN && H5Tis_variable_str(type) <= 0 &&
                static_cast<hsize_t>(n) * H5Tget_size(type) <= max_read_bytes) {

@@ -5,7 +5,9 @@
 // stop that once the library is in. So before lgi opens a file it will resume
 // (a long-time or sweep .partial), a forked child walks the whole file the way
 // the readers will: every object (H5Ovisit), every attribute read, every
-// dataset's space and type, and the datasets themselves up to 64 MB. If the
+// dataset's space and type, every chunk of a chunked dataset looked up by its
+// coordinates (as H5Dset_extent does when a resume shrinks the columns, where a
+// damaged chunk index loops for ever: H5B_find), and the datasets themselves up to 64 MB. If the
 // child dies by a signal, exits non-zero or takes longer than the timeout, the
 // file is refused with one line and lgi never touches it
 // (fuzz/fuzz_h5_readers.cpp found both failures).
