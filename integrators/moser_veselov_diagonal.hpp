@@ -203,8 +203,10 @@ struct DiagonalSolution {
 /// test, the final correction, simplified Newton); out holds the last iterate on return.
 inline StepStatus diagonal_newton(const DiagonalMoments& m, const double (&a)[3], double w0, double w1, double w2,
                                   Cramer3 D, double last_step2, int done, DiagonalSolution& out) {
+  bool renew = false;  // the Jacobian at this iterate (simplified Newton, below)
   for (int it = done;; ++it) {
     const DiagonalResidual r(m, a, w0, w1, w2);
+    if (renew) D = r.jacobian(m, a);
     double d0, d1, d2;
     D.solve(r.r0, r.r1, r.r2, d0, d1, d2);
     if (r.small || it == max_newton_iterations || !std::isfinite(r.r0 + r.r1 + r.r2)) {
@@ -222,8 +224,7 @@ inline StepStatus diagonal_newton(const DiagonalMoments& m, const double (&a)[3]
     // Simplified Newton: the Jacobian is renewed (at the new iterate) only when the
     // corrections shrink by less than a factor 10 (θ = |δ_n|/|δ_{n−1}| > 0.1).
     const double step2 = d0 * d0 + d1 * d1 + d2 * d2;
-    if (step2 > 0.01 * last_step2)
-      D = diagonal_jacobian(m, a, w0, w1, w2, m.mu.x() * w0, m.mu.y() * w1, m.mu.z() * w2);
+    renew = step2 > 0.01 * last_step2;
     last_step2 = step2;
   }
 }
