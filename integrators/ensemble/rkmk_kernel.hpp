@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "integrators/ensemble/ensemble_model.hpp"
+#include "integrators/flatten_policy.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lane_so3.hpp"
 
@@ -123,9 +124,11 @@ inline void rkmk_step(const EnsembleModel& model, M3<T>& R, V3<T>& Pi, double t,
 }
 
 /// rkmk_step on the lanes of a LaneBlock (T = Lanes<Batch, K>, T::size lanes);
-/// whether every active lane is finite after it (StepKernel).
+/// whether every active lane is finite after it (StepKernel). Flattened, as
+/// dmv_pre_block_step: GCC kept the stages and the maps' coefficients out of
+/// line, their lane arrays passed through memory (inlining changes no result).
 template <const auto& Tableau, class T>
-inline bool rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double t, double h) {
+LGI_FLATTEN inline bool rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double t, double h) {
   M3<T> R;
   V3<T> Pi;
   for (int i = 0; i < 3; ++i)
