@@ -230,6 +230,17 @@ TEST_CASE("the ensemble loop gives each lane the scalar loop's run", "[ensemble]
     cfg.t_end = 2.005;
     check_loop("rkmk4", free, cfg, initial_states(free.initial, 5, 9));
   }
+  // Without events most steps observe nothing, and the loop only counts them
+  // (integrate_fixed_ensemble's path for a step the kernel took in every lane).
+  SECTION("without events: samples every 7 steps") {
+    cfg.events = nullptr;
+    check_loop("rkmk4", top, cfg, initial);
+  }
+  SECTION("without events: a lane that blows up, the others go on") {
+    cfg.events = nullptr;
+    initial[2].Pi(1) = std::numeric_limits<double>::infinity();
+    check_loop("rkmk4", top, cfg, initial);
+  }
 }
 
 TEST_CASE("an ensemble step allocates nothing", "[ensemble][allocations]") {

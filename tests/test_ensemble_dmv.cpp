@@ -152,6 +152,18 @@ TEST_CASE("the ensemble loop gives each dmv-pre lane the scalar loop's run", "[e
     cfg.retry_halving = 2;
     check_loop("dmv-pre10", body, cfg, initial);
   }
+  // Without events most steps observe nothing, and the loop only counts the kernel's.
+  SECTION("without events: samples every 7 steps, a change of step length") {
+    cfg.events = nullptr;
+    cfg.t_end = 2.005;
+    check_loop("dmv-pre10", body, cfg, initial);
+    check_loop("lgvi", body, cfg, initial);
+  }
+  SECTION("without events: a lane refused, the others go on") {
+    cfg.events = nullptr;
+    initial[3].Pi *= 1e3;
+    check_loop("dmv-pre10", body, cfg, initial);
+  }
 }
 
 TEST_CASE("a dmv-pre ensemble step allocates nothing", "[ensemble][dmv][allocations]") {

@@ -195,11 +195,11 @@ StepStatus EnsembleStepper::start_lane(int lane, const State& s, double t0) {
   return fallback_ ? fallback_->start(lane, s, t0, memory_) : StepStatus{};
 }
 
-void EnsembleStepper::step(double t, double h, int retry_halving) {
+bool EnsembleStepper::step(double t, double h, int retry_halving) {
   if (kernel_(model_, block_, memory_, t, h)) {  // every active lane stepped by the kernel, and finite
     for (int l = 0; l < max_lanes; ++l) kernel_stepped_[l] = finite_[l] = true;
     if (fallback_) kernel_lane_steps_ += active_count();
-    return;
+    return true;
   }
   if (fallback_) {
     for (int l = 0; l < lanes_; ++l) {
@@ -214,6 +214,7 @@ void EnsembleStepper::step(double t, double h, int retry_halving) {
   for (const auto& row : block_.row)
     for (int l = 0; l < max_lanes; ++l) z[l] += row[l] - row[l];
   for (int l = 0; l < max_lanes; ++l) finite_[l] = z[l] == 0.0;
+  return false;
 }
 
 int EnsembleStepper::active_count() const {

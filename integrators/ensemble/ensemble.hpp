@@ -80,7 +80,10 @@ class EnsembleStepper {
   void set_active(int lane, bool active);
   /// Every lane from t to t + h (for a scheme with memory, the lanes the
   /// kernel leaves by the scalar scheme, with retry_halving as the run's).
-  void step(double t, double h, int retry_halving = 0);
+  /// Returns whether the kernel took every active lane's step and every
+  /// active lane is finite (the common case: then kernel_stepped and
+  /// lane_finite are true for every lane, and the loop need not ask them).
+  bool step(double t, double h, int retry_halving = 0);
   /// With memory: the lane steps the kernel has taken (active lanes), all runs.
   std::int64_t kernel_lane_steps() const { return kernel_lane_steps_; }
   /// With memory: the last step of an active lane (its status and work counters).
