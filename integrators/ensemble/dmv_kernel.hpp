@@ -27,10 +27,10 @@
 #include <numbers>
 
 #include "integrators/compensated_sum.hpp"
-#include "integrators/flatten_policy.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lanes.hpp"
+#include "integrators/flatten_policy.hpp"
 
 namespace lgi::integrators::ensemble {
 
@@ -146,12 +146,12 @@ inline auto predicted_parameter(const T (&mu)[3], const T (&two_mu)[3], const T 
 /// whether every active lane was stepped here and is finite (StepKernel).
 /// Flattened: GCC kept the compensated sums, the Cayley update, the solve and
 /// the moments' lookup out of line, with every lane array passed through
-/// memory (callgrind: 16.5 of the kernel's 19.4 million instructions in a
-/// run of `ensemble/free_body_hlw/dmv-pre10/avx2` were in those calls and this
-/// function; inlining changes no result, flatten_policy.hpp).
+/// memory (callgrind of `ensemble/free_body_hlw/dmv-pre10/avx2`: 19.1 million
+/// instructions in this function and those calls, 16.3 million flattened;
+/// inlining changes no result, flatten_policy.hpp).
 template <class T>
-LGI_FLATTEN inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory, double /*t*/,
-                               double h) {
+LGI_FLATTEN inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory,
+                                           double /*t*/, double h) {
   using B = typename T::batch_type;
   constexpr int K = T::batches;
   namespace rows = dmv_rows;

@@ -49,16 +49,16 @@ inline void add_work(WorkCounters& run, const WorkCounters& step) {
   run.newton_failures += step.newton_failures;
   if (step.newton_iterations_max > run.newton_iterations_max) run.newton_iterations_max = step.newton_iterations_max;
 }
-/// Counts lane l's step k + 1 in st as integrate_fixed does; returns whether
-/// the lane's run ends there (a refusal or a solve that did not converge).
-/// Inlined: called for every lane and step, and GCC kept it out of line (8% of
-/// a dmv-pre10 ensemble run, perf; 14% faster inlined).
 /// The kernel's step k + 1 of a lane, as outcome() would count it, without a call.
 [[gnu::always_inline]] inline void count_kernel_step(const EnsembleStepper& e, std::int64_t k, RunStats& st) {
   st.steps = k + 1;
   st.work.rhs_evaluations += e.rhs_per_step();
   if (e.has_memory() && st.work.newton_iterations_max < 1) st.work.newton_iterations_max = 1;
 }
+/// Counts lane l's step k + 1 in st as integrate_fixed does; returns whether
+/// the lane's run ends there (a refusal or a solve that did not converge).
+/// Inlined: called for every lane and step, and GCC kept it out of line (8% of
+/// a dmv-pre10 ensemble run, perf; 14% faster inlined).
 template <class Scheme>
 [[gnu::always_inline]] inline bool count_lane_step(const EnsembleStepper& e, int l, const Scheme& scheme,
                                                    const RunConfig& cfg, std::int64_t k, double t_next, RunStats& st) {

@@ -13,8 +13,10 @@ KernelSet kernel_set(const char* isa) {
   set.isa = isa;
   set.lanes = LaneType::size;
   // Flattened where a batch holds 4 or more doubles (rkmk_kernel.hpp).
-  if constexpr (LaneType::batch_type::size >= 4) set.rkmk4 = &rkmk_block_step_flattened<tableaus::classical_rk4, LaneType>;
-  else set.rkmk4 = &rkmk_block_step<tableaus::classical_rk4, LaneType>;
+  if constexpr (LaneType::batch_type::size >= 4)
+    set.rkmk4 = &rkmk_block_step_flattened<tableaus::classical_rk4, LaneType>;
+  else
+    set.rkmk4 = &rkmk_block_step<tableaus::classical_rk4, LaneType>;
   set.dmv_pre = &dmv_pre_block_step<LaneType>;
   return set;
 }

@@ -13,9 +13,9 @@
 #include <utility>
 
 #include "integrators/ensemble/ensemble_model.hpp"
-#include "integrators/flatten_policy.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lane_so3.hpp"
+#include "integrators/flatten_policy.hpp"
 
 namespace lgi::integrators::ensemble {
 
