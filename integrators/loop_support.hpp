@@ -151,10 +151,26 @@ std::string report_crossings(const EventFunctions& events, std::vector<double>& 
 }
 template <class Scheme, class Model>
 concept has_fixed_step = requires(Scheme& s, const Model& m, State& x, WorkCounters& w) { s.step(m, x, 0.0, 0.0, w); };
+/// A scheme that keeps the attitude itself along a run (the preprocessed DMV
+/// on a free body: a quaternion, cayley_quaternion.hpp). The loop steps it
+/// with step_keeping_attitude(), which leaves s.R as it was, and has it
+/// write R into s with write_attitude() where R is read (stepper_loop.hpp,
+/// "Kept attitude"). Its step() is both, for any other caller.
+template <class Scheme, class Model>
+concept keeps_attitude = requires(Scheme& c, const Scheme& k, const Model& m, State& x, WorkCounters& w) {
+  c.step_keeping_attitude(m, x, 0.0, 0.0, w);
+  k.write_attitude(x);
+};
+/// The loop's step: step(), or step_keeping_attitude() for a scheme that keeps the attitude.
+template <class Scheme, class Model>
+StepStatus loop_step(Scheme& scheme, const Model& model, State& s, double t, double h, WorkCounters& work) {
+  if constexpr (keeps_attitude<Scheme, Model>) return scheme.step_keeping_attitude(model, s, t, h, work);
+  else return scheme.step(model, s, t, h, work);
+}
 /// One step of the fixed-step loop, its solve recorded in the work counters.
 template <class Scheme, class Model>
 StepStatus recorded_step(Scheme& scheme, const Model& model, State& s, double t, double h, WorkCounters& work) {
-  const StepStatus st = scheme.step(model, s, t, h, work);
+  const StepStatus st = loop_step(scheme, model, s, t, h, work);
   record_solve(st, work);
   return st;
 }
@@ -167,7 +183,7 @@ template <class Scheme, class Model>
 StepStatus step_with_halving(Scheme& scheme, const Model& model, State& s, double t, double h, int halvings,
                              WorkCounters& work) {
   const State before = s;
-  const StepStatus st = scheme.step(model, s, t, h, work);
+  const StepStatus st = loop_step(scheme, model, s, t, h, work);
   record_solve(st, work);
   if (st.converged || halvings <= 0) return st;
   ++work.rejected_steps;
@@ -175,6 +191,27 @@ StepStatus step_with_halving(Scheme& scheme, const Model& model, State& s, doubl
   const StepStatus first = step_with_halving(scheme, model, s, t, 0.5 * h, halvings - 1, work);
   if (!first.converged) return first;
   return step_with_halving(scheme, model, s, t + 0.5 * h, 0.5 * h, halvings - 1, work);
+}
+/// With events, after the fixed step `step` from (t_start, x_before) to
+/// (t, s): writes a kept attitude into s, then locates and reports the
+/// crossings (report_crossings) by steps of the scheme as it was before the
+/// step, taken as the run's are (with the same halving retries). Returns why
+/// a location step failed, or an empty string.
+template <class Scheme, class Model>
+std::string fixed_step_crossings(Scheme& scheme, const Scheme& scheme_before, const Model& model, const RunConfig& cfg,
+                                 std::vector<double>& g, double t_start, double t, const State& x_before, State& s,
+                                 std::int64_t step, Observer& observer, WorkCounters& work) {
+  if constexpr (keeps_attitude<Scheme, Model>) scheme.write_attitude(s);
+  auto advance = [&](double theta, State& x) {
+    Scheme copy = scheme_before;
+    x = x_before;
+    const bool stepped = cfg.retry_halving > 0
+                             ? step_with_halving(copy, model, x, t_start, theta, cfg.retry_halving, work).converged
+                             : loop_step(copy, model, x, t_start, theta, work).converged;
+    if constexpr (keeps_attitude<Scheme, Model>) copy.write_attitude(x);
+    return stepped;
+  };
+  return report_crossings(*cfg.events, g, t_start, t - t_start, x_before, s, step, advance, observer);
 }
 /// Where a run is in its output times.
 struct OutputCursor {
@@ -241,16 +278,25 @@ struct FormedObservable {
   State x;
   std::int64_t step = -1;
 };
+/// Whether observe_due will observe after step k at t.
+inline bool sample_due(const RunConfig& cfg, const OutputCursor& out, std::int64_t k, double t, bool final_step,
+                       bool stopping) {
+  return stopping || (out.times ? out.output_time_due(t) : final_step || out.multiple_due(k, cfg.save_every));
+}
 /// For a scheme with an observable state, that state is formed only when a
-/// sample is due (it costs a processor: processed_composition.hpp), and kept in `formed`.
+/// sample is due (it costs a processor: processed_composition.hpp), and kept
+/// in `formed`; a scheme that keeps the attitude writes it into s then
+/// (keeps_attitude: not the ensemble's const scheme, whose lanes' states are formed).
 template <class Scheme, class Model>
 bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
-                  double t_start, double t, bool final_step, const State& s, Observer& observer, RunStats& stats,
+                  double t_start, double t, bool final_step, State& s, Observer& observer, RunStats& stats,
                   FormedObservable* formed = nullptr) {
   const bool stopping = !final_step && stop_requested(cfg);
+  if constexpr (keeps_attitude<Scheme, Model>) {
+    if (sample_due(cfg, out, k, t, final_step, stopping)) scheme.write_attitude(s);
+  }
   if constexpr (has_observable_state<Scheme, Model>) {
-    const bool due = stopping || (out.times ? out.output_time_due(t) : final_step || out.multiple_due(k, cfg.save_every));
-    if (!due) return false;
+    if (!sample_due(cfg, out, k, t, final_step, stopping)) return false;
     const State x = scheme.observable(model, s, stats.work);
     if (formed) *formed = {x, k};
     return observe_due(scheme, model, cfg, out, k, t_start, t, final_step, stopping, x, observer, stats);
@@ -298,6 +344,7 @@ void offer_checkpoint(const Scheme& scheme, const RunConfig& cfg, std::int64_t s
     Checkpoints* c = cfg.checkpoints;
     if (c == nullptr || c->every < 1 || step % c->every != 0 || !c->due(step)) return;
     LoopCheckpoint point{.step = step, .t = t, .h = h, .state = s, .work = stats.work, .memory = {}};
+    if constexpr (keeps_attitude<Scheme, Model>) scheme.write_attitude(point.state);
     if constexpr (saves_step_memory<Scheme>) scheme.save_memory(point.memory);
     c->save(point);
   }

@@ -1,7 +1,8 @@
 #pragma once
-// Schemes `dmv`, `lgvi` and `dmv-pre4` … `dmv-pre10`: the discrete
-// Moser–Veselov algorithm, its Lie group variational form with a potential,
-// and its preprocessed (modified-inertia) high-order versions.
+// Schemes `dmv` and `lgvi`: the discrete Moser–Veselov algorithm and its Lie
+// group variational form with a potential, and the step they share with the
+// preprocessed (modified-inertia) high-order versions `dmv-pre4` … `dmv-pre10`
+// (moser_veselov_preprocessed.hpp).
 //
 // ── DMV / LGVI ──────────────────────────────────────────────────────────────
 // Lee, Leok & McClamroch, "A Lie group variational integrator for the
@@ -67,40 +68,6 @@
 // grew nearly linearly, from a level twelve times lower. The diagonal path
 // then also took the residual's own rounding error out of the final correction
 // (moser_veselov_diagonal.hpp): 3.1e-14 after 10⁸ steps, growing like √n.
-//
-// ── Preprocessed DMV (`dmv-pre2r`, r = 2…5) ─────────────────────────────────
-// E. Hairer & G. Vilmart, "Preprocessed discrete Moser–Veselov algorithm for
-// the full dynamics of a rigid body", J. Phys. A 39 (2006) 13225–13235,
-// Algorithm 2.2: apply DMV with modified moments of inertia, eq. (6),
-//   1/Ĩ_j = (1/I_j)(1 + h² s₃ + h⁴ s₅ + …) + h² d₃ + h⁴ d₅ + …,
-// truncated after the h^{2r−2} terms, where s_k, d_k are homogeneous
-// polynomials in H = ½ Σ y_j²/I_j (the kinetic energy) and C = ½ |y|²
-// evaluated at the current momentum y_n (Theorem 2.1). For a free body the
-// scheme conserves H and C exactly (below), so they are taken once per run,
-// from the initial state in start(), and the series is kept as two
-// polynomials in h² (evaluated by Horner's rule at each step, as h may vary);
-// with a potential the kicks change H and C and the series is evaluated at
-// every step. (With H and C frozen the map is DMV with constant modified
-// moments for a given h; the registry still claims no symplecticity.) No other pre- or
-// post-processing is involved: the "preprocessing" is the modification of
-// the vector field (their ref. [2]). As the relation is basis-free,
-// J̃⁻¹ = s J⁻¹ + d I, so it holds for a non-diagonal J too (the constants
-// below are symmetric functions of the principal moments).
-// Coefficients (moser_veselov_series.hpp): s₃…s₇ and d₃…d₇ from Table 1 of the paper; s₉, d₉ (order
-// 10) from the authors' code DMV10.f (version of 29 Aug 2006, corrected
-// 28 Dec 2007; mirrored in ja72/RB_DiscreteMoserVeselov, DMV_F77/DMV10.FI).
-// Notation of Table 1: δ = I₁I₂I₃, σ_a = I₁^a + I₂^a + I₃^a,
-// τ_{b,c} = Σ_{i≠j} I_i^b / I_j^c.
-// Order 2r for the free body (Proposition 2.3); symmetric; conserves y·y,
-// H and the spatial momentum exactly (Prop. 2.3); a Poisson integrator for
-// y but NOT symplectic for r > 1 (their Table 2 and §4.3). With a potential
-// the authors' code, and this one, use Strang splitting kick(½h) ∘
-// preDMV(h) ∘ kick(½h): order 2, Π·Γ still conserved exactly.
-// The truncated series is only meaningful for moderate h|Ω|: besides the
-// h|Ω| ≥ π refusal above, a step whose modified moments css/λ_j + cdd are
-// not all positive is refused (converged = false, 0 iterations). Between
-// DMV's own limit (h|Ω| ≈ 1) and those refusals the modified equation may
-// still be solvable, with an error of order one, like any scheme there.
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -112,7 +79,6 @@
 
 #include "integrators/compensated_sum.hpp"
 #include "integrators/moser_veselov_diagonal.hpp"
-#include "integrators/moser_veselov_series.hpp"
 #include "integrators/scheme_interface.hpp"
 
 namespace lgi::integrators {
@@ -181,11 +147,16 @@ inline bool turns_too_far(const Mat3& J_inv, const Vec3& Pi, double h) {
 /// One DMV step of length h with inertia J (inverse J_inv) on the state as
 /// it is (no kicks): R ← R F, Π ← Fᵀ Π, F = cay(2f), applied as compensated
 /// increments (header comment). The state and the carry are left untouched
-/// if the solve fails.
-inline StepStatus dmv_step(const Mat3& J, const Mat3& J_inv, State& s, Carry& carry, double h) {
+/// if the solve fails. With an attitude, the step rotates it and leaves s.R
+/// (cayley_quaternion.hpp).
+inline StepStatus dmv_step(const Mat3& J, const Mat3& J_inv, State& s, Carry& carry, double h,
+                           CayleyQuaternion* attitude = nullptr) {
   Vec3 f;
   const StepStatus st = solve_cayley_parameter(J, J_inv, h * s.Pi, f);
-  if (st.converged) apply_cayley_step(f, s, carry);
+  if (st.converged) {
+    if (attitude) apply_cayley_step(f, s, carry, *attitude);
+    else apply_cayley_step(f, s, carry);
+  }
   return st;
 }
 
@@ -339,117 +310,5 @@ class Dmv : public Lgvi {
       .support = SceneSupport::free_body_only,
       .reference = Lgvi::facts.reference};
 };
-
-/// `dmv-pre4` … `dmv-pre10`: Hairer–Vilmart Algorithm 2.2, with a potential
-/// in Strang splitting kick(½h) ∘ preDMV(h) ∘ kick(½h) (order 2 then).
-template <int Order>
-class DmvPreprocessed {
- public:
-  static constexpr int order = Order;
-  // Not symplectic for order > 2 (Hairer-Vilmart Table 2, Sect. 4.3): a Poisson integrator for Pi.
-  static constexpr SchemeFacts facts{
-      .order = Order,
-      .order_with_torque = 2,
-      .properties = {.symmetric = true, .conserves_momentum_norm = true, .conserves_spatial_momentum = true,
-                     .conserves_vertical_momentum = true, .implicit = true},
-      .support = SceneSupport::conservative_only,
-      .reference = "Hairer & Vilmart, J. Phys. A 39 (2006) 13225-13235, Algorithm 2.2; modified inertia: Table 1 "
-                   "and the authors' DMV10.f"};
-
-  /// Per run: the series constants, the diagonal path's constants and, for a
-  /// free body, the series as polynomials in h² at the initial H and |Π|²/2.
-  template <class Model>
-  void start(const Model& model, const State& initial, double /*t0*/) {
-    prepare(model, initial);
-  }
-  void save_memory(std::vector<double>& out) const { memory_.save(out); }
-  bool restore_memory(std::span<const double> in) { return memory_.restore(in); }
-  /// A free body's css and cdd as polynomials in h² (after start()), for the
-  /// ensemble kernel (integrators/ensemble/dmv_kernel.hpp).
-  const std::array<double, 4>& css_in_h2() const { return css_in_h2_; }
-  const std::array<double, 4>& cdd_in_h2() const { return cdd_in_h2_; }
-
-  template <class Model>
-  static void kick(const Model& model, State& s, moser_veselov::Carry& carry, double t, double tau) {
-    Lgvi::kick(model, s, carry, t, tau);
-  }
-
-  /// The preprocessed DMV step of length h (no kicks): DMV with the modified
-  /// inertia J̃⁻¹ = css J⁻¹ + cdd I at the current H and |Π|²/2 (for a free
-  /// body, the initial ones: the scheme conserves both, header comment).
-  template <class Model>
-  StepStatus free_step(const Model& model, State& s, moser_veselov::Carry& carry, double h) {
-    if (!ready_) prepare(model, s);
-    const Mat3& J_inv = model.inertia.J_inv;
-    if (diag_.diagonal ? diag_.turns_too_far(s.Pi, h) : moser_veselov::turns_too_far(J_inv, s.Pi, h))
-      return moser_veselov::refused_step(moser_veselov::turns_too_far_reason);
-    if constexpr (!moser_veselov::has_potential<Model>) {
-      // Free body, diagonal J: the modified moments depend on h alone (H and C are the run's).
-      if (diag_.diagonal) {
-        if (const moser_veselov::DiagonalMoments* m = moments_by_h_.find(h))
-          return moser_veselov::dmv_step_diagonal(*m, s, carry, h, &memory_.predictor);
-      }
-    }
-    double css = 1.0, cdd = 0.0;
-    const double x = h * h;
-    if constexpr (moser_veselov::has_potential<Model>) {
-      const double H = 0.5 * s.Pi.dot(J_inv * s.Pi);
-      const double C = 0.5 * s.Pi.squaredNorm();
-      series_.evaluate(x * H, x * C, css, cdd);
-    } else {
-      constexpr int degrees = moser_veselov::ModifiedInertiaSeries<Order>::degrees;
-      css = moser_veselov::horner_in_h2(css_in_h2_, degrees, x, 1.0);
-      cdd = moser_veselov::horner_in_h2(cdd_in_h2_, degrees, x, 0.0);
-    }
-    // J̃⁻¹ shares J's principal axes, with moments css/λ_j + cdd: refuse a step
-    // where the truncated series has left them non-positive (h far too large).
-    const Vec3 moments_inv = css * (diag_.diagonal ? diag_.J_inv : principal_inv_) + Vec3::Constant(cdd);
-    if (!(moments_inv.minCoeff() > 0.0))
-      return moser_veselov::refused_step(
-          "step refused: the truncated modified-inertia series is not positive at this h|Omega|; reduce --dt");
-    if (diag_.diagonal) {  // moments_inv = 1/Ĩ_j in J's own order
-      const moser_veselov::DiagonalMoments m(moments_inv.cwiseInverse(), moments_inv);
-      if constexpr (!moser_veselov::has_potential<Model>) moments_by_h_.insert(h, m);
-      return moser_veselov::dmv_step_diagonal(m, s, carry, h, &memory_.predictor);
-    }
-    Mat3 Jt_inv = css * J_inv;
-    Jt_inv.diagonal().array() += cdd;
-    return moser_veselov::dmv_step(Jt_inv.inverse(), Jt_inv, s, carry, h);
-  }
-
-  template <class Model>
-  StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    return moser_veselov::strang_step(*this, model, s, memory_.carry, t, h, work);
-  }
-
- private:
-  template <class Model>
-  void prepare(const Model& model, const State& x) {
-    series_ = moser_veselov::ModifiedInertiaSeries<Order>(model.inertia.principal);
-    principal_inv_ = model.inertia.principal.cwiseInverse();
-    diag_ = moser_veselov::DiagonalInertia(model.inertia);
-    if constexpr (!moser_veselov::has_potential<Model>) {
-      const double H = 0.5 * x.Pi.dot(model.inertia.J_inv * x.Pi);
-      const double C = 0.5 * x.Pi.squaredNorm();
-      series_.coefficients_in_h2(H, C, css_in_h2_, cdd_in_h2_);
-    }
-    moments_by_h_ = {};
-    memory_.reset();
-    ready_ = true;
-  }
-
-  moser_veselov::ModifiedInertiaSeries<Order> series_{};
-  moser_veselov::MomentsByStep moments_by_h_{};  // free body: the modified moments of recent h
-  std::array<double, 4> css_in_h2_{}, cdd_in_h2_{};  // free body: the series in h² (prepare)
-  Vec3 principal_inv_ = Vec3::Ones();
-  moser_veselov::DiagonalInertia diag_{};
-  bool ready_ = false;
-  moser_veselov::StepMemory memory_{};  // carries and the diagonal path's predictor
-};
-
-using DmvPre4 = DmvPreprocessed<4>;
-using DmvPre6 = DmvPreprocessed<6>;
-using DmvPre8 = DmvPreprocessed<8>;
-using DmvPre10 = DmvPreprocessed<10>;
 
 }  // namespace lgi::integrators

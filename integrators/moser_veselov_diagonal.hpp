@@ -66,6 +66,7 @@
 #include <span>
 #include <vector>
 
+#include "integrators/cayley_quaternion.hpp"
 #include "integrators/compensated_sum.hpp"
 #include "integrators/scheme_interface.hpp"
 
@@ -374,25 +375,40 @@ struct StepMemory {
   }
 };
 
+/// The entries of F − I = c N for F = cay(2f): N = f̂ + f̂² (row-major),
+/// f̂² = f fᵀ − |f|² I, c = 2/(1 + |f|²) (moser_veselov.hpp), and |f|².
+struct CayleyIncrement {
+  double N[9], c, ff;
+  explicit CayleyIncrement(const Vec3& f) {
+    const double x = f.x(), y = f.y(), z = f.z();
+    const double xx = x * x, yy = y * y, zz = z * z;
+    ff = (xx + yy) + zz;
+    c = 2.0 / (1.0 + ff);
+    const double xy = x * y, xz = x * z, yz = y * z;
+    const double n[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
+    for (int k = 0; k < 9; ++k) N[k] = n[k];
+  }
+  /// c Nᵀ Π, c last: the increment of Π ← Fᵀ Π.
+  void momentum_increment(const double (&P)[3], double (&dP)[3]) const {
+    for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);
+  }
+};
+
 /// R ← R F, Π ← Fᵀ Π for F = cay(2f), applied as compensated increments with
-/// F − I = 2/(1 + |f|²) (f̂ + f̂²) and f̂² = f fᵀ − |f|² I (moser_veselov.hpp).
+/// F − I = c N (CayleyIncrement).
 inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry) {
-  const double x = f.x(), y = f.y(), z = f.z();
-  const double xx = x * x, yy = y * y, zz = z * z;
-  const double c = 2.0 / (1.0 + ((xx + yy) + zz));
-  const double xy = x * y, xz = x * z, yz = y * z;
-  // N = f̂ + f̂² (row-major), so that cay(2f) − I = c N. The state and the carries
-  // are read into locals and written once at the end: through the references the
-  // compiler must assume they alias, and reloads them after every store.
-  const double N[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
+  const CayleyIncrement F(f);
+  // The state and the carries are read into locals and written once at the end:
+  // through the references the compiler must assume they alias, and reloads
+  // them after every store.
   double P[3], cP[3], R[9], cR[9];
   for (int i = 0; i < 3; ++i) P[i] = s.Pi(i), cP[i] = carry.Pi(i);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) R[3 * i + j] = s.R(i, j), cR[3 * i + j] = carry.R(i, j);
   double cN[9];
-  for (int k = 0; k < 9; ++k) cN[k] = c * N[k];
+  for (int k = 0; k < 9; ++k) cN[k] = F.c * F.N[k];
   double dP[3], dR[9];  // all increments from the old state, then the compensated sums
-  for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);  // c Nᵀ Π, c last
+  F.momentum_increment(P, dP);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) dR[3 * i + j] = (R[3 * i] * cN[j] + R[3 * i + 1] * cN[3 + j]) + R[3 * i + 2] * cN[6 + j];
   for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
@@ -402,17 +418,34 @@ inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry) {
     for (int j = 0; j < 3; ++j) s.R(i, j) = R[3 * i + j], carry.R(i, j) = cR[3 * i + j];
 }
 
+/// The same step with the attitude kept as a quaternion (cayley_quaternion.hpp):
+/// Π as above, to the bit, and q ← q ⊗ p; s.R is left as it was.
+inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry, CayleyQuaternion& attitude) {
+  const CayleyIncrement F(f);
+  double P[3], cP[3], dP[3];
+  for (int i = 0; i < 3; ++i) P[i] = s.Pi(i), cP[i] = carry.Pi(i);
+  F.momentum_increment(P, dP);
+  for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
+  const double fa[3] = {f.x(), f.y(), f.z()};
+  attitude.rotate(fa, F.ff);
+  for (int i = 0; i < 3; ++i) s.Pi(i) = P[i], carry.Pi(i) = cP[i];
+}
+
 /// One DMV step of length h with diagonal moments m on the state as it is
 /// (no kicks); state and carry are untouched if the solve fails. With a
 /// predictor, the solve starts from its guess once it holds six steps of this
 /// length, and the accepted w = J f is recorded (a failure starts it anew).
+/// With an attitude, the step rotates it and leaves s.R (cayley_quaternion.hpp).
 inline StepStatus dmv_step_diagonal(const DiagonalMoments& m, State& s, Carry& carry, double h,
-                                    CayleyPredictor* predictor = nullptr) {
+                                    CayleyPredictor* predictor = nullptr, CayleyQuaternion* attitude = nullptr) {
   DiagonalSolution x;
   const StepStatus st = predictor && predictor->ready(h)
                             ? solve_cayley_parameter_predicted(m, h, s.Pi, predictor->guess(h), x)
                             : solve_cayley_parameter_diagonal(m, h, s.Pi, x);
-  if (st.converged) apply_cayley_step(x.f, s, carry);
+  if (st.converged) {
+    if (attitude) apply_cayley_step(x.f, s, carry, *attitude);
+    else apply_cayley_step(x.f, s, carry);
+  }
   if (predictor) {
     if (st.converged) predictor->record(h, x.w);
     else predictor->reset();

@@ -1,5 +1,5 @@
 // Registry lines for: dmv, lgvi, dmv-pre4..10 (structure-preserving schemes, docs/math.md §5).
-#include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/registry_support.hpp"
 
 namespace lgi::integrators {

@@ -21,6 +21,14 @@
 //   template <class Model> State observable(const Model&, const State& y, WorkCounters&) const;
 // the trajectory's state for observers and for the run's end (stepper_loop.hpp);
 // such a scheme locates no events (SchemeInfo::locates_events is false).
+// Optional, for a scheme that keeps the attitude in its own form along a run
+// (the preprocessed DMV on a free body: a quaternion, cayley_quaternion.hpp):
+//   template <class Model> StepStatus step_keeping_attitude(const Model&, State&, double t, double h, WorkCounters&);
+//   void write_attitude(State&) const;
+// the first advances Π and the scheme's attitude and leaves s.R as it was;
+// the second sets s.R from it. The loop writes R only where R is read
+// (stepper_loop.hpp, "Kept attitude"); step() must be both, so that any
+// other caller sees a complete state.
 // Schemes never write files and never renormalise the attitude (a baseline
 // chart that projects, quat-normalized, says so in its name).
 //

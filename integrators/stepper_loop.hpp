@@ -56,6 +56,20 @@
 //
 // With all four null, the loop is the one it always was: the same steps,
 // the same arithmetic and the same observe() calls.
+//
+// Kept attitude (detail::keeps_attitude; the preprocessed DMV on a free body,
+// integrators/cayley_quaternion.hpp): the scheme carries the attitude as a
+// quaternion q, and the loop steps it with step_keeping_attitude(), which
+// advances Π and q and leaves s.R as it was. The loop has R = R(q) written
+// into s wherever R is read: before a sample (observe_step), after every
+// step of a run with events (and after each step of their search), into a
+// checkpoint's state, and at the run's end, whatever ended it. The check for
+// a non-finite state reads s as it is, the new Π and the R last written: q
+// is non-finite only if the initial R was (then so is the R the check reads)
+// or if the Cayley parameter was, which makes Π non-finite in the same step.
+// The run's steps, samples and final state are those of step() at every
+// step (step() = step_keeping_attitude() + write_attitude();
+// tests/test_kept_attitude.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -131,15 +145,8 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     const double t_start = t;
     t = t_next;
     if (events) {
-      // The search's steps are taken as the run's are (with the same halving retries).
-      auto advance = [&](double theta, State& x) {
-        Scheme copy = *scheme_before;
-        x = x_before;
-        if (cfg.retry_halving > 0)
-          return detail::step_with_halving(copy, model, x, t_start, theta, cfg.retry_halving, stats.work).converged;
-        return copy.step(model, x, t_start, theta, stats.work).converged;
-      };
-      std::string why = detail::report_crossings(*events, g, t_start, t - t_start, x_before, s, k + 1, advance, observer);
+      std::string why = detail::fixed_step_crossings(scheme, *scheme_before, model, cfg, g, t_start, t, x_before, s,
+                                                     k + 1, observer, stats.work);
       if (!why.empty()) {
         detail::mark_failed(stats, std::move(why));
         break;
@@ -149,6 +156,7 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
       break;
     if (k + 1 < n) detail::offer_checkpoint<Scheme, Model, false>(scheme, cfg, k + 1, t, 0.0, s, stats);
   }
+  if constexpr (detail::keeps_attitude<Scheme, Model>) scheme.write_attitude(s);
   // The run's final state is the trajectory's (processed_composition.hpp):
   // the one observed after the last step taken, if it was observed.
   if constexpr (detail::has_observable_state<Scheme, Model>)

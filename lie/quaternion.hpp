@@ -50,14 +50,24 @@ inline Eigen::Quaterniond quat_from_matrix(const Eigen::Matrix3d& R) {
   return Eigen::Quaterniond(w, x, y, z);
 }
 
-/// R(q) for a unit quaternion (no normalisation: a non-unit q gives a
-/// non-orthogonal matrix, which the orthogonality observable then shows).
+/// The entries of R(q), row-major, for a unit quaternion (w, x, y, z) of any
+/// arithmetic type T (a double, or the SIMD lanes of integrators/ensemble/,
+/// which must round as the scalar code does): R = I + 2w x̂ + 2x̂², x = (x, y, z).
+/// No normalisation: a non-unit q gives a non-orthogonal matrix, which the
+/// orthogonality observable then shows.
+template <class T>
+inline void rotation_entries(const T& w, const T& x, const T& y, const T& z, T (&R)[9]) {
+  R[0] = 1.0 - 2.0 * (y * y + z * z), R[1] = 2.0 * (x * y - w * z), R[2] = 2.0 * (x * z + w * y);
+  R[3] = 2.0 * (x * y + w * z), R[4] = 1.0 - 2.0 * (x * x + z * z), R[5] = 2.0 * (y * z - w * x);
+  R[6] = 2.0 * (x * z - w * y), R[7] = 2.0 * (y * z + w * x), R[8] = 1.0 - 2.0 * (x * x + y * y);
+}
+
+/// R(q) for a unit quaternion (rotation_entries).
 inline Eigen::Matrix3d matrix_from_quat(const Eigen::Quaterniond& q) {
-  const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
+  double e[9];
+  rotation_entries(q.w(), q.x(), q.y(), q.z(), e);
   Eigen::Matrix3d R;
-  R << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),  //
-      2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),   //
-      2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
+  R << e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8];
   return R;
 }
 

@@ -18,7 +18,7 @@
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
-#include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/registry.hpp"
 
 using namespace lgi;

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_series.hpp"
 #include "support/registered_run.hpp"
 
 using namespace lgi;

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"

@@ -6,7 +6,7 @@
 
 #include "integrators/ensemble/lane_fallback.hpp"
 #include "integrators/loop_support.hpp"
-#include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_preprocessed.hpp"
 
 namespace lgi::integrators::ensemble {
 
@@ -44,6 +44,8 @@ class DmvFallback final : public LaneFallback {
       x.Pi(i) = block.row[9 + i][lane];
     }
     out.work = {};
+    // The loop's step (detail::loop_step): the preprocessed schemes keep the
+    // attitude in the lane's memory (dmv_rows::quaternion), and x.R is left.
     out.status = retry_halving > 0 ? detail::step_with_halving(scheme, model_, x, t, h, retry_halving, out.work)
                                    : detail::recorded_step(scheme, model_, x, t, h, out.work);
     for (int i = 0; i < 3; ++i) {
@@ -57,8 +59,11 @@ class DmvFallback final : public LaneFallback {
                  WorkCounters& work) override {
     Scheme copy = schemes_[static_cast<std::size_t>(lane)];
     if (!copy.restore_memory(snapshot)) return false;
-    if (retry_halving > 0) return detail::step_with_halving(copy, model_, x, t, h, retry_halving, work).converged;
-    return copy.step(model_, x, t, h, work).converged;
+    const bool stepped = retry_halving > 0
+                             ? detail::step_with_halving(copy, model_, x, t, h, retry_halving, work).converged
+                             : detail::loop_step(copy, model_, x, t, h, work).converged;
+    if constexpr (detail::keeps_attitude<Scheme, system::FreeBody>) copy.write_attitude(x);  // R(q), as the loop's
+    return stepped;
   }
 
  private:

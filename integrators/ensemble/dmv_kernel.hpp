@@ -1,6 +1,6 @@
 #pragma once
 // The DMV step (dmv, lgvi and the preprocessed dmv-pre4 … dmv-pre10,
-// moser_veselov.hpp) on a free body with diagonal J, for lane numbers: the common step of a run, in
+// moser_veselov.hpp, moser_veselov_preprocessed.hpp) on a free body with diagonal J, for lane numbers: the common step of a run, in
 // which the predictor holds six steps of this length and its guess passes
 // after one Newton correction (moser_veselov_diagonal.hpp,
 // solve_cayley_parameter_predicted). Every other case (the first six steps,
@@ -19,13 +19,16 @@
 //   a = h Π, ψ at the guess with f = μ ∘ w (DiagonalPsi), the Jacobian,
 //     Cramer's rule, w = p − δ, accepted when (c |δ|²)² ≤ 1e-38 |w|² and |δ|²
 //     is finite; f = μ ∘ w;
-//   R ← R cay(2f), Π ← cay(2f)ᵀ Π as compensated sums (apply_cayley_step);
+//   Π ← cay(2f)ᵀ Π, and R ← R cay(2f) (dmv, lgvi) or, for the preprocessed
+//     schemes, q ← q ⊗ p (cayley_quaternion.hpp; R(q) is formed by
+//     EnsembleStepper::get_lane), as compensated sums (apply_cayley_step);
 //   the history shifted, (1/h) w first.
 // tests/test_ensemble_dmv.cpp checks the lanes against the scalar schemes step by step.
 #include <bit>
 #include <cstdint>
 #include <numbers>
 
+#include "integrators/cayley_quaternion_increment.hpp"
 #include "integrators/compensated_sum.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
@@ -87,22 +90,46 @@ inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h
   return positive;
 }
 
-/// R ← R F, Π ← Fᵀ Π with their carries, F = cay(2f) (apply_cayley_step).
+/// c = 2/(1 + |f|²), |f|² and N = f̂ + f̂² of F − I = c N for F = cay(2f)
+/// (moser_veselov::CayleyIncrement).
 template <class T>
-inline void apply_cayley_step(const T (&f)[3], T (&P)[3], T (&cP)[3], T (&R)[9], T (&cR)[9]) {
-  const T x = f[0], y = f[1], z = f[2];
-  const T xx = x * x, yy = y * y, zz = z * z;
-  const T c = 2.0 / (1.0 + ((xx + yy) + zz));
-  const T xy = x * y, xz = x * z, yz = y * z;
-  const T N[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
-  T cN[9];
-  for (int k = 0; k < 9; ++k) cN[k] = c * N[k];
-  T dP[3], dR[9];
-  for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);
+struct LaneCayley {
+  T c, ff, N[9];
+  explicit LaneCayley(const T (&f)[3]) {
+    const T x = f[0], y = f[1], z = f[2];
+    const T xx = x * x, yy = y * y, zz = z * z;
+    ff = (xx + yy) + zz;
+    c = 2.0 / (1.0 + ff);
+    const T xy = x * y, xz = x * z, yz = y * z;
+    const T n[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
+    for (int k = 0; k < 9; ++k) N[k] = n[k];
+  }
+};
+
+/// Π ← Fᵀ Π with its carry (CayleyIncrement::momentum_increment, apply_cayley_step).
+template <class T>
+inline void rotate_momentum(const LaneCayley<T>& F, T (&P)[3], T (&cP)[3]) {
+  T dP[3];
+  for (int j = 0; j < 3; ++j) dP[j] = F.c * ((F.N[j] * P[0] + F.N[3 + j] * P[1]) + F.N[6 + j] * P[2]);
+  for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
+}
+
+/// R ← R F with its carry (apply_cayley_step): dmv and lgvi.
+template <class T>
+inline void rotate_matrix(const LaneCayley<T>& F, T (&R)[9], T (&cR)[9]) {
+  T cN[9], dR[9];
+  for (int k = 0; k < 9; ++k) cN[k] = F.c * F.N[k];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) dR[3 * i + j] = (R[3 * i] * cN[j] + R[3 * i + 1] * cN[3 + j]) + R[3 * i + 2] * cN[6 + j];
-  for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
   for (int k = 0; k < 9; ++k) add_compensated(R[k], dR[k], cR[k]);
+}
+
+/// q ← q ⊗ p with its carry (CayleyQuaternion::rotate): the preprocessed schemes.
+template <class T>
+inline void rotate_quaternion(const LaneCayley<T>& F, const T (&f)[3], T (&q)[4], T (&cq)[4]) {
+  T dq[4];
+  moser_veselov::cayley_quaternion_increment(q, f, F.ff, dq);
+  for (int i = 0; i < 4; ++i) add_compensated(q[i], dq[i], cq[i]);
 }
 
 /// The unknown w = J f from the predictor's guess p (one Newton correction on
@@ -156,10 +183,8 @@ LGI_FLATTEN inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock
   constexpr int K = T::batches;
   namespace rows = dmv_rows;
   auto ld = [](const double* p) { return load<B, K>(p); };
-  T P[3], R[9], cP[3], cR[9], hist[6][3];
+  T P[3], cP[3], hist[6][3];
   for (int i = 0; i < 3; ++i) P[i] = ld(block.row[9 + i]), cP[i] = ld(memory.row[rows::carry_Pi + i]);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) R[3 * i + j] = ld(block.row[3 * i + j]), cR[3 * i + j] = ld(memory.row[rows::carry_R + i + 3 * j]);
   for (int m = 0; m < 6; ++m)
     for (int i = 0; i < 3; ++i) hist[m][i] = ld(memory.row[rows::history + 3 * m + i]);
   const T count = ld(memory.row[rows::count]), h_history = ld(memory.row[rows::step]);
@@ -176,17 +201,35 @@ LGI_FLATTEN inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock
                     (6.0 * hist[4][i] - hist[5][i]));
   }
   ok = ok & dmv_detail::predicted_parameter(mu, two_mu, d, bound, a, guess, w, f);
-  T P1[3] = {P[0], P[1], P[2]}, R1[9], cP1[3] = {cP[0], cP[1], cP[2]}, cR1[9];
-  for (int k = 0; k < 9; ++k) R1[k] = R[k], cR1[k] = cR[k];
-  dmv_detail::apply_cayley_step(f, P1, cP1, R1, cR1);
+  const dmv_detail::LaneCayley<T> F(f);
+  T P1[3] = {P[0], P[1], P[2]}, cP1[3] = {cP[0], cP[1], cP[2]};
+  dmv_detail::rotate_momentum(F, P1, cP1);
   // Only the lanes that passed change; the others keep their state and memory for the scalar step.
   for (int i = 0; i < 3; ++i) {
     store(select(ok, P1[i], P[i]), block.row[9 + i]);
     store(select(ok, cP1[i], cP[i]), memory.row[rows::carry_Pi + i]);
-    for (int j = 0; j < 3; ++j) {
-      store(select(ok, R1[3 * i + j], R[3 * i + j]), block.row[3 * i + j]);
-      store(select(ok, cR1[3 * i + j], cR[3 * i + j]), memory.row[rows::carry_R + i + 3 * j]);
+  }
+  if (model.preprocessed) {  // the attitude is q (rows::quaternion), block's R rows are left
+    T q[4], cq[4], q1[4], cq1[4];
+    for (int i = 0; i < 4; ++i)
+      q[i] = q1[i] = ld(memory.row[rows::quaternion + i]), cq[i] = cq1[i] = ld(memory.row[rows::quaternion_carry + i]);
+    dmv_detail::rotate_quaternion(F, f, q1, cq1);
+    for (int i = 0; i < 4; ++i) {
+      store(select(ok, q1[i], q[i]), memory.row[rows::quaternion + i]);
+      store(select(ok, cq1[i], cq[i]), memory.row[rows::quaternion_carry + i]);
     }
+  } else {
+    T R[9], cR[9], R1[9], cR1[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        R[3 * i + j] = R1[3 * i + j] = ld(block.row[3 * i + j]),
+                  cR[3 * i + j] = cR1[3 * i + j] = ld(memory.row[rows::carry_R + i + 3 * j]);
+    dmv_detail::rotate_matrix(F, R1, cR1);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        store(select(ok, R1[3 * i + j], R[3 * i + j]), block.row[3 * i + j]);
+        store(select(ok, cR1[3 * i + j], cR[3 * i + j]), memory.row[rows::carry_R + i + 3 * j]);
+      }
   }
   for (int m = 5; m >= 0; --m)
     for (int i = 0; i < 3; ++i)

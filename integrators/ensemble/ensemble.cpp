@@ -8,6 +8,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "integrators/cayley_quaternion.hpp"
+
 namespace lgi::integrators::ensemble {
 
 namespace {
@@ -187,6 +189,11 @@ void EnsembleStepper::get_lane(int lane, State& s) const {
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) s.R(i, j) = block_.row[3 * i + j][l];
     s.Pi(i) = block_.row[9 + i][l];
+  }
+  if (fallback_ && model_.preprocessed) {  // the attitude is q (dmv_rows::quaternion), R(q) as the scalar scheme writes it
+    moser_veselov::CayleyQuaternion kept;
+    for (int i = 0; i < 4; ++i) kept.q[i] = memory_.row[dmv_rows::quaternion + i][l];
+    kept.write(s.R);
   }
 }
 

@@ -52,7 +52,11 @@ struct alignas(64) LaneBlock {
 /// the kernel's verdict per lane.
 namespace dmv_rows {
 inline constexpr int carry_Pi = 0;   // 3 rows
-inline constexpr int carry_R = 3;    // 9 rows: carry.R(i, j) at carry_R + i + 3 j
+inline constexpr int carry_R = 3;    // 9 rows: carry.R(i, j) at carry_R + i + 3 j (dmv, lgvi)
+// The preprocessed schemes keep a free body's attitude as a quaternion
+// (DmvPreprocessed::save_memory) in R's carry's rows: q (w, x, y, z), its carry.
+inline constexpr int quaternion = 3;        // 4 rows
+inline constexpr int quaternion_carry = 7;  // 4 rows
 inline constexpr int count = 12;     // the predictor's valid entries
 inline constexpr int step = 13;      // the step length of its history
 inline constexpr int history = 14;   // 18 rows: w_{k−m}/h_{k−m} component i at history + 3 m + i (w = J f)

@@ -5,7 +5,7 @@
 #include <variant>
 
 #include "integrators/ensemble/ensemble_loop.hpp"
-#include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/rkmk.hpp"
 
 namespace lgi::integrators::ensemble {

@@ -9,14 +9,16 @@
 //    one trajectory). A step bound by its chain of dependent operations
 //    (Π → f → Π) would overlap with the other trajectory's and cost less per
 //    step in alternation; a step bound by throughput costs the same.
+//    The steps are the time loop's (step_keeping_attitude: the attitude kept
+//    as a quaternion, R not formed; stepper_loop.hpp, "Kept attitude").
 //  - limits/dmv-update/matrix and limits/dmv-update/quaternion: the state
 //    update of a free-body DMV step alone, Π ← cay(2f)ᵀ Π with R ← R cay(2f)
-//    (moser_veselov::apply_cayley_step), and with the attitude as a unit
-//    quaternion q ← q (1, f)/√(1 + |f|²) instead (written here only to be
-//    timed), both as compensated sums, over a sequence of slightly varying f;
-//    and .../quaternion_and_matrix, with R formed from q after every update,
-//    as a step would for the loop that reads R (README, "The arithmetic limit":
-//    the quaternion was not built).
+//    (moser_veselov::apply_cayley_step, as dmv and lgvi take it), and with the
+//    attitude as a unit quaternion q ← q ⊗ (1, f)/√(1 + |f|²) instead (the
+//    preprocessed schemes' on a free body, cayley_quaternion.hpp), both as
+//    compensated sums, over a sequence of slightly varying f; and
+//    .../quaternion_and_matrix, with R formed from q after every update, as a
+//    step for a caller that reads R after every step (step()).
 // scripts/benchmark_ratios.py prints the three on one line, outside the per-scheme table.
 #include <benchmark/benchmark.h>
 
@@ -26,9 +28,8 @@
 #include <variant>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/moser_veselov.hpp"
+#include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/system/model.hpp"
-#include "lie/quaternion.hpp"
 
 using namespace lgi;
 
@@ -95,7 +96,7 @@ void dmv_pre10_steps(benchmark::State& state) {
     }
     for (int k = 0; k < steps; ++k)
       for (std::size_t j = 0; j < Trajectories; ++j)
-        if (!scheme[j].step(body, x[j], k * h, h, work).converged) failed = true;
+        if (!scheme[j].step_keeping_attitude(body, x[j], k * h, h, work).converged) failed = true;
     if (failed) {
       state.SkipWithError("a step did not converge");
       break;
@@ -107,30 +108,6 @@ void dmv_pre10_steps(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-// The quaternion of cay(2f) is (1, f)/r with r = √(1 + |f|²); with d = 1/(r (1 + r)),
-// 1/r = (1 + r) d and 1/r − 1 = −|f|² d, so q's increment q ⊗ ((1, f)/r − 1) is
-// (1/r − 1) q + (1/r) q ⊗ (0, f), without cancellation. Π as in apply_cayley_step.
-struct QuaternionState {
-  double q[4] = {1.0, 0.0, 0.0, 0.0}, q_carry[4] = {};
-  double P[3] = {}, P_carry[3] = {};
-};
-[[gnu::always_inline]] inline void apply_cayley_step_quaternion(const lie::Vec3& f, QuaternionState& s) {
-  const double x = f.x(), y = f.y(), z = f.z();
-  const double xx = x * x, yy = y * y, zz = z * z, ff = (xx + yy) + zz;
-  const double c = 2.0 / (1.0 + ff);
-  const double xy = x * y, xz = x * z, yz = y * z;
-  const double N[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
-  double dP[3];
-  for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * s.P[0] + N[3 + j] * s.P[1]) + N[6 + j] * s.P[2]);
-  for (int j = 0; j < 3; ++j) integrators::add_compensated(s.P[j], dP[j], s.P_carry[j]);
-  const double r = std::sqrt(1.0 + ff), d = 1.0 / (r * (1.0 + r));
-  const double inv_r = (1.0 + r) * d, inv_r_minus_1 = -ff * d;
-  const double w = s.q[0], a = s.q[1], b = s.q[2], e = s.q[3];
-  const double p[4] = {-((a * x + b * y) + e * z), w * x + (b * z - e * y), w * y + (e * x - a * z),
-                       w * z + (a * y - b * x)};  // q ⊗ (0, f)
-  for (int k = 0; k < 4; ++k) integrators::add_compensated(s.q[k], inv_r_minus_1 * s.q[k] + inv_r * p[k], s.q_carry[k]);
-}
-
 enum class Attitude { matrix, quaternion, quaternion_and_matrix };
 
 // 2048 updates with f near Hairer & Vilmart's body's at h = 0.01 (|f| ≈ 0.01).
@@ -140,20 +117,18 @@ void dmv_update(benchmark::State& state) {
   for (auto _ : state) {
     system::State x{lie::Mat3::Identity(), lie::Vec3(1.8, 0.4, -0.9)};
     integrators::moser_veselov::Carry carry;
-    QuaternionState qs;
-    qs.P[0] = 1.8, qs.P[1] = 0.4, qs.P[2] = -0.9;
+    integrators::moser_veselov::CayleyQuaternion q;
     for (int k = 0; k < steps; ++k) {
       const lie::Vec3 f(0.009, 0.0025 + 1e-12 * (k & 7), -0.0045);
       if constexpr (A == Attitude::matrix) {
         integrators::moser_veselov::apply_cayley_step(f, x, carry);
       } else {
-        apply_cayley_step_quaternion(f, qs);
-        if constexpr (A == Attitude::quaternion_and_matrix)
-          x.R = lie::matrix_from_quat(Eigen::Quaterniond(qs.q[0], qs.q[1], qs.q[2], qs.q[3]));
+        integrators::moser_veselov::apply_cayley_step(f, x, carry, q);
+        if constexpr (A == Attitude::quaternion_and_matrix) q.write(x.R);
       }
       // The state is in memory after every step, as the time loop's is.
       benchmark::DoNotOptimize(x);
-      benchmark::DoNotOptimize(qs);
+      benchmark::DoNotOptimize(q);
     }
   }
   state.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(state.iterations()) * steps * 1e-9,
