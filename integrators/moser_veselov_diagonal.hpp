@@ -66,6 +66,7 @@
 #include <span>
 #include <vector>
 
+#include "integrators/cayley_increment.hpp"
 #include "integrators/cayley_quaternion.hpp"
 #include "integrators/compensated_sum.hpp"
 #include "integrators/scheme_interface.hpp"
@@ -375,29 +376,11 @@ struct StepMemory {
   }
 };
 
-/// The entries of F − I = c N for F = cay(2f): N = f̂ + f̂² (row-major),
-/// f̂² = f fᵀ − |f|² I, c = 2/(1 + |f|²) (moser_veselov.hpp), and |f|².
-struct CayleyIncrement {
-  double N[9], c, ff;
-  explicit CayleyIncrement(const Vec3& f) {
-    const double x = f.x(), y = f.y(), z = f.z();
-    const double xx = x * x, yy = y * y, zz = z * z;
-    ff = (xx + yy) + zz;
-    c = 2.0 / (1.0 + ff);
-    const double xy = x * y, xz = x * z, yz = y * z;
-    const double n[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
-    for (int k = 0; k < 9; ++k) N[k] = n[k];
-  }
-  /// c Nᵀ Π, c last: the increment of Π ← Fᵀ Π.
-  void momentum_increment(const double (&P)[3], double (&dP)[3]) const {
-    for (int j = 0; j < 3; ++j) dP[j] = c * ((N[j] * P[0] + N[3 + j] * P[1]) + N[6 + j] * P[2]);
-  }
-};
-
 /// R ← R F, Π ← Fᵀ Π for F = cay(2f), applied as compensated increments with
-/// F − I = c N (CayleyIncrement).
+/// F − I = c N (cayley_increment.hpp).
 inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry) {
-  const CayleyIncrement F(f);
+  const double fa[3] = {f.x(), f.y(), f.z()};
+  const CayleyIncrement<double> F(fa);
   // The state and the carries are read into locals and written once at the end:
   // through the references the compiler must assume they alias, and reloads
   // them after every store.
@@ -421,12 +404,12 @@ inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry) {
 /// The same step with the attitude kept as a quaternion (cayley_quaternion.hpp):
 /// Π as above, to the bit, and q ← q ⊗ p; s.R is left as it was.
 inline void apply_cayley_step(const Vec3& f, State& s, Carry& carry, CayleyQuaternion& attitude) {
-  const CayleyIncrement F(f);
+  const double fa[3] = {f.x(), f.y(), f.z()};
+  const CayleyIncrement<double> F(fa);
   double P[3], cP[3], dP[3];
   for (int i = 0; i < 3; ++i) P[i] = s.Pi(i), cP[i] = carry.Pi(i);
   F.momentum_increment(P, dP);
   for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
-  const double fa[3] = {f.x(), f.y(), f.z()};
   attitude.rotate(fa, F.ff);
   for (int i = 0; i < 3; ++i) s.Pi(i) = P[i], carry.Pi(i) = cP[i];
 }

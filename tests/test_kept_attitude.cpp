@@ -56,6 +56,19 @@ StepByStep run_with_step(const system::FreeBody& body, const State& x0, double h
   return r;
 }
 
+/// One run of dmv-pre10 through the loop from x0: its samples, stats and final state.
+struct LoopRun {
+  Recorder samples;
+  State x;
+  integrators::RunStats stats;
+};
+LoopRun loop_run(const system::FreeBody& body, const State& x0, const integrators::RunConfig& cfg) {
+  LoopRun r{{}, x0, {}};
+  integrators::DmvPre10 scheme;
+  r.stats = integrators::integrate_fixed(scheme, body, r.x, cfg, r.samples);
+  return r;
+}
+
 /// The third entry of R's last row (an event function that reads the attitude).
 struct TiltCrossing final : integrators::EventFunctions {
   int count() const override { return 1; }
@@ -132,10 +145,7 @@ TEST_CASE("the loop's kept attitude is step()'s run bit for bit", "[variational]
   cfg.cpu_clock = false;
 
   SECTION("every step observed") {
-    Recorder r;
-    State x = x0;
-    integrators::DmvPre10 scheme;
-    const integrators::RunStats st = integrators::integrate_fixed(scheme, body, x, cfg, r);
+    const auto [r, x, st] = loop_run(body, x0, cfg);
     REQUIRE(st.ok);
     REQUIRE(r.states.size() == each.samples.states.size());
     for (std::size_t k = 0; k < r.states.size(); ++k) CHECK(same_bits(r.states[k], each.samples.states[k]));
@@ -147,10 +157,8 @@ TEST_CASE("the loop's kept attitude is step()'s run bit for bit", "[variational]
       integrators::RunConfig c = cfg;
       c.save_every = 37;
       if (times) c.output_times = &at;
-      Recorder r;
-      State x = x0;
-      integrators::DmvPre10 scheme;
-      REQUIRE(integrators::integrate_fixed(scheme, body, x, c, r).ok);
+      const auto [r, x, st] = loop_run(body, x0, c);
+      REQUIRE(st.ok);
       for (std::size_t k = 0; k < r.states.size(); ++k) {
         INFO("sample at step " << r.steps[k]);
         CHECK(same_bits(r.states[k], each.samples.states[static_cast<std::size_t>(r.steps[k])]));
@@ -164,10 +172,8 @@ TEST_CASE("the loop's kept attitude is step()'s run bit for bit", "[variational]
     integrators::RunConfig c = cfg;
     c.save_every = 1000;
     c.events = &tilt;
-    Recorder r;
-    State x = x0;
-    integrators::DmvPre10 scheme;
-    REQUIRE(integrators::integrate_fixed(scheme, body, x, c, r).ok);
+    const auto [r, x, st] = loop_run(body, x0, c);
+    REQUIRE(st.ok);
     CHECK(same_bits(x, each.final_state));
     REQUIRE(r.hits.size() >= 2);
     for (const integrators::EventHit& hit : r.hits) {
@@ -183,10 +189,7 @@ TEST_CASE("the loop's kept attitude is step()'s run bit for bit", "[variational]
     integrators::RunConfig c = cfg;
     c.save_every = 1000;
     c.stop = &stop;
-    Recorder r;
-    State x = x0;
-    integrators::DmvPre10 scheme;
-    const integrators::RunStats st = integrators::integrate_fixed(scheme, body, x, c, r);
+    const auto [r, x, st] = loop_run(body, x0, c);
     CHECK(st.interrupted);
     REQUIRE(st.steps == 1);
     CHECK(same_bits(r.states.back(), each.samples.states[1]));
@@ -196,10 +199,7 @@ TEST_CASE("the loop's kept attitude is step()'s run bit for bit", "[variational]
     integrators::RunConfig c = cfg;
     c.dt = 1e4 * h;  // |h Ω| > π: refused at the first step, which leaves q as it was
     c.t_end = 2e4 * h;
-    Recorder r;
-    State x = x0;
-    integrators::DmvPre10 scheme;
-    const integrators::RunStats st = integrators::integrate_fixed(scheme, body, x, c, r);
+    const auto [r, x, st] = loop_run(body, x0, c);
     CHECK_FALSE(st.ok);
     CHECK((x.R - x0.R).lpNorm<Eigen::Infinity>() <= 1e-15);
     CHECK(same_bits(x.Pi.data(), x0.Pi.data(), 3));

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "integrators/cayley_increment.hpp"
 #include "integrators/cayley_quaternion_increment.hpp"
 #include "integrators/compensated_sum.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
@@ -90,33 +91,17 @@ inline auto moments_for(const EnsembleModel& model, LaneMemory& memory, double h
   return positive;
 }
 
-/// c = 2/(1 + |f|²), |f|² and N = f̂ + f̂² of F − I = c N for F = cay(2f)
-/// (moser_veselov::CayleyIncrement).
-template <class T>
-struct LaneCayley {
-  T c, ff, N[9];
-  explicit LaneCayley(const T (&f)[3]) {
-    const T x = f[0], y = f[1], z = f[2];
-    const T xx = x * x, yy = y * y, zz = z * z;
-    ff = (xx + yy) + zz;
-    c = 2.0 / (1.0 + ff);
-    const T xy = x * y, xz = x * z, yz = y * z;
-    const T n[9] = {-(yy + zz), xy - z, xz + y, xy + z, -(xx + zz), yz - x, xz - y, yz + x, -(xx + yy)};
-    for (int k = 0; k < 9; ++k) N[k] = n[k];
-  }
-};
-
 /// Π ← Fᵀ Π with its carry (CayleyIncrement::momentum_increment, apply_cayley_step).
 template <class T>
-inline void rotate_momentum(const LaneCayley<T>& F, T (&P)[3], T (&cP)[3]) {
+inline void rotate_momentum(const moser_veselov::CayleyIncrement<T>& F, T (&P)[3], T (&cP)[3]) {
   T dP[3];
-  for (int j = 0; j < 3; ++j) dP[j] = F.c * ((F.N[j] * P[0] + F.N[3 + j] * P[1]) + F.N[6 + j] * P[2]);
+  F.momentum_increment(P, dP);
   for (int j = 0; j < 3; ++j) add_compensated(P[j], dP[j], cP[j]);
 }
 
 /// R ← R F with its carry (apply_cayley_step): dmv and lgvi.
 template <class T>
-inline void rotate_matrix(const LaneCayley<T>& F, T (&R)[9], T (&cR)[9]) {
+inline void rotate_matrix(const moser_veselov::CayleyIncrement<T>& F, T (&R)[9], T (&cR)[9]) {
   T cN[9], dR[9];
   for (int k = 0; k < 9; ++k) cN[k] = F.c * F.N[k];
   for (int i = 0; i < 3; ++i)
@@ -126,7 +111,7 @@ inline void rotate_matrix(const LaneCayley<T>& F, T (&R)[9], T (&cR)[9]) {
 
 /// q ← q ⊗ p with its carry (CayleyQuaternion::rotate): the preprocessed schemes.
 template <class T>
-inline void rotate_quaternion(const LaneCayley<T>& F, const T (&f)[3], T (&q)[4], T (&cq)[4]) {
+inline void rotate_quaternion(const moser_veselov::CayleyIncrement<T>& F, const T (&f)[3], T (&q)[4], T (&cq)[4]) {
   T dq[4];
   moser_veselov::cayley_quaternion_increment(q, f, F.ff, dq);
   for (int i = 0; i < 4; ++i) add_compensated(q[i], dq[i], cq[i]);
@@ -201,7 +186,7 @@ LGI_FLATTEN inline bool dmv_pre_block_step(const EnsembleModel& model, LaneBlock
                     (6.0 * hist[4][i] - hist[5][i]));
   }
   ok = ok & dmv_detail::predicted_parameter(mu, two_mu, d, bound, a, guess, w, f);
-  const dmv_detail::LaneCayley<T> F(f);
+  const moser_veselov::CayleyIncrement<T> F(f);
   T P1[3] = {P[0], P[1], P[2]}, cP1[3] = {cP[0], cP[1], cP[2]};
   dmv_detail::rotate_momentum(F, P1, cP1);
   // Only the lanes that passed change; the others keep their state and memory for the scalar step.
