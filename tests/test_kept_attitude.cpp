@@ -8,6 +8,7 @@
 //    an event function of R, the final state, with output times, after an
 //    interruption and after a failed step;
 //  - a resumed run goes on bit for bit;
+//  - a non-finite attitude stops the run at its first step;
 //  - step() takes up a state the caller sets (no stale quaternion);
 //  - |q| and RᵀR stay 1 to round-off over 10⁵ steps, without renormalisation.
 #include <catch2/catch.hpp>
@@ -16,6 +17,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <string>
 
 #include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/stepper_loop.hpp"
@@ -204,6 +206,22 @@ TEST_CASE("the loop's kept attitude is step()'s run bit for bit", "[variational]
     CHECK((x.R - x0.R).lpNorm<Eigen::Infinity>() <= 1e-15);
     CHECK(same_bits(x.Pi.data(), x0.Pi.data(), 3));
   }
+}
+
+// Π's update never reads the attitude, so a NaN attitude is caught only by
+// the loop's blow-up check (which reads the R set at the start and kept
+// since, stepper_loop.hpp, "Kept attitude"): it must end the run at its first step.
+TEST_CASE("a non-finite kept attitude stops the run as a blow-up", "[variational][quaternion][time-loop]") {
+  const system::FreeBody body = hairer_vilmart_body();
+  State x0 = initial_state();
+  x0.R(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  integrators::RunConfig cfg{0.0, 1.0, 0.01, 0.0, 10};
+  cfg.cpu_clock = false;
+  const auto [r, x, st] = loop_run(body, x0, cfg);
+  CHECK_FALSE(st.ok);
+  CHECK(st.steps == 1);
+  CHECK(st.status.find("non-finite") != std::string::npos);
+  CHECK(std::isfinite(x.Pi.squaredNorm()));
 }
 
 TEST_CASE("a free body's dmv-pre10 run resumes bit for bit from a checkpoint", "[variational][quaternion][resume]") {
