@@ -358,4 +358,9 @@ latexmk -pdf -interaction=nonstopmode -halt-on-error -file-line-error -outdir="$
   || { grep -A3 -E '^(!|.*:[0-9]+:)' "$out/lgi.log" | head -30 >&2; die "latexmk failed (see $out/lgi.log)"; }
 figures=$(sed -n 's/^LGI-FIGURES: \([0-9]*\).*/\1/p' "$out/lgi.log" | tail -1)
 missing=$(sed -n 's/^LGI-MISSING: \([0-9]*\).*/\1/p' "$out/lgi.log" | tail -1)
+# Layout (CTest paper_quick wants both zero): lines that run past the margin by
+# 5 pt or more (TeX's "Overfull \hbox"), and floats taller than a page.
+wide=$(grep -cE '^Overfull \\hbox \(([5-9]|[1-9][0-9]+)\.[0-9]+pt too wide' "$out/lgi.log" || true)
+tall=$(grep -c 'Float too large' "$out/lgi.log" || true)
+say "layout: $wide lines past the margin by 5 pt or more, $tall floats taller than the page"
 say "wrote $out/lgi.pdf: ${figures:-?} figures, ${missing:-?} notes about missing data; total $(( $(date +%s) - t_start )) s"

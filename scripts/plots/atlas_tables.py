@@ -168,13 +168,38 @@ def cardan_megno_table(paths):
                       "of orbits drawn on the level $(p_1, h)$ of each scene's initial state (\\texttt{lgi poincare "
                       "--megno}, tangent flow on $T^3\\times\\mathbb{R}^3$); chaotic where "
                       f"$\\langle Y\\rangle>{MEGNO_THRESHOLD}$.}}\\label{{tab:cardan_megno}}",
-                      "\\begin{tabular}{@{}lrrrrrrr@{}}", "\\toprule", head, "\\midrule", *rows,
+                      "\\begin{tabular}{@{}L{0.3\\textwidth}rrrrrrr@{}}", "\\toprule", head, "\\midrule", *rows,
                       "\\bottomrule", "\\end{tabular}", "\\end{table}"]) + "\n"
+
+
+COMMAND_WIDTH = 100  # characters: a footnotesize typewriter line of the text width holds about 113
+
+
+def wrapped_command(line, width=COMMAND_WIDTH):
+    """A shell command as lines of at most `width` characters, continued with
+    a backslash and broken before an option (or at a space), so that the
+    verbatim block stays within the text width and can still be pasted."""
+    words, lines, current = line.split(" "), [], ""
+    for i, word in enumerate(words):
+        # keep an option with its value: break before a word starting with "-" when possible
+        piece = word if not current else current + " " + word
+        if current and len(piece) > width - 2:
+            cut = current.rfind(" -")
+            if cut > 0 and current[:cut].strip() and not word.startswith("-"):
+                lines.append(current[:cut] + " \\")
+                current = "    " + current[cut + 1:] + " " + word
+            else:
+                lines.append(current + " \\")
+                current = "    " + word
+        else:
+            current = piece
+    lines.append(current)
+    return lines
 
 
 def commands_block(path):
     with open(path) as f:
-        lines = [ln.rstrip() for ln in f if ln.strip()]
+        lines = [part for ln in f if ln.strip() for part in wrapped_command(ln.rstrip())]
     return "{\\footnotesize\n\\begin{verbatim}\n" + "\n".join(lines) + "\n\\end{verbatim}\n}\n"
 
 

@@ -15,6 +15,13 @@ CAP_COST = ("Cost at equal error: per heavy-top scene and scheme family, the che
             "\\texttt{lgi work-precision} files of Figure~\\ref{fig:wp}.")
 
 
+def breakable(name):
+    """A scheme name with a permitted line break after each "@" and "/" (TeX never
+    hyphenates typewriter type: a composition's or a baseline's name may then
+    break in a narrow column or a sentence; make_tables.tt uses it too)."""
+    return name.replace("@", "@\\allowbreak{}").replace("/", "/\\allowbreak{}")
+
+
 def cpu_at_error(errs, cpus, target):
     """CPU time at which one scheme's work-precision curve reaches `target`:
     log-log interpolation between the bracketing runs (ordered by CPU time),
@@ -67,7 +74,7 @@ def cost_rows(load, files, info, cpu_column="cpu_seconds_min"):
                     cells[k] = (v, name)
         first = True
         for fam in sorted(best, key=lambda f: (f.startswith("baseline"), f)):
-            cells = ["--" if cell is None else f"\\texttt{{{cell[1]}}} {cell[0] * 1e3:.3g}" for cell in best[fam]]
+            cells = ["--" if cell is None else f"\\texttt{{{breakable(cell[1])}}} {cell[0] * 1e3:.3g}" for cell in best[fam]]
             label = f"\\texttt{{{scene.replace('_', ' ')}}}" if first else ""
             rows.append(f"{label} & {fam} & " + " & ".join(cells) + " \\\\")
             first = False

@@ -25,7 +25,7 @@ import tomllib
 import numpy as np
 
 import lgi_plot_common as c
-from cost_table import CAP_COST, cost_rows, cpu_at_error
+from cost_table import CAP_COST, breakable, cost_rows, cpu_at_error
 
 
 EXTRA_MACROS = ""  # \\renewcommand lines that go to machine.tex (read in the preamble)
@@ -57,11 +57,14 @@ def esc(s):
     return "".join(out)
 
 
-def longtable(colspec, header, rows, caption, label):
-    return "\n".join([f"\\begin{{longtable}}{{{colspec}}}", f"\\caption{{{caption}}}\\label{{{label}}}\\\\",
+def longtable(colspec, header, rows, caption, label, size="\\small"):
+    """A longtable in `size` (inside a group), so that the wide generated tables,
+    whose scheme names never hyphenate, stay within the text width."""
+    return "\n".join(["\\begingroup" + size, f"\\begin{{longtable}}{{{colspec}}}",
+                      f"\\caption{{{caption}}}\\label{{{label}}}\\\\",
                       "\\toprule", header + " \\\\", "\\midrule", "\\endfirsthead",
                       "\\toprule", header + " \\\\", "\\midrule", "\\endhead"] + rows +
-                     ["\\bottomrule", "\\end{longtable}"]) + "\n"
+                     ["\\bottomrule", "\\end{longtable}", "\\endgroup"]) + "\n"
 
 
 def missing_table(caption, label, text):
@@ -69,7 +72,10 @@ def missing_table(caption, label, text):
 
 
 def tt(s):
-    return "\\texttt{" + esc(s) + "}"
+    """A name in typewriter type, which TeX never hyphenates: a line may break
+    after its "@" or "/" (a composition, a baseline's chart), so that a long
+    name in a narrow column or a sentence stays within the text width."""
+    return "\\texttt{" + breakable(esc(s)) + "}"
 
 
 def num(x, digits=2):
@@ -183,8 +189,8 @@ def schemes_table(path):
               "N $|\\Pi|$, M spatial momentum $R\\Pi$ (free body), V vertical momentum $\\Pi\\cdot\\Gamma$ "
               "conserved to round-off; I implicit; A adaptive. Order in brackets: with a torque. "
               f"{len(data)} schemes registered in this build.}}\n")
-    return longtable("@{}l l l l p{0.46\\textwidth}@{}", "scheme & order & family & properties & reference", out,
-                     CAP_SCHEMES, "tab:schemes") + legend, data
+    return longtable("@{}l l L{0.16\\textwidth} l L{0.36\\textwidth}@{}", "scheme & order & family & properties & reference",
+                     out, CAP_SCHEMES, "tab:schemes", "\\footnotesize") + legend, data
 
 
 # ── scenes ───────────────────────────────────────────────────────────────────
@@ -214,8 +220,8 @@ def scenes_table(d):
         out.append(f"{tt(os.path.splitext(os.path.basename(p))[0])} & {{\\footnotesize {'; '.join(body)}"
                    f"{'' if forces else ' (free)'}}} & {{\\footnotesize {init or 'identity, rest'}}} & "
                    f"{s.get('run', {}).get('t_end', float('nan')):g} \\\\")
-    return longtable("@{}l p{0.36\\textwidth} p{0.3\\textwidth} r@{}",
-                     "scene & body & initial state & $t_{\\rm end}$ (s)", out, CAP_SCENES, "tab:scenes")
+    return longtable("@{}l L{0.33\\textwidth} L{0.28\\textwidth} r@{}",
+                     "scene & body & initial state & $t_{\\rm end}$ (s)", out, CAP_SCENES, "tab:scenes", "\\footnotesize")
 
 
 # ── Table 1 (Trindade & Sampaio 2001): CPU seconds at tolerance 1e-6 ─────────
@@ -419,9 +425,9 @@ def best_at_target(files, target=BEST_TARGET):
             elif not is_baseline(win) and base:
                 t += f"; the cheapest baseline, {tt(base[0])}, took {num(cost[base[0]] / cost[win], 2)} times as long"
             BEST_SENTENCES.append(t + ".")
-    return longtable("@{}p{0.2\\textwidth} p{0.46\\textwidth} p{0.2\\textwidth} r@{}",
+    return longtable("@{}L{0.18\\textwidth} L{0.42\\textwidth} L{0.2\\textwidth} r@{}",
                      "scene & cheapest Lie-group schemes & cheapest baseline & baseline/Lie", rows, CAP_BEST,
-                     "tab:best")
+                     "tab:best", "\\footnotesize")
 
 
 # ── long-time ────────────────────────────────────────────────────────────────
@@ -509,8 +515,8 @@ def stress_tables(path):
         if top:
             sent += ("Schemes that met every criterion they were run against: " +
                      ", ".join(tt(s) for s in top[:12]) + ("…" if len(top) > 12 else "") + ". ")
-    return (longtable("@{}l p{0.3\\textwidth} r r r r l@{}", "case & variant & ok & refused & failed & pass & smallest error",
-                      out, CAP_STRESS, "tab:stress"),
+    return (longtable("@{}l L{0.27\\textwidth} r r r r l@{}", "case & variant & ok & refused & failed & pass & smallest error",
+                      out, CAP_STRESS, "tab:stress", "\\footnotesize"),
             longtable("@{}l r r r r@{}", "scheme & rows & pass & refused & failed", out2, CAP_STRESS_SCHEMES,
                       "tab:stress-schemes"), sent)
 
@@ -726,8 +732,9 @@ def main():
     write(a.out, "best_at_1e-8.tex", best_at_target(a.wp))
     cost = cost_rows(load_work_precision, a.wp, info)
     write(a.out, "cost_at_equal_error.tex",
-          longtable("@{}l l l l l@{}", "scene & family & $10^{-6}$ (ms) & $10^{-8}$ (ms) & $10^{-10}$ (ms)", cost,
-                    CAP_COST, "tab:cost") if cost else
+          longtable("@{}L{0.11\\textwidth} L{0.13\\textwidth}" + " L{0.21\\textwidth}" * 3 + "@{}",
+                    "scene & family & $10^{-6}$ (ms) & $10^{-8}$ (ms) & $10^{-10}$ (ms)", cost, CAP_COST, "tab:cost",
+                    "\\footnotesize") if cost else
           missing_table(CAP_COST, "tab:cost", "No work-precision data on a heavy top: no table."))
     write(a.out, "discussion_best.tex",
           ("\\begin{itemize}\\itemsep0pt\n" + "\n".join(BEST_SENTENCES) + "\n\\end{itemize}\n") if BEST_SENTENCES

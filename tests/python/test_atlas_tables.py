@@ -39,3 +39,21 @@ def test_atlas_tables(tmp_path):
                         str(tmp_path / "kovalevskaya.h5"), "--sections", str(tmp_path / "kovalevskaya.h5")],
                        env=ENV, capture_output=True, text=True)
     assert r.returncode == 1 and "no /equilibria" in r.stderr
+
+
+def test_long_commands_are_wrapped_for_the_page():
+    """The paper's verbatim block of atlas commands: no line over the width a
+    footnotesize line of the text width holds, continued with a backslash, broken
+    before an option, and the same command once the continuations are joined."""
+    import sys
+    sys.path.insert(0, str(SCRIPT.parent))
+    from atlas_tables import COMMAND_WIDTH, wrapped_command
+    line = ("lgi poincare --scene experiments/scenes/cardan_general_asymmetric_up.toml --l 1.6814407530796442 "
+            "--h 2.2145076834471573 --ics 3 --t-end 100 --dt 0.005 --megno --lyapunov "
+            "--out cardan/megno_cardan_general_asymmetric_up.h5")
+    parts = wrapped_command(line)
+    assert len(parts) > 1 and all(len(p) <= COMMAND_WIDTH for p in parts)
+    assert all(p.endswith(" \\") for p in parts[:-1]) and not parts[-1].endswith("\\")
+    assert all(p.lstrip().startswith("-") for p in parts[1:])  # each continuation starts at an option
+    assert " ".join(p.removesuffix(" \\").strip() for p in parts) == line
+    assert wrapped_command("lgi equilibria --l 3") == ["lgi equilibria --l 3"]
