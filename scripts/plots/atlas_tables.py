@@ -177,15 +177,16 @@ COMMAND_WIDTH = 100  # characters: a footnotesize typewriter line of the text wi
 
 def wrapped_command(line, width=COMMAND_WIDTH):
     """A shell command as lines of at most `width` characters, continued with
-    a backslash and broken before an option (or at a space), so that the
+    a backslash and broken before an option "--…" (or at a space), so that the
     verbatim block stays within the text width and can still be pasted."""
     words, lines, current = line.split(" "), [], ""
     for i, word in enumerate(words):
-        # keep an option with its value: break before a word starting with "-" when possible
+        # keep an option with its value: break before a word starting with "--" when possible
+        # (a value may start with one "-": --h-range -1.2:3:41)
         piece = word if not current else current + " " + word
         if current and len(piece) > width - 2:
-            cut = current.rfind(" -")
-            if cut > 0 and current[:cut].strip() and not word.startswith("-"):
+            cut = current.rfind(" --")
+            if cut > 0 and current[:cut].strip() and not word.startswith("--"):
                 lines.append(current[:cut] + " \\")
                 current = "    " + current[cut + 1:] + " " + word
             else:

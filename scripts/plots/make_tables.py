@@ -732,7 +732,7 @@ def main():
     write(a.out, "best_at_1e-8.tex", best_at_target(a.wp))
     cost = cost_rows(load_work_precision, a.wp, info)
     write(a.out, "cost_at_equal_error.tex",
-          longtable("@{}L{0.11\\textwidth} L{0.13\\textwidth}" + " L{0.21\\textwidth}" * 3 + "@{}",
+          longtable("@{}L{0.11\\textwidth} L{0.15\\textwidth}" + " L{0.2\\textwidth}" * 3 + "@{}",
                     "scene & family & $10^{-6}$ (ms) & $10^{-8}$ (ms) & $10^{-10}$ (ms)", cost, CAP_COST, "tab:cost",
                     "\\footnotesize") if cost else
           missing_table(CAP_COST, "tab:cost", "No work-precision data on a heavy top: no table."))

@@ -54,6 +54,10 @@ def test_long_commands_are_wrapped_for_the_page():
     parts = wrapped_command(line)
     assert len(parts) > 1 and all(len(p) <= COMMAND_WIDTH for p in parts)
     assert all(p.endswith(" \\") for p in parts[:-1]) and not parts[-1].endswith("\\")
-    assert all(p.lstrip().startswith("-") for p in parts[1:])  # each continuation starts at an option
+    assert all(p.startswith("    --") for p in parts[1:])  # each continuation starts at an option
     assert " ".join(p.removesuffix(" \\").strip() for p in parts) == line
     assert wrapped_command("lgi equilibria --l 3") == ["lgi equilibria --l 3"]
+    # a negative value stays with its option
+    ranged = ("lgi region --scene experiments/scenes/lagrange_top_oblate.toml --cells --l-range 0:3:41 "
+              "--h-range -1.2:3:41 --out region/lagrange_top_oblate.h5")
+    assert any(p.strip().startswith("--h-range -1.2:3:41") for p in wrapped_command(ranged))
