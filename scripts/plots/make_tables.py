@@ -382,7 +382,24 @@ def wp_sentences(files, scheme_info):
         out.append(tt(name) + f" & {claimed.get(name, '--') or '--'} & " +
                    " & ".join(f"{v[sc]:.2f}" if sc in v else "--" for sc in scenes) + " \\\\")
     return wp, longtable("@{}l r" + " r" * len(scenes) + "@{}",
-                         "scheme & claimed & " + " & ".join(tt(sc) for sc in scenes), out, CAP_ORDERS, "tab:orders")
+                         "scheme & claimed & " + " & ".join(stacked(sc) for sc in scenes), out, CAP_ORDERS,
+                         "tab:orders", "\\footnotesize")
+
+
+def stacked(name, width=12):
+    """A column head for a long name in typewriter type: its "_"-separated
+    parts on lines of about `width` characters, right-aligned (a table with a
+    column per scene stays within the text width however many scenes it has)."""
+    lines = []
+    for part in str(name).split("_"):
+        if lines and len(lines[-1]) + len(part) < width:
+            lines[-1] += "_" + part
+        else:
+            lines.append(part)
+    if len(lines) == 1:
+        return tt(name)
+    return ("\\begin{tabular}[b]{@{}r@{}}" + "\\\\".join(tt(ln + ("_" if i < len(lines) - 1 else ""))
+                                                     for i, ln in enumerate(lines)) + "\\end{tabular}")
 
 
 BEST_TARGET = 1e-8
@@ -515,7 +532,7 @@ def stress_tables(path):
         if top:
             sent += ("Schemes that met every criterion they were run against: " +
                      ", ".join(tt(s) for s in top[:12]) + ("…" if len(top) > 12 else "") + ". ")
-    return (longtable("@{}l L{0.27\\textwidth} r r r r l@{}", "case & variant & ok & refused & failed & pass & smallest error",
+    return (longtable("@{}l L{0.22\\textwidth} r r r r L{0.25\\textwidth}@{}", "case & variant & ok & refused & failed & pass & smallest error",
                       out, CAP_STRESS, "tab:stress", "\\footnotesize"),
             longtable("@{}l r r r r@{}", "scheme & rows & pass & refused & failed", out2, CAP_STRESS_SCHEMES,
                       "tab:stress-schemes"), sent)
@@ -537,7 +554,8 @@ def singularity_table(path):
             num(tab["com_max_deviation"][i], 1) if tab["outcome"][i] == "ok"
             else f"stopped at $t$ = {tab['t_final'][i]:.3g}"]) + " \\\\")
     table = longtable("@{}l l l l r r r r r@{}", "scene & method & guard & outcome & steps & rej. & CPU & "
-                      "$h_{\\min}$ (s) & $|P-P_{\\rm ref}|_{\\max}$ (m)", out, CAP_SING, "tab:singularity")
+                      "$h_{\\min}$ (s) & $|P-P_{\\rm ref}|_{\\max}$ (m)", out, CAP_SING, "tab:singularity",
+                      "\\footnotesize")
     sent = []
     for scene in dict.fromkeys(tab["scene"]):
         sel = [i for i in range(n) if tab["scene"][i] == scene]
