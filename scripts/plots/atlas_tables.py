@@ -179,8 +179,8 @@ def wrapped_command(line, width=COMMAND_WIDTH):
     """A shell command as lines of at most `width` characters, continued with
     a backslash and broken before an option "--…" (or at a space), so that the
     verbatim block stays within the text width and can still be pasted."""
-    words, lines, current = line.split(" "), [], ""
-    for i, word in enumerate(words):
+    lines, current = [], ""
+    for word in line.split(" "):
         # keep an option with its value: break before a word starting with "--" when possible
         # (a value may start with one "-": --h-range -1.2:3:41)
         piece = word if not current else current + " " + word

@@ -174,17 +174,17 @@ def schemes_table(path):
         if owt and owt != order:
             ot += f" ({owt})"
         out.append(f"{tt(s['name'])} & {ot} & {esc(s.get('family', ''))} & {props or '--'} & "
-                   f"{{\\footnotesize {esc(s.get('reference', ''))}}} \\\\")
+                   f"{esc(s.get('reference', ''))} \\\\")
     for base, comps in compositions.items():
         names = ", ".join(esc(cn) for cn, _ in comps)
         orders = "/".join(str(s.get("order", "")) for _, s in comps)
         props = "".join(letter for key, letter in PROPS if comps[0][1].get(key))
         out.append(f"{tt(base + '@…')} & {orders} & composition & {props or '--'} & "
-                   f"{{\\footnotesize {names} (HLW §V.3)}} \\\\")
+                   f"{names} (HLW §V.3) \\\\")
     for coords, steps in baselines.items():
         names = ", ".join(esc(sn) for sn, _ in steps)
         ref = steps[0][1].get("reference", "")
-        out.append(f"{tt(coords + '/…')} & -- & baseline & -- & {{\\footnotesize steppers: {names}. {esc(ref)}}} \\\\")
+        out.append(f"{tt(coords + '/…')} & -- & baseline & -- & steppers: {names}. {esc(ref)} \\\\")
     legend = ("\\par\\noindent{\\footnotesize Properties: S symplectic, R symmetric (reversible), E energy, "
               "N $|\\Pi|$, M spatial momentum $R\\Pi$ (free body), V vertical momentum $\\Pi\\cdot\\Gamma$ "
               "conserved to round-off; I implicit; A adaptive. Order in brackets: with a torque. "
@@ -217,8 +217,8 @@ def scenes_table(d):
         ini = s.get("initial", {})
         init = "; ".join(f"{esc(k)} = (" + ", ".join(f"{x:.4g}" for x in np.ravel(v)) + ")"
                          for k, v in ini.items() if isinstance(v, list))
-        out.append(f"{tt(os.path.splitext(os.path.basename(p))[0])} & {{\\footnotesize {'; '.join(body)}"
-                   f"{'' if forces else ' (free)'}}} & {{\\footnotesize {init or 'identity, rest'}}} & "
+        out.append(f"{tt(os.path.splitext(os.path.basename(p))[0])} & {'; '.join(body)}"
+                   f"{'' if forces else ' (free)'} & {init or 'identity, rest'} & "
                    f"{s.get('run', {}).get('t_end', float('nan')):g} \\\\")
     return longtable("@{}l L{0.33\\textwidth} L{0.28\\textwidth} r@{}",
                      "scene & body & initial state & $t_{\\rm end}$ (s)", out, CAP_SCENES, "tab:scenes", "\\footnotesize")
@@ -398,8 +398,8 @@ def stacked(name, width=12):
             lines.append(part)
     if len(lines) == 1:
         return tt(name)
-    return ("\\begin{tabular}[b]{@{}r@{}}" + "\\\\".join(tt(ln + ("_" if i < len(lines) - 1 else ""))
-                                                     for i, ln in enumerate(lines)) + "\\end{tabular}")
+    heads = [ln + "_" for ln in lines[:-1]] + lines[-1:]  # each broken line keeps its "_"
+    return "\\begin{tabular}[b]{@{}r@{}}" + "\\\\".join(tt(h) for h in heads) + "\\end{tabular}"
 
 
 BEST_TARGET = 1e-8
@@ -508,8 +508,8 @@ def stress_tables(path):
     out = []
     for (case, variant), r in rows.items():
         best = f"{tt(r['best'][0])} {num(r['best'][1], 1)}" if r["best"] else "--"
-        out.append(f"{esc(case)} & {{\\footnotesize {esc(variant)}}} & {r['ok']} & {r['refused']} & {r['failed']} & "
-                   f"{r['pass']}/{r['total']} & {{\\footnotesize {best}}} \\\\")
+        out.append(f"{esc(case)} & {esc(variant)} & {r['ok']} & {r['refused']} & {r['failed']} & "
+                   f"{r['pass']}/{r['total']} & {best} \\\\")
     per = {}
     for i in range(n):
         s = tab["scheme"][i]
