@@ -1,8 +1,8 @@
 #pragma once
 // The attitude of a free body's preprocessed DMV run kept as a unit
 // quaternion q, scalar first (lie/quaternion.hpp), instead of as R
-// (moser_veselov.hpp, DmvPreprocessed; README, Performance, "The attitude
-// as a quaternion").
+// (moser_veselov.hpp, DmvPreprocessed; docs/performance.md §3, "The
+// attitude as a quaternion").
 //
 // A DMV step is R ← R F with F = cay(2f) = I + 2/(1 + |f|²)(f̂ + f̂²), the
 // rotation by 2 atan|f| about f/|f|, whose unit quaternion is

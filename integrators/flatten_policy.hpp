@@ -1,7 +1,7 @@
 #pragma once
 // LGI_FLATTEN: [[gnu::flatten]] on the functions that run a step's stages
 // (rkmk.hpp, rkmk_pair.hpp), so that the compiler inlines every call in them
-// and schedules the stages as one block (README, Performance). Off under
+// and schedules the stages as one block (docs/performance.md §2). Off under
 // AddressSanitizer (the sanitize and fuzz presets): there the fully inlined,
 // instrumented stage functions took over 20 minutes to compile one unit, and
 // speed is not what those builds are for. Inlining changes no result.

@@ -50,7 +50,7 @@
 // (CayleyPredictor, within ~3e-12 there): one Newton correction, accepted
 // when the error it leaves is below 1e-19 |w| (solve_cayley_parameter_predicted). This takes
 // the sweeps, a Jacobian and a residual off the step's dependent chain
-// (README, Performance). The status has the corrections made before the test
+// (docs/performance.md §3). The status has the corrections made before the test
 // passed and the relative residual max_i |ψ_i| / max_i (sum of magnitudes)_i
 // (for an accepted prediction, max_i |ψ_i| / (2 max_i |a_i|), the same to
 // O(|f|) without forming the sums); a non-finite residual (diverged) or 50

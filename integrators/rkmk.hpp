@@ -40,7 +40,7 @@ class Rkmk {
 
   // flatten: the maps, dexp⁻¹, the stage attitude and the torque inlined into
   // one block, as the pairs' run_stages (rkmk_pair.hpp): same bits, ~15% less
-  // time per step (README, Performance).
+  // time per step (docs/performance.md §5).
   template <class Model>
   LGI_FLATTEN StepStatus step(const Model& model, State& s, double t, double h, WorkCounters& work) const {
     std::array<Vec3, stages> k_algebra;  // k̃_i

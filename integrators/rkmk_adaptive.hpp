@@ -18,9 +18,9 @@
 //                  step, interpolant of order 9 (10 more; tableaus/verner98.hpp).
 // The two Verner pairs use DOP853's controller constants with their own
 // exponent 1/(p̂ + 1); at equal error they need 7–25% fewer evaluations than
-// DOP853 on the heavy tops (README, "Which scheme at a given accuracy (tops)").
+// DOP853 on the heavy tops (docs/performance.md §6).
 // The controllers' β and bounds were chosen on work-precision runs of the
-// heavy tops (README, Performance); each is a PI controller in the range
+// heavy tops (docs/performance.md §2, §6); each is a PI controller in the range
 // HNW I §II.4 recommends (β ≤ 0.4/q).
 #include <tuple>
 

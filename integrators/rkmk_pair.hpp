@@ -374,7 +374,7 @@ class RkmkPair {
   // stage attitude, the model's torque) is inlined into this one function, so
   // GCC schedules and vectorises the stage chain as a whole. Same bits;
   // rkmk-dop853 on HLW's top at tol 1e-10 went from 30.8 to 27.7 µs
-  // (interleaved A/B runs of lgi work-precision, README "Performance").
+  // (interleaved A/B runs of lgi work-precision, docs/performance.md §2).
   template <class Model, std::size_t... I>
   LGI_FLATTEN std::int64_t run_stages(const Model& model, std::index_sequence<I...>) {
     return (static_cast<std::int64_t>(stage<I>(model)) + ...);

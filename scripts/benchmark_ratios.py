@@ -12,7 +12,7 @@ median and range of their ratios: a process's stack placement (address-space
 randomisation) moves the DMV step's cost by up to ~20% (false store-to-load
 dependencies between addresses 4 KiB apart), so one process is one sample.
 
-What bounds that step (README, "The arithmetic limit") is printed on one line from the
+What bounds that step (docs/performance.md §3, "The arithmetic limit") is printed on one line from the
 limits/ benchmarks: the core's scalar peak, and dmv-pre10's step alone and with two
 trajectories stepped in alternation.
 

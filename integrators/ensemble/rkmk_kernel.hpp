@@ -143,7 +143,7 @@ inline bool rkmk_block_step(const EnsembleModel& model, LaneBlock& block, LaneMe
 /// rkmk_block_step flattened, as dmv_pre_block_step: GCC keeps the stages and
 /// the maps' coefficients out of line, their lane arrays passed through
 /// memory. For batches of 4 or more doubles (AVX2, AVX-512: +35–55% lanes per
-/// second on the free body, README "Performance"); SSE2's batches of 2, in 16
+/// second on the free body, docs/performance.md §5); SSE2's batches of 2, in 16
 /// registers, ran 5–15% slower flattened (kernel_set.hpp). Inlining changes no result.
 template <const auto& Tableau, class T>
 LGI_FLATTEN inline bool rkmk_block_step_flattened(const EnsembleModel& model, LaneBlock& block, LaneMemory& memory,

@@ -1,4 +1,4 @@
-// What bounds a dmv-pre10 step (README, Performance, "The arithmetic limit"):
+// What bounds a dmv-pre10 step (docs/performance.md §3, "The arithmetic limit"):
 //  - limits/scalar_peak: the core's rate of scalar double additions and
 //    multiplications, 7 independent chains of each (enough to cover their
 //    latencies), as scalar_flops_per_ns. A step's operation count over this
