@@ -14,7 +14,9 @@ dependencies between addresses 4 KiB apart), so one process is one sample.
 
 What bounds that step (docs/performance.md §3, "The arithmetic limit") is printed on one line from the
 limits/ benchmarks: the core's scalar peak, and dmv-pre10's step alone and with two
-trajectories stepped in alternation.
+trajectories stepped in alternation. A second line gives the packed peaks of the
+instruction sets this CPU has over the scalar peak: the ceiling of the ensemble's
+speed-up over the scalar loop for a throughput-bound step (docs/performance.md §5).
 
 The same bar over one long run, as the Fortran comparison was timed (10^7 steps, so t
 reaches 10^5, where a fixed-step run's h jitters by ulp(t)), is measured with
@@ -38,6 +40,20 @@ import os
 import subprocess
 import sys
 import tempfile
+
+
+def vector_peak_line(limits):
+    """The packed peaks (limits/vector_peak/<isa>, bench_issue_limit.cpp) over the scalar
+    peak: the most an ensemble kernel can gain over the scalar loop where the scalar step
+    is bound by throughput. None without the scalar peak or any vector peak."""
+    scalar = limits.get("limits/scalar_peak", {}).get("scalar_flops_per_ns")
+    peaks = [(name.rsplit("/", 1)[1], b["lane_flops_per_ns"]) for name, b in limits.items()
+             if name.startswith("limits/vector_peak/") and "lane_flops_per_ns" in b]
+    if not scalar or not peaks:
+        return None
+    return ("# vector peaks: " + ", ".join(f"{isa} {v:.1f} lane operations per ns = {v / scalar:.2f} x the scalar peak"
+                                          for isa, v in peaks)
+            + " (the most an ensemble kernel can gain over a throughput-bound scalar loop)")
 
 
 def tex_escape(s):
@@ -264,6 +280,9 @@ def main():
                 print(long_run_ratio(a.lgi, tmp))
         else:
             print(f"# long run: not measured (no lgi at {a.lgi}; --lgi PATH)")
+    vector_line = vector_peak_line(limits)
+    if vector_line:
+        print(vector_line)
     # The ensemble stepper (docs/ensemble.md): trajectories per second per core over the scalar loop, same run.
     for name, rate in ensembles.items():
         base = name.rsplit("/", 1)[0] + "/scalar"

@@ -3,6 +3,13 @@
 //    multiplications, 7 independent chains of each (enough to cover their
 //    latencies), as scalar_flops_per_ns. A step's operation count over this
 //    rate is its issue limit.
+//  - limits/vector_peak/<isa> (sse2, avx2, avx512, where this CPU has them):
+//    the same 7 + 7 chains on packed doubles (xmm, ymm, zmm), as
+//    lane_flops_per_ns, operations times lanes. Over the scalar peak it is the
+//    most an ensemble kernel (docs/ensemble.md) can gain over the scalar loop
+//    when the scalar step is bound by throughput: a core whose vector units
+//    are narrower than the vector (AMD Zen 1 executes a 256-bit operation as
+//    two 128-bit halves) gains less than the lanes.
 //  - limits/dmv-pre10/one and limits/dmv-pre10/two_interleaved (Hairer &
 //    Vilmart's body, tests/benchmarks/scenes/, at h = 0.01): one
 //    trajectory stepped alone, and two stepped in alternation (ns per step of
@@ -22,12 +29,14 @@
 // scripts/benchmark_ratios.py prints the three on one line, outside the per-scheme table.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
 #include <variant>
 
 #include "experiments/io/scene_reader.hpp"
+#include "integrators/ensemble/ensemble.hpp"
 #include "integrators/moser_veselov_preprocessed.hpp"
 #include "integrators/system/model.hpp"
 
@@ -66,6 +75,56 @@ void scalar_peak(benchmark::State& state) {
   state.counters["scalar_flops_per_ns"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * static_cast<double>(rounds) * 14.0 * 1e-9, benchmark::Counter::kIsRate);
 #else
+  state.SkipWithError("x86-64 only");
+#endif
+}
+
+#if defined(__x86_64__)
+// One round of limits/vector_peak: vaddpd on registers 0–6 and vmulpd on 7–13,
+// with register 14 = 0 and 15 = 1 (R is the register prefix: "xmm", "ymm", "zmm").
+#define LGI_PEAK_PAIR(R, a, m) \
+  "vaddpd %%" R "14, %%" R #a ", %%" R #a "\n\t vmulpd %%" R "15, %%" R #m ", %%" R #m "\n\t"
+#define LGI_PEAK_ROUND(R)                                                                              \
+  LGI_PEAK_PAIR(R, 0, 7) LGI_PEAK_PAIR(R, 1, 8) LGI_PEAK_PAIR(R, 2, 9) LGI_PEAK_PAIR(R, 3, 10)     \
+  LGI_PEAK_PAIR(R, 4, 11) LGI_PEAK_PAIR(R, 5, 12) LGI_PEAK_PAIR(R, 6, 13)
+#define LGI_PEAK_SET(R, i) "vmovapd %%" R "15, %%" R #i "\n\t"
+#define LGI_PEAK_LOOP(R, ZERO, ONE)                                                                        \
+  asm volatile(ZERO ONE " %1, %%" R "15\n\t" LGI_PEAK_SET(R, 0) LGI_PEAK_SET(R, 1)          \
+                   LGI_PEAK_SET(R, 2) LGI_PEAK_SET(R, 3) LGI_PEAK_SET(R, 4) LGI_PEAK_SET(R, 5)            \
+                       LGI_PEAK_SET(R, 6) LGI_PEAK_SET(R, 7) LGI_PEAK_SET(R, 8) LGI_PEAK_SET(R, 9)        \
+                           LGI_PEAK_SET(R, 10) LGI_PEAK_SET(R, 11) LGI_PEAK_SET(R, 12) LGI_PEAK_SET(R, 13) \
+               "mov %0, %%rcx\n\t"                                                                      \
+               "1:\n\t" LGI_PEAK_ROUND(R) "dec %%rcx\n\t"                                               \
+               "jnz 1b\n\t"                                                                             \
+               "vzeroupper\n\t"                                                                         \
+               :                                                                                        \
+               : "r"(rounds), "m"(one)                                                                  \
+               : "rcx", "xmm0", "xmm1", "xmm2", "xmm3", "xmm4", "xmm5", "xmm6", "xmm7", "xmm8", "xmm9",  \
+                 "xmm10", "xmm11", "xmm12", "xmm13", "xmm14", "xmm15", "cc")
+#endif
+
+// The packed version of scalar_peak on `isa`'s widest registers (registered
+// only where the CPU has the instruction set).
+void vector_peak(benchmark::State& state, integrators::ensemble::Isa isa) {
+#if defined(__x86_64__)
+  using integrators::ensemble::Isa;
+  constexpr std::int64_t rounds = 1 << 16;
+  static const double one = 1.0;
+  const int lanes = isa == Isa::avx512 ? 8 : isa == Isa::avx2 ? 4 : 2;
+  for (auto _ : state) {
+    if (isa == Isa::avx512) {
+      LGI_PEAK_LOOP("zmm", "vpxorq %%zmm14, %%zmm14, %%zmm14\n\t", "vbroadcastsd");
+    } else if (isa == Isa::avx2) {
+      LGI_PEAK_LOOP("ymm", "vxorpd %%ymm14, %%ymm14, %%ymm14\n\t", "vbroadcastsd");
+    } else {
+      LGI_PEAK_LOOP("xmm", "vxorpd %%xmm14, %%xmm14, %%xmm14\n\t", "vmovddup");
+    }
+  }
+  state.counters["lane_flops_per_ns"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(rounds) * 14.0 * lanes * 1e-9,
+                         benchmark::Counter::kIsRate);
+#else
+  (void)isa;
   state.SkipWithError("x86-64 only");
 #endif
 }
@@ -138,6 +197,17 @@ void dmv_update(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(scalar_peak)->Name("limits/scalar_peak");
+// The xmm form uses VEX encodings (AVX): registered for sse2 only where AVX2 is there too.
+[[maybe_unused]] const bool vector_peaks_registered = [] {
+  using integrators::ensemble::Isa;
+  const auto isas = integrators::ensemble::available_isas();
+  const bool vex = std::find(isas.begin(), isas.end(), Isa::avx2) != isas.end();
+  for (const Isa isa : isas)
+    if (vex || isa != Isa::baseline)
+      benchmark::RegisterBenchmark((std::string("limits/vector_peak/") + integrators::ensemble::isa_name(isa)).c_str(),
+                                   vector_peak, isa);
+  return true;
+}();
 BENCHMARK(dmv_pre10_steps<1>)->Name("limits/dmv-pre10/one");
 BENCHMARK(dmv_pre10_steps<2>)->Name("limits/dmv-pre10/two_interleaved");
 BENCHMARK(dmv_update<Attitude::matrix>)->Name("limits/dmv-update/matrix");

@@ -222,6 +222,20 @@ def test_benchmark_ratios_progress_on_stderr(tmp_path):
     assert "equal error" not in p.stdout
 
 
+def test_benchmark_ratios_vector_peaks_over_the_scalar_peak():
+    """The ensemble's ceiling line: each packed peak over the scalar peak, and nothing
+    when either is missing."""
+    sys.path.insert(0, str(SCRIPTS))
+    from benchmark_ratios import vector_peak_line
+    limits = {"limits/scalar_peak": {"scalar_flops_per_ns": 10.0},
+              "limits/vector_peak/sse2": {"lane_flops_per_ns": 20.0},
+              "limits/vector_peak/avx2": {"lane_flops_per_ns": 23.0}}
+    line = vector_peak_line(limits)
+    assert "sse2 20.0 lane operations per ns = 2.00 x" in line and "avx2 23.0 lane operations per ns = 2.30 x" in line
+    assert vector_peak_line({"limits/scalar_peak": {"scalar_flops_per_ns": 10.0}}) is None
+    assert vector_peak_line({"limits/vector_peak/avx2": {"lane_flops_per_ns": 23.0}}) is None
+
+
 def test_benchmark_ratios_cost_at_equal_error(tmp_path):
     """The heavy tops' bars: cheapest Lie-group scheme over cheapest baseline at the
     target error, interpolated along each curve, from the CSV lgi work-precision writes
