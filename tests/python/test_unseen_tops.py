@@ -94,8 +94,50 @@ exec {LGI} "$@"
     assert data["complete"] is False and [t["top"] for t in data["tops"]] == [0]
 
 
+def test_rounds_merge_to_the_least_time_of_each_row():
+    row = {"scheme": "a", "dt": "", "tol": "1e-08", "steps": "10", "rejected_steps": "0", "rhs_evaluations": "130",
+           "error": "1e-09", "status": "ok", "cpu_seconds_min": "3e-05"}
+    failed = dict(row, scheme="b", status="failed: x", cpu_seconds_min="")
+    merged = unseen_tops.merge_rounds([[row, failed], [dict(row, cpu_seconds_min="2e-05"), failed],
+                                       [dict(row, cpu_seconds_min="4e-05"), failed]])
+    assert float(merged[0]["cpu_seconds_min"]) == 2e-05 and merged[1] == failed
+    assert float(row["cpu_seconds_min"]) == 3e-05  # the rounds' rows are not changed
+    with pytest.raises(ValueError, match="rhs_evaluations is 130 in one round and 131"):
+        unseen_tops.merge_rounds([[row], [dict(row, rhs_evaluations="131")]])
+    with pytest.raises(ValueError, match="rows"):
+        unseen_tops.merge_rounds([[row], [row, row]])
+
+
+def test_rounds_run_each_top_in_turn_and_a_failure_keeps_every_round(tmp_path):
+    """--rounds 2 over 2 tops with a stand-in lgi that fails on its 4th call (top 1's second round):
+    top 0 is printed with 2 rounds, top 1 with its 1, the files of every round are kept, exit 1."""
+    if not LGI.exists():
+        pytest.skip(f"no lgi at {LGI}")
+    fake, calls = tmp_path / "lgi", tmp_path / "calls"
+    fake.write_text(f"""#!/bin/sh
+echo "$*" >> {calls}
+[ "$(wc -l < {calls})" -eq 4 ] && {{ echo "lgi: stand-in failure" >&2; exit 1; }}
+exec {LGI} "$@"
+""")
+    fake.chmod(0o755)
+    out, files = tmp_path / "ratios.json", tmp_path / "files"
+    p = subprocess.run([PY, SCRIPT, "--count", "2", "--seed", "5", "--lgi", fake, "--repeat", "1", "--rounds", "2",
+                        "--tolerances", "1e-5,1e-6,1e-7,1e-8", "--dts", "0.1", "--lie", "rkmk-dp54",
+                        "--baselines", "quat/dopri5", "--targets", "1e-6", "--keep", files, "--json", out],
+                       capture_output=True, text=True, env=ENV, timeout=120)
+    assert p.returncode == 1, p.stderr
+    assert [c.split("top_5_")[1].split(".toml")[0] for c in calls.read_text().splitlines()] == ["0", "1", "0", "1"]
+    assert "on top 1 (round 2 of 2)" in p.stderr and "failed on top 1 (exit 1)" in p.stderr.splitlines()[-1]
+    assert [l.split(":")[0] for l in p.stdout.splitlines()] == ["# top 0", "# top 1", "# at error 1e-06"], p.stdout
+    assert sorted(f.name for f in files.glob("*.h5")) == ["top_5_0_round1.h5", "top_5_0_round2.h5",
+                                                         "top_5_1_round1.h5"]
+    data = json.loads(out.read_text())
+    assert data["complete"] is False and [(t["top"], t["rounds"]) for t in data["tops"]] == [(0, 2), (1, 1)]
+
+
 @pytest.mark.parametrize("args, flag", [(["--count", "0"], "--count"), (["--targets", "1e-6,x"], "--targets"),
-                                        (["--lgi", "/nonexistent/lgi"], "--lgi")])
+                                        (["--lgi", "/nonexistent/lgi"], "--lgi"),
+                                        (["--rounds", "0"], "--rounds")])
 def test_bad_arguments_exit_2_naming_the_flag(args, flag):
     p = subprocess.run([PY, SCRIPT, *args], capture_output=True, text=True, env=ENV, timeout=60)
     assert p.returncode == 2
