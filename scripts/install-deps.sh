@@ -23,6 +23,9 @@ packages=(
   python3-pytest                                  # tests/python (CTest scripts_pytest): the scripts as a user runs them
   pybind11-dev python3-pybind11 python3-dev        # the Python module `lgi` (python/; CTest python_module)
   python3-scipy                                   # tests/python: reference integrations in the module tests
+  python3-mpmath                                  # tests: high-precision reference values
+  python3-nbconvert python3-ipykernel             # CTest notebook_*: examples/notebooks executed headless
+  libspectra-dev                                  # Spectra (header-only, over Eigen): sparse eigensolvers of lgi quantum
   latexmk texlive-latex-base texlive-latex-recommended texlive-fonts-recommended lmodern  # the paper (scripts/build_paper.sh)
 )
 
