@@ -101,11 +101,11 @@ SimulationOutcome run_cardan_simulation(const system::Scene& scene, const std::s
                                         const SimulationRequest& request, const std::atomic<bool>* stop) {
   const TorusSchemeInfo* torus = integrators::torus::find_torus_scheme(scheme_name);
   if (!is_cardan_scene(scene))
-    throw RunError("scheme '" + scheme_name + "' integrates the Cardan top on T^3 and needs a scene with a "
-                   "[suspension] table; scene " + scene.file + " has none");
+    throw UsageError("--scheme: " + scheme_name + " runs on Cardan scenes only (its state is T^3 x R^3; scene " +
+                     scene.file + " has no [suspension], its state is SO(3) x R^3)");
   if (!torus)
-    throw RunError("scheme '" + scheme_name + "' integrates SO(3) states; scene " + scene.file +
-                   " has a [suspension] (state on T^3): use cardan-midpoint, cardan-dg, cardan-rk4 or cardan-dp54");
+    throw UsageError("--scheme: " + scheme_name + " runs on SO(3) x R^3 scenes only (scene " + scene.file +
+                     " is a Cardan top, state on T^3 x R^3): use cardan-midpoint, cardan-dg, cardan-rk4 or cardan-dp54");
   const integrators::SchemeInfo& info = *std::find_if(
       torus_scheme_infos().begin(), torus_scheme_infos().end(), [&](const auto& i) { return i.name == torus->name; });
   integrators::RunConfig cfg = simulation_config(request, scene, info);

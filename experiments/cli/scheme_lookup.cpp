@@ -95,6 +95,10 @@ std::vector<std::string> nearest_scheme_names(std::string_view typed) {
 
 const integrators::SchemeInfo& scheme_by_name(std::string_view typed, std::string_view flag) {
   if (const integrators::SchemeInfo* s = integrators::find_scheme(typed)) return *s;
+  // A scheme of the other state space exists: say so instead of suggesting its own name.
+  if (integrators::torus::find_torus_scheme(std::string(typed)) != nullptr)
+    throw UsageError(std::string(flag) + ": " + std::string(typed) +
+                     " runs on Cardan scenes only (its state is T^3 x R^3); this command's scenes have state SO(3) x R^3");
   std::string message = std::string(flag) + ": unknown scheme '" + std::string(typed) + "'";
   const std::vector<std::string> near = nearest_scheme_names(typed);
   for (std::size_t i = 0; i < near.size(); ++i)

@@ -76,10 +76,10 @@ integrators::RunConfig simulation_config(const SimulationRequest& request, const
 void check_scheme_supports(const integrators::SchemeInfo& scheme, const system::Scene& scene,
                            const system::AnyModel& model) {
   if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
-    throw RunError(why + "; scene " + scene.file + " is not one");
+    throw UsageError("--scheme: " + why + "; scene " + scene.file + " is not one");
   if (scene.suspension)  // the SO(3) run path: a Cardan scene goes to run_cardan_simulation (cardan_simulation.hpp)
-    throw RunError("scheme '" + scheme.name + "' integrates SO(3) states; scene " + scene.file +
-                   " has a [suspension] (a Cardan top on T^3): use a cardan-* scheme with lgi simulate");
+    throw UsageError("--scheme: " + scheme.name + " runs on SO(3) x R^3 scenes only (scene " + scene.file +
+                     " is a Cardan top, state on T^3 x R^3): use a cardan-* scheme");
 }
 
 void close_simulation(SimulationOutcome& outcome, const std::string& scheme_name, const std::string& scene_file,

@@ -181,3 +181,24 @@ def test_resume_file_removed_mid_run(tmp_path):
     with h5py.File(out, "r") as f:
         assert (f["sweep/status"][()] >= 0).all() and len(f["sweep/status"]) == 2000
     assert not os.path.exists(out + ".partial")
+
+
+STATE_SPACE_MISMATCH = [
+    ("simulate", "cardan_euler_tilted.toml", "--scheme", "rkmk4", "runs on SO(3) x R^3 scenes only"),
+    ("simulate", "free_body_hlw.toml", "--scheme", "cardan-dp54", "runs on Cardan scenes only"),
+    ("work-precision", "heavy_top_hlw.toml", "--schemes", "cardan-dp54", "runs on Cardan scenes only"),
+]
+
+
+@pytest.mark.parametrize("command,scene,flag,scheme,words", STATE_SPACE_MISMATCH)
+def test_scheme_of_the_other_state_space_is_refused_naming_both(tmp_path, command, scene, flag, scheme, words):
+    """A scheme that exists but integrates the other state space (issue 48): exit 2, one line
+    naming the flag, the scheme, both state spaces, and no output file."""
+    out = tmp_path / "x.h5"
+    extra = ["--dt", "0.01"] if command == "work-precision" else []
+    r = lgi(command, "--scene", os.path.join(SCENES, scene), flag, scheme, *extra, "--out", str(out))
+    assert r.returncode == 2, r.stderr
+    one_line(r.stderr)
+    assert words in r.stderr and flag in r.stderr and scheme in r.stderr
+    assert "SO(3) x R^3" in r.stderr and "T^3 x R^3" in r.stderr
+    assert not out.exists() and not (tmp_path / "x.h5.partial").exists()
