@@ -359,15 +359,48 @@ void observe_start(const Scheme& scheme, const StepStatus& started, double t0, O
 }
 }  // namespace detail
 
+/// A number in a refusal message: 6 significant digits.
+inline std::string format_step_grid_number(double x) {
+  std::ostringstream m;
+  m.precision(6);
+  m << x;
+  return m.str();
+}
+
+/// The most fixed steps a run takes: 2^53, past which the step index k + 1
+/// is no longer exact in a double and t0 + k dt leaves its grid.
+inline constexpr std::int64_t max_fixed_steps = std::int64_t{1} << 53;
+
 /// Number of fixed steps covering [t0, t_end]: the nearest integer to
 /// span/dt when span is a whole multiple of dt up to 1e-10 relative,
-/// otherwise one more step, and the last step ends exactly at t_end.
+/// otherwise one more step, and the last step ends exactly at t_end. A count
+/// above max_fixed_steps (or a NaN ratio) saturates at max_fixed_steps + 1
+/// instead of wrapping: fixed_step_grid_problem() names it.
 inline std::int64_t fixed_step_count(double span, double dt) {
   if (span <= 0.0) return 0;
   const double ratio = span / dt;
+  if (!(ratio <= static_cast<double>(max_fixed_steps))) return max_fixed_steps + 1;
   const double nearest = std::round(ratio);
   if (nearest >= 1.0 && std::abs(ratio - nearest) <= 1e-10 * nearest) return static_cast<std::int64_t>(nearest);
   return static_cast<std::int64_t>(std::ceil(ratio));
+}
+
+/// Why the fixed grid t0 + k dt cannot cover [t0, t_end] (either direction),
+/// or "" if it can: a step below the resolution of t (t + dt == t at an end
+/// of the span: no step would advance time), or more than max_fixed_steps
+/// steps. A run with such a grid never starts: it is refused, not reported
+/// as a success with zero steps.
+inline std::string fixed_step_grid_problem(double t0, double t_end, double dt) {
+  if (t_end == t0) return {};
+  if (!(dt > 0.0)) return "the step must be > 0";
+  if (t0 + dt == t0 || t_end + dt == t_end || t0 - dt == t0 || t_end - dt == t_end)
+    return "the step " + format_step_grid_number(dt) + " is below the resolution of t on [" +
+           format_step_grid_number(std::min(t0, t_end)) + ", " + format_step_grid_number(std::max(t0, t_end)) +
+           "] (t + dt == t)";
+  if (fixed_step_count(std::abs(t_end - t0), dt) > max_fixed_steps)
+    return "the step " + format_step_grid_number(dt) + " needs more than 2^53 steps over a span of " +
+           format_step_grid_number(std::abs(t_end - t0));
+  return {};
 }
 
 }  // namespace lgi::integrators

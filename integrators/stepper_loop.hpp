@@ -92,7 +92,9 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   const double cpu0 = cfg.cpu_clock ? detail::cpu_now() : 0.0;
   const StepStatus started = detail::start(scheme, model, s, cfg.t0);
   const double direction = cfg.t_end < cfg.t0 ? -1.0 : 1.0;
-  const std::int64_t n = started.refused ? 0 : fixed_step_count(direction * (cfg.t_end - cfg.t0), cfg.dt);
+  const std::string grid_problem = fixed_step_grid_problem(cfg.t0, cfg.t_end, cfg.dt);
+  const std::int64_t n =
+      started.refused || !grid_problem.empty() ? 0 : fixed_step_count(direction * (cfg.t_end - cfg.t0), cfg.dt);
   detail::OutputCursor out{.times = cfg.output_times, .direction = direction, .span = cfg.t_end - cfg.t0};
   double t = cfg.t0;
   std::int64_t first = 0;
@@ -103,6 +105,7 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   } else {
     detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
   }
+  if (!grid_problem.empty()) detail::mark_failed(stats, grid_problem);  // never a success with no steps
   const EventFunctions* events = cfg.events;
   if constexpr (detail::has_observable_state<Scheme, Model>) {
     if (events && stats.ok) {  // between outputs the loop never holds the trajectory's state

@@ -41,6 +41,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "integrators/loop_support.hpp"
 #include "integrators/system/rigid_body.hpp"
 #include "lie/so3.hpp"
 
@@ -125,6 +126,11 @@ ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_fin
                                             double t_end, double dt) {
   ChaosIndicators out;
   ChaosAccumulator acc;
+  if (!fixed_step_grid_problem(t0, t_end, dt).empty()) {  // t + dt == t would never end the loop
+    out.ok = false;
+    out.lyapunov = out.megno = out.megno_y = std::nan("");
+    return out;
+  }
   v.normalize();
   double t = t0;
   while (t < t_end) {

@@ -88,6 +88,11 @@ void integrate_orbit(const system::CardanTop& top, const CardanOrbitRequest& r, 
   // Errors relative to max(|H0|, T0), T0 the kinetic energy: H0 may be 0 on a level set.
   const double H0 = top.energy(x), p10 = x.p(0);
   const double energy_scale = std::max({std::abs(H0), 0.5 * x.p.dot(top.velocity(x)), 1e-300});
+  if (std::string why = integrators::fixed_step_grid_problem(0.0, r.t_end, r.dt); !why.empty()) {
+    o.status = 1;  // never a finished orbit with no steps
+    o.reason = std::move(why);
+    return;
+  }
   const std::int64_t n = integrators::fixed_step_count(r.t_end, r.dt);
   double t = 0.0;
   for (std::int64_t k = 0; k < n; ++k) {

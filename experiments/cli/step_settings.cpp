@@ -4,6 +4,7 @@
 #include <string>
 
 #include "experiments/errors/exit_status.hpp"
+#include "integrators/loop_support.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -55,6 +56,8 @@ integrators::RunConfig resolve_run_config(const StepFlags& flags, const system::
   if (!flags.dt && !scene.dt)
     throw UsageError("--dt: " + name + " needs a step: give --dt or [run] dt in " + scene.file);
   cfg.dt = flags.dt ? *flags.dt : *scene.dt;
+  if (const std::string why = integrators::fixed_step_grid_problem(cfg.t0, cfg.t_end, cfg.dt); !why.empty())
+    throw UsageError(std::string(flags.dt ? "--dt: " : "--dt ([run] dt of " + scene.file + "): ") + why);
   return cfg;
 }
 

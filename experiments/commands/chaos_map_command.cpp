@@ -34,6 +34,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"
+#include "integrators/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -209,6 +210,8 @@ int run_chaos_map(const ChaosMapOptions& o) {
   const HeavyTopBody body = heavy_top_of(scene, "chaos-map");
   const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  if (const std::string why = integrators::fixed_step_grid_problem(0.0, o.t_end, dt); !why.empty())
+    throw UsageError("--dt: " + why);
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
   std::vector<double> h_min;

@@ -116,6 +116,10 @@ void integrate_fixed_ensemble(EnsembleStepper& e, const Model& model, std::span<
                               std::span<Observer* const> observers, std::span<RunStats> stats, EnsembleWorkspace& ws) {
   const int lanes = static_cast<int>(states.size());
   if (lanes == 0) return;
+  if (const std::string why = fixed_step_grid_problem(cfg.t0, cfg.t_end, cfg.dt); !why.empty()) {
+    for (RunStats& st : stats) detail::mark_failed(st, why);  // never a success with no steps
+    return;
+  }
   const Scheme scheme{};  // its hooks for observe_step; without memory, event location copies it
   const double cpu0 = cfg.cpu_clock ? detail::cpu_now() : 0.0;
   const double direction = cfg.t_end < cfg.t0 ? -1.0 : 1.0;

@@ -51,6 +51,10 @@ RunStats integrate_torus_fixed(Scheme& scheme, const system::CardanTop& model, s
     integrators::detail::mark_failed(stats, std::move(why));
     return stats;
   }
+  if (std::string why = fixed_step_grid_problem(cfg.t0, cfg.t_end, cfg.dt); !why.empty()) {
+    integrators::detail::mark_failed(stats, std::move(why));  // never a success with no steps
+    return stats;
+  }
   const double cpu0 = cfg.cpu_clock ? integrators::detail::cpu_now() : 0.0;
   const double direction = cfg.t_end < cfg.t0 ? -1.0 : 1.0;
   const std::int64_t n = fixed_step_count(direction * (cfg.t_end - cfg.t0), cfg.dt);

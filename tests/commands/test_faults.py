@@ -202,3 +202,29 @@ def test_scheme_of_the_other_state_space_is_refused_naming_both(tmp_path, comman
     assert words in r.stderr and flag in r.stderr and scheme in r.stderr
     assert "SO(3) x R^3" in r.stderr and "T^3 x R^3" in r.stderr
     assert not out.exists() and not (tmp_path / "x.h5.partial").exists()
+
+
+KOVALEVSKAYA = os.path.join(SCENES, "kovalevskaya.toml")
+NO_WORK = [
+    ("simulate", "--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-300", "--t-end", "1"),
+    ("simulate", "--scene", FREE, "--scheme", "rkmk4", "--dt", "5e-324", "--t-end", "1"),
+    ("simulate", "--scene", FREE, "--scheme", "lgvi", "--dt", "1e-17", "--t-end", "1e3"),
+    ("long-time", "--scene", FREE, "--scheme", "rkmk4", "--dt", "1e-300", "--t-end", "1"),
+    ("chaos-map", "--scene", KOVALEVSKAYA, "--l-range", "1:1:1", "--h-range", "2:2:1", "--ics", "2",
+     "--t-end", "1", "--dt", "1e-300"),
+]
+
+
+@pytest.mark.parametrize("args", NO_WORK, ids=[f"{a[0]}-{a[-3] if a[0] != 'chaos-map' else 'dt'}" for a in NO_WORK])
+def test_a_step_that_cannot_advance_time_is_refused(tmp_path, args):
+    """Issue 50: a step count past 2^53, or a step below the resolution of t (t + dt == t), is
+    refused up front with exit 2 naming --dt: never a success with 0 steps, never a loop that
+    cannot end."""
+    out = tmp_path / "x.h5"
+    started = time.monotonic()
+    r = lgi(*args, "--out", str(out))
+    assert time.monotonic() - started < 10
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    one_line(r.stderr)
+    assert "--dt" in r.stderr and ("2^53" in r.stderr or "resolution of t" in r.stderr), r.stderr
+    assert not out.exists() and not (tmp_path / "x.h5.partial").exists()
