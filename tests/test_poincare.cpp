@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/analysis/sweep_plan.hpp"
@@ -38,14 +39,15 @@ system::Scene lagrange_top() {
       "lagrange_top.toml");
 }
 
-/// Initial states i = 0 .. n−1 drawn on the level set (l, h) by the sweep engine's draw.
+/// Initial states i = 0 .. n−1 drawn on the level set (l, h) by the sweep engine's draw
+/// (the Liouville measure unless `measure` says "uniform").
 struct LevelStates {
   experiments::SweepSpec spec;
   std::unique_ptr<experiments::SweepPlan> plan;
-  LevelStates(const system::Scene& scene, double l, double h, int n)
+  LevelStates(const system::Scene& scene, double l, double h, int n, const std::string& measure = "liouville")
       : spec(experiments::parse_sweep_spec("scene = \"x.toml\"\nscheme = \"rkmk4\"\nseed = 7\nsamples = " +
                                                std::to_string(n) + "\n[level_set]\nl = " + std::to_string(l) +
-                                               "\nh = " + std::to_string(h) + "\n",
+                                               "\nh = " + std::to_string(h) + "\nmeasure = \"" + measure + "\"\n",
                                            "test.toml")),
         plan(std::make_unique<experiments::SweepPlan>(spec, scene)) {}
   system::State state(std::int64_t i, const system::Scene& scene) const {
@@ -133,7 +135,8 @@ TEST_CASE("the tangent flow agrees with differences of nearby trajectories", "[p
   const system::Scene scene = shipped_scene("general_top_richter");
   const system::AnyModel any = system::make_model(scene);
   const auto& model = std::get<system::SceneModel>(any);
-  const LevelStates draws(scene, 1.0, 1.5, 1);
+  // The uniform draw's first state: one whose tangent vector grows over these 500 steps.
+  const LevelStates draws(scene, 1.0, 1.5, 1, "uniform");
   const system::State x0 = draws.state(0, scene);
   integrators::Vec6 v0;
   v0 << 0.3, -0.2, 0.5, 0.1, 0.4, -0.3;

@@ -1,11 +1,12 @@
 #include "experiments/analysis/sweep_plan.hpp"
 
+#include "experiments/analysis/level_set_draw.hpp"
 #include "experiments/analysis/seeded_random.hpp"
 
 #include <toml++/toml.h>
 
 #include <cmath>
-#include <numbers>
+#include <algorithm>
 #include <sstream>
 
 #include "experiments/io/scene_reader.hpp"
@@ -28,65 +29,6 @@ Mat3 attitude_from_gamma(const Vec3& gamma) {
   const double theta = std::acos(std::clamp(gamma.z(), -1.0, 1.0));
   const double phi = std::atan2(gamma.x(), gamma.y());
   return lie::matrix_from_euler_zxz({0.0, theta, phi});
-}
-
-/// The energy of a top (gravity alone, or no torque) on {Π·Γ = l}:
-/// H ≥ V(γ) + l²/(2 γᵀJγ), with equality at Π = l Jγ/(γᵀJγ) (a Lagrange
-/// multiplier: ∇(½ΠᵀJ⁻¹Π) = λγ).
-struct LevelSetBody {
-  Mat3 J, J_inv;
-  Vec3 weight = Vec3::Zero();  // m g χ: V(γ) = m g χ·γ
-  double lowest_energy(const Vec3& gamma, double l) const {
-    return weight.dot(gamma) + l * l / (2.0 * gamma.dot(J * gamma));
-  }
-};
-
-LevelSetBody level_set_body(const system::Scene& scene) {
-  LevelSetBody b{scene.inertia, scene.inertia.inverse()};
-  if (const auto& g = scene.declared<system::GravityTerm>())
-    b.weight = scene.mass.value_or(0.0) * g->g * scene.center_of_mass.value_or(Vec3::Zero());
-  return b;
-}
-
-/// The least of V(γ) + l²/(2γᵀJγ) over 20000 directions of a Fibonacci
-/// lattice on the sphere (an upper bound of the minimum, within ~1e-3 relative).
-double sampled_minimum(const LevelSetBody& b, double l) {
-  constexpr int n = 20000;
-  double lowest = INFINITY;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int k = 0; k < n; ++k) {
-    const double z = 1.0 - (2.0 * k + 1.0) / n, r = std::sqrt(1.0 - z * z);
-    const Vec3 gamma(r * std::cos(golden * k), r * std::sin(golden * k), z);
-    lowest = std::min(lowest, b.lowest_energy(gamma, l));
-  }
-  return lowest;
-}
-
-/// A point of {H = h, Π·Γ = l}: γ uniform on the sphere among the directions
-/// where the level is reached (rejection), then Π = l Jγ/(γᵀJγ) + u with u ⊥ γ
-/// on the ellipse ½uᵀJ⁻¹u = h − V(γ) − l²/(2γᵀJγ), at a uniform angle of its
-/// parametrisation u = √(2r) [e_a e_b] L⁻ᵀ(cos α, sin α), A = LLᵀ.
-bool draw_level_point(const LevelSetBody& b, double h, double l, CounterRng& rng, Vec3& gamma, Vec3& Pi) {
-  for (int attempt = 0; attempt < 1000000; ++attempt) {
-    const double z = 2.0 * rng.uniform() - 1.0, angle = 2.0 * std::numbers::pi * rng.uniform();
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const Vec3 g(r * std::cos(angle), r * std::sin(angle), z);
-    const double gJg = g.dot(b.J * g);
-    const double excess = h - b.weight.dot(g) - l * l / (2.0 * gJg);
-    if (!(excess >= 0.0)) continue;
-    const Vec3 ea = g.unitOrthogonal(), eb = g.cross(ea);
-    Eigen::Matrix2d A;
-    A << ea.dot(b.J_inv * ea), ea.dot(b.J_inv * eb), eb.dot(b.J_inv * ea), eb.dot(b.J_inv * eb);
-    const Eigen::Matrix2d L = A.llt().matrixL();
-    const double alpha = 2.0 * std::numbers::pi * rng.uniform();
-    const Eigen::Vector2d y =
-        std::sqrt(2.0 * excess) * L.transpose().triangularView<Eigen::Upper>().solve(
-                                      Eigen::Vector2d(std::cos(alpha), std::sin(alpha)));
-    gamma = g;
-    Pi = (l / gJg) * (b.J * g) + y.x() * ea + y.y() * eb;
-    return true;
-  }
-  return false;
 }
 
 /// Sets key `name` of table `table` (creating the table) to the numbers.
@@ -225,7 +167,8 @@ system::State SweepPlan::initial_state(std::int64_t i, const system::Scene& scen
   if (spec_.level_set) {
     CounterRng rng(spec_.seed, i, level_set_stream);
     Vec3 gamma, Pi;
-    if (!draw_level_point(level_set_body(scene), spec_.level_set->h, spec_.level_set->l, rng, gamma, Pi))
+    if (!draw_level_point(level_set_body(scene), spec_.level_set->h, spec_.level_set->l, spec_.level_set->measure, rng,
+                          gamma, Pi))
       throw TrajectorySetupError("the level set (l, h) was not reached in 1e6 random directions of Gamma");
     x.R = attitude_from_gamma(gamma);
     x.Pi = Pi;

@@ -1,11 +1,12 @@
 // lgi chaos-map --scene FILE --l-range a:b:n --h-range a:b:n --ics N --t-end T [--dt H] [--seed S]
-//   [--threshold Y] [--threads N] [--out FILE.h5] [--force] [--quiet]
+//   [--measure liouville|uniform] [--threshold Y] [--threads N] [--out FILE.h5] [--force] [--quiet]
 // The fraction of chaotic orbits over the (l, h) plane of a heavy top: in
 // every cell N initial states drawn on the level set (l, h) exactly as
 // `lgi poincare --l --h --ics N --seed S` draws them, and for each the MEGNO
 // and the maximal Lyapunov exponent from the tangent flow
 // (analysis/poincare_section.hpp, orbit_indicators); an orbit is chaotic
-// where MEGNO <Y>(t_end) > threshold (layout and meaning: experiments/CHAOS_MAP.md).
+// where MEGNO <Y>(t_end) > threshold, and the chaotic fraction is given with
+// its 95 % Wilson interval (layout and meaning: experiments/CHAOS_MAP.md).
 #include <omp.h>
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include <string>
 
 #include "experiments/analysis/accessible_region.hpp"
+#include "experiments/analysis/binomial_interval.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/commands.hpp"
@@ -32,6 +34,7 @@
 #include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
+#include "experiments/io/sweep_spec.hpp"
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/loop_support.hpp"
@@ -41,7 +44,7 @@ namespace lgi::experiments {
 namespace {
 
 struct ChaosMapOptions {
-  std::string scene, out = "chaos_map.h5", l_range, h_range;
+  std::string scene, out = "chaos_map.h5", l_range, h_range, measure = "liouville";
   std::int64_t ics = 0;
   double t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;
@@ -67,6 +70,8 @@ void check_flags(const ChaosMapOptions& o) {
   if (o.dt && (!(*o.dt > 0.0) || !std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
   if (!std::isfinite(o.threshold)) throw UsageError("--threshold: must be a finite number");
   if (o.seed > static_cast<std::uint64_t>(INT64_MAX)) throw UsageError("--seed: at most 2^63 - 1 (a TOML integer)");
+  if (!level_measure_from_name(o.measure))
+    throw UsageError("--measure: \"" + o.measure + "\": expected liouville or uniform");
 }
 
 /// The level-set draw of `lgi poincare` at (l, h): the same spec keys, so the
@@ -74,7 +79,7 @@ void check_flags(const ChaosMapOptions& o) {
 std::string spec_text(const ChaosMapOptions& o, const std::string& scene_path, double dt, double l, double h) {
   return "name = \"lgi chaos-map\"\nscene = \"" + scene_path + "\"\nscheme = \"rkmk4\"\ndt = " + number(dt) +
          "\nt_end = " + number(o.t_end) + "\nseed = " + std::to_string(o.seed) + "\nsamples = " + std::to_string(o.ics) +
-         "\n\n[level_set]\nh = " + number(h) + "\nl = " + number(l) + "\n";
+         "\n\n[level_set]\nh = " + number(h) + "\nl = " + number(l) + "\nmeasure = \"" + o.measure + "\"\n";
 }
 
 /// One cell: its spec and plan (none where the level is empty or not reached).
@@ -162,7 +167,8 @@ std::vector<TableGroup> result_groups(const ChaosMapOptions& o, const std::vecto
                                       const std::vector<double>& hs, const std::vector<double>& h_min) {
   const int width = static_cast<int>(hs.size());
   TableColumn l_col{"l"}, h_col{"h"}, h_min_col{"h_min"}, status{"status", width, true}, count{"orbits", width, true},
-      fraction{"chaotic_fraction", width}, megno_median{"megno_median", width}, lyap_max{"lyapunov_max", width},
+      chaotic_count{"chaotic", width, true}, fraction{"chaotic_fraction", width},
+      fraction_low{"chaotic_fraction_low", width}, fraction_high{"chaotic_fraction_high", width}, megno_median{"megno_median", width}, lyap_max{"lyapunov_max", width},
       lyap_median{"lyapunov_median", width};
   l_col.real = ls, h_col.real = hs, h_min_col.real = h_min;
   std::vector<TableColumn> per = {{"l"}, {"h"}, {"cell", 1, true}, {"index", 1, true}, {"megno"}, {"lyapunov"},
@@ -190,16 +196,37 @@ std::vector<TableGroup> result_groups(const ChaosMapOptions& o, const std::vecto
     status.whole.push_back(s);
     count.whole.push_back(static_cast<std::int64_t>(megno.size()));
     const bool any = s == cell_ok && !megno.empty();
-    fraction.real.push_back(any ? static_cast<double>(chaotic) / static_cast<double>(megno.size()) : NAN);
+    const BinomialInterval w = any ? wilson_interval(chaotic, static_cast<std::int64_t>(megno.size())) : BinomialInterval{};
+    chaotic_count.whole.push_back(any ? chaotic : 0);
+    fraction.real.push_back(w.fraction), fraction_low.real.push_back(w.low), fraction_high.real.push_back(w.high);
     megno_median.real.push_back(any ? median(megno) : NAN);
     lyap_max.real.push_back(any ? *std::max_element(lyapunov.begin(), lyapunov.end()) : NAN);
     lyap_median.real.push_back(any ? median(lyapunov) : NAN);
   }
-  TableGroup map{"chaos_map", {l_col, h_col, h_min_col, status, count, fraction, megno_median, lyap_max, lyap_median}};
+  TableGroup map{"chaos_map", {l_col, h_col, h_min_col, status, count, chaotic_count, fraction, fraction_low,
+                               fraction_high, megno_median, lyap_max, lyap_median}};
   map.attributes["status_names"] = "0: ok\n1: empty level (h below the minimum energy at l)\n"
                                    "2: level not reached by the draw (h within 1e-3 of the minimum)\n3: not run (interrupted)";
   map.attributes["threshold"] = number(o.threshold);
+  map.attributes["measure"] = o.measure;
+  map.attributes["interval"] = "chaotic_fraction_low, chaotic_fraction_high: the 95 % Wilson score interval of "
+                               "chaotic / orbits as an estimate of the phase-space fraction of the level set";
   return {map, TableGroup{"orbits", per}};
+}
+
+/// One line per computed cell: l, h, chaotic/orbits = fraction [95 % Wilson interval].
+void print_fractions(const TableGroup& map) {
+  const auto column = [&](const std::string& name) -> const TableColumn& {
+    return *std::find_if(map.columns.begin(), map.columns.end(), [&](const TableColumn& c) { return c.name == name; });
+  };
+  const TableColumn &ls = column("l"), &hs = column("h"), &status = column("status"), &orbits = column("orbits"),
+                    &chaotic = column("chaotic");
+  const std::size_t nh = hs.real.size();
+  for (std::size_t c = 0; c < status.whole.size(); ++c) {
+    if (status.whole[c] != cell_ok || orbits.whole[c] == 0) continue;
+    std::cout << "  l = " << format_general(ls.real[c / nh]) << ", h = " << format_general(hs.real[c % nh])
+              << ": chaotic " << format_fraction(chaotic.whole[c], orbits.whole[c]) << '\n';
+  }
 }
 
 int run_chaos_map(const ChaosMapOptions& o) {
@@ -228,7 +255,7 @@ int run_chaos_map(const ChaosMapOptions& o) {
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
       {"cxx_flags", build_info::cxx_flags}, {"l_range", o.l_range}, {"h_range", o.h_range},
       {"ics", std::to_string(o.ics)}, {"t_end", number(o.t_end)}, {"dt", number(dt)}, {"seed", std::to_string(o.seed)},
-      {"threshold", number(o.threshold)}, {"indicators", "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp)"},
+      {"threshold", number(o.threshold)}, {"measure", o.measure}, {"indicators", "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp)"},
       {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)},
       {"status", interrupted ? "interrupted by signal" : "complete"}};
   const auto groups = result_groups(o, cells, orbits, ls, hs, h_min);
@@ -238,10 +265,12 @@ int run_chaos_map(const ChaosMapOptions& o) {
     std::cerr << "lgi: chaos-map interrupted by signal; the finished orbits are in " << path << '\n';
     return interrupted_exit_status();
   }
-  if (!o.quiet)
-    std::cout << "chaos-map: " << ls.size() << " x " << hs.size() << " cells, " << o.ics << " orbits each to t = "
-              << number(o.t_end) << ", chaotic where MEGNO > " << number(o.threshold) << "; " << format_general(wall, 3)
-              << " s wall on " << threads << " threads; wrote " << o.out << '\n';
+  if (!o.quiet) {
+    std::cout << "chaos-map: " << ls.size() << " x " << hs.size() << " cells, " << o.ics << " orbits each (" << o.measure
+              << " measure) to t = " << number(o.t_end) << ", chaotic where MEGNO > " << number(o.threshold) << "; "
+              << format_general(wall, 3) << " s wall on " << threads << " threads; wrote " << o.out << '\n';
+    print_fractions(groups[0]);
+  }
   return exit_ok;
 }
 
@@ -260,6 +289,10 @@ Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context
   sub->add_option("--t-end", o->t_end, "Time span of each orbit")->required();
   sub->add_option("--dt", o->dt, "Step of the tangent flow (RKMK4; default: the scene's [run] dt)");
   sub->add_option("--seed", o->seed, "Seed of the level-set draws and of the tangent vectors")->capture_default_str();
+  sub->add_option("--measure", o->measure,
+                  "Density of the draws on each level set: liouville (the phase-space measure) or uniform (Gamma "
+                  "uniform on the sphere, lgi's draw before; docs/atlas.md §6)")
+      ->capture_default_str();
   sub->add_option("--threshold", o->threshold, "An orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);

@@ -1,11 +1,13 @@
 // lgi poincare --scene FILE --l L --h H --ics N --t-end T [--axis ...] [--section richter|gamma]
-//   [--scheme NAME] [--dt H] [--seed S] [--lyapunov] [--megno] [--threads N] [--out FILE.h5] [--force] [--quiet]
+//   [--scheme NAME] [--dt H] [--seed S] [--measure liouville|uniform] [--lyapunov] [--megno [--threshold Y]]
+//   [--threads N] [--out FILE.h5] [--force] [--quiet]
 // Poincaré sections of a heavy top on one level set (ℓ, h) (experiments/POINCARE.md):
 // a sweep (experiments/SWEEPS.md) with N initial states drawn on the level
 // set and one event, the section surface, run by the sweep engine
 // (commands/sweep/sweep_chunks.hpp); the section coordinates of every
 // crossing and, on request, the chaos indicators of every orbit are then
-// added to the result file (analysis/poincare_section.hpp) before it is published.
+// added to the result file (analysis/poincare_section.hpp) before it is published;
+// with --megno, the chaotic fraction and its 95 % Wilson interval (/chaos).
 #include <omp.h>
 
 #include <cmath>
@@ -17,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "experiments/analysis/binomial_interval.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/analysis/sweep_trajectory.hpp"
 #include "experiments/cli/commands.hpp"
@@ -39,7 +42,8 @@ namespace {
 
 struct PoincareOptions {
   std::string scene, out = "poincare.h5", axis, section = "richter", scheme;  // scheme: empty is the default of the system
-  double l = 0.0, h = 0.0, t_end = 0.0;
+  std::string measure;  // empty: liouville (a Cardan top refuses the flag)
+  double l = 0.0, h = 0.0, t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;
   std::int64_t ics = 0, max_events = 100000;
   std::uint64_t seed = 0;
@@ -56,6 +60,7 @@ std::string number(double x) {
 
 constexpr const char* default_so3_scheme = "split-exact@yoshida4";
 std::string so3_scheme(const PoincareOptions& o) { return o.scheme.empty() ? default_so3_scheme : o.scheme; }
+std::string measure(const PoincareOptions& o) { return o.measure.empty() ? "liouville" : o.measure; }
 
 /// The equivalent `lgi sweep` spec (kept in /parameters spec_toml; the axis
 /// of a non-coordinate section axis is set on the parsed spec).
@@ -67,7 +72,8 @@ std::string spec_text(const PoincareOptions& o, const std::string& scene_path, d
   std::string t = "name = \"lgi poincare\"\nscene = \"" + scene_path + "\"\nscheme = \"" + so3_scheme(o) +
                   "\"\ndt = " + number(dt) + "\nt_end = " + number(o.t_end) + "\nseed = " + std::to_string(o.seed) +
                   "\nsamples = " + std::to_string(o.ics) + "\nmax_events = " + std::to_string(o.max_events) +
-                  "\n\n[level_set]\nh = " + number(o.h) + "\nl = " + number(o.l) + "\n\n[[event]]\n";
+                  "\n\n[level_set]\nh = " + number(o.h) + "\nl = " + number(o.l) + "\nmeasure = \"" + measure(o) +
+                  "\"\n\n[[event]]\n";
   t += kind == SectionKind::richter ? "quantity = \"gamma_rate\"\n" : "quantity = \"gamma\"\n";
   t += "component = " + std::to_string(component) + "\nname = \"" + (kind == SectionKind::richter ? "richter" : "gamma") +
        "_section\"\n# section axis e = (" + number(e.x()) + ", " + number(e.y()) + ", " + number(e.z()) + ")\n";
@@ -93,6 +99,9 @@ void check_flags(const PoincareOptions& o) {
   if (o.ics < 1) throw UsageError("--ics: must be at least 1");
   if (o.max_events < 1) throw UsageError("--max-events: must be at least 1");
   if (o.seed > static_cast<std::uint64_t>(INT64_MAX)) throw UsageError("--seed: at most 2^63 - 1 (a TOML integer)");
+  if (!o.measure.empty() && !level_measure_from_name(o.measure))
+    throw UsageError("--measure: \"" + o.measure + "\": expected liouville or uniform");
+  if (!std::isfinite(o.threshold)) throw UsageError("--threshold: must be a finite number");
   if (o.section != "richter" && o.section != "gamma" && o.section != "gamma1" && o.section != "gamma2" &&
       o.section != "gamma3")
     throw UsageError("--section: \"" + o.section + "\": expected richter, gamma, gamma1, gamma2 or gamma3");
@@ -132,11 +141,31 @@ void add_section_columns(const std::string& path, SectionKind kind, const Vec3& 
   file.close();
 }
 
+/// /chaos, one row: orbits with a finite MEGNO, those above the threshold,
+/// their fraction and its 95 % Wilson interval; returns "k/n = f [low, high]".
+std::string write_chaotic_fraction(SweepExtraColumns& file, const std::vector<double>& megno, double threshold) {
+  std::int64_t n = 0, k = 0;
+  for (const double y : megno) {
+    if (!std::isfinite(y)) continue;
+    ++n;
+    k += y > threshold ? 1 : 0;
+  }
+  const BinomialInterval w = wilson_interval(k, n);
+  file.write_real("chaos", "threshold", {threshold}, 1);
+  file.write_integer("chaos", "orbits", {n});
+  file.write_integer("chaos", "chaotic", {k});
+  file.write_real("chaos", "chaotic_fraction", {w.fraction}, 1);
+  file.write_real("chaos", "chaotic_fraction_low", {w.low}, 1);
+  file.write_real("chaos", "chaotic_fraction_high", {w.high}, 1);
+  return format_fraction(k, n);
+}
+
 /// The chaos indicators of every orbit, on `threads` threads (each orbit a
-/// function of its index alone), written as /sweep columns.
+/// function of its index alone), written as /sweep columns, and with MEGNO
+/// the chaotic fraction (its line in `fraction`).
 /// False if a signal stopped it (the orbits left out are not written).
 bool add_indicator_columns(const std::string& path, const PoincareOptions& o, const SweepPlan& plan,
-                           const system::Scene& scene, double dt, int threads) {
+                           const system::Scene& scene, double dt, int threads, std::string& fraction) {
   std::vector<double> lyapunov(static_cast<std::size_t>(o.ics)), megno(static_cast<std::size_t>(o.ics));
   std::int64_t computed = 0;
 #pragma omp parallel num_threads(threads)
@@ -161,6 +190,7 @@ bool add_indicator_columns(const std::string& path, const PoincareOptions& o, co
   SweepExtraColumns file(path);
   if (o.lyapunov) file.write_real("sweep", "lyapunov", lyapunov, 1);
   if (o.megno) file.write_real("sweep", "megno", megno, 1);
+  if (o.megno) fraction = write_chaotic_fraction(file, megno, o.threshold);
   file.close();
   return true;
 }
@@ -170,11 +200,12 @@ SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, cons
   SweepAttributes a;
   a.parameters = {{"subcommand", "poincare"},     {"scheme", so3_scheme(o)},
                   {"section", o.section},         {"spec_toml", spec.text},
+                  {"measure", measure(o)},
                   {"scene_file", scene.file},     {"scene_toml", scene.toml_text},
                   {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
                   {"cxx_flags", build_info::cxx_flags}, {"build_type", build_info::build_type}};
   a.numbers = {{"t_end", cfg.t_end}, {"dt", cfg.dt}, {"l", o.l}, {"h", o.h}, {"trajectories", static_cast<double>(o.ics)},
-               {"seed", static_cast<double>(o.seed)}, {"axis_1", e.x()}, {"axis_2", e.y()}, {"axis_3", e.z()}};
+               {"seed", static_cast<double>(o.seed)}, {"threshold", o.threshold}, {"axis_1", e.x()}, {"axis_2", e.y()}, {"axis_3", e.z()}};
   a.provenance = {{"command_line", o.command_line},          {"threads", std::to_string(run.threads)},
                   {"ranks", "1"},                            {"resumed", "no"},
                   {"libm", libm_code_path()},
@@ -200,6 +231,8 @@ int run_cardan(const PoincareOptions& o, const system::Scene& scene) {
   check_flags(o);
   if (!o.axis.empty()) throw UsageError("--axis: the Cardan top's section is fixed (S = -sin q2 dq2/dt = 0)");
   if (o.section != "richter") throw UsageError("--section: the Cardan top's section is fixed (S = -sin q2 dq2/dt = 0)");
+  if (!o.measure.empty())
+    throw UsageError("--measure: the Cardan top's level draw is its own (docs/cardan.md §9.2); --measure is for tops on SO(3)");
   CardanPoincareRequest r;
   r.l = o.l, r.h = o.h, r.t_end = o.t_end, r.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   r.ics = o.ics, r.max_events = o.max_events, r.seed = o.seed;
@@ -257,17 +290,20 @@ int run_poincare(const PoincareOptions& o) {
   file->write_final(writing, attributes(o, spec, scene, cfg, e, run));
   file->close();
   add_section_columns(writing, kind, e, scene);
-  if ((o.lyapunov || o.megno) && !add_indicator_columns(writing, o, plan, scene, dt, threads)) {
+  std::string fraction;
+  if ((o.lyapunov || o.megno) && !add_indicator_columns(writing, o, plan, scene, dt, threads, fraction)) {
     std::remove(writing.c_str());
     return stopped(" while it computed the indicators");
   }
   hdf5::publish(writing, o.out, o.force, "the section is");
   std::remove(partial.c_str());
-  if (!o.quiet)
+  if (!o.quiet) {
     std::cout << "poincare: " << o.ics << " orbits of " << scheme.name << " on " << scene.file << " at l = " << number(o.l)
-              << ", h = " << number(o.h) << ", " << file->failures() << " failed, " << run.events << " crossings; "
-              << format_general(run.wall_seconds, 3) << " s wall on " << run.threads << " threads; wrote " << o.out
-              << '\n';
+              << ", h = " << number(o.h) << " (" << measure(o) << " measure), " << file->failures() << " failed, "
+              << run.events << " crossings; " << format_general(run.wall_seconds, 3) << " s wall on " << run.threads
+              << " threads; wrote " << o.out << '\n';
+    if (o.megno) std::cout << "  chaotic (MEGNO > " << number(o.threshold) << "): " << fraction << '\n';
+  }
   return exit_ok;
 }
 
@@ -295,9 +331,16 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
                   "Fixed-step scheme (lgi schemes; default split-exact@yoshida4, and cardan-rk4 for a Cardan top)");
   sub->add_option("--dt", o->dt, "Step (default: the scene's [run] dt)");
   sub->add_option("--seed", o->seed, "Seed of the level-set draws and of the tangent vectors")->capture_default_str();
+  sub->add_option("--measure", o->measure,
+                  "Density of the draws on the level set: liouville (the phase-space measure, the default) or "
+                  "uniform (Gamma uniform on the sphere, lgi's draw before; docs/atlas.md §6)");
   sub->add_option("--max-events", o->max_events, "Crossings kept per orbit")->capture_default_str();
   sub->add_flag("--lyapunov", o->lyapunov, "Add /sweep/lyapunov: the maximal Lyapunov exponent (tangent flow)");
-  sub->add_flag("--megno", o->megno, "Add /sweep/megno: MEGNO <Y> at t_end (tangent flow)");
+  sub->add_flag("--megno", o->megno,
+                "Add /sweep/megno: MEGNO <Y> at t_end (tangent flow), and /chaos: the chaotic fraction with its 95 % "
+                "Wilson interval");
+  sub->add_option("--threshold", o->threshold, "With --megno: an orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
+      ->capture_default_str();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
   sub->add_flag("--force", o->force, "Replace an existing output file");

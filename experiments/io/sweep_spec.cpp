@@ -50,7 +50,7 @@ constexpr std::array<std::string_view, 16> top_keys{
     "name",       "description",   "scene",            "scheme", "dt",        "tol",  "t_end", "seed",
     "samples",    "chunk",         "max_events",       "monitor_every", "trajectory_every", "vary", "level_set", "event"};
 constexpr std::array<std::string_view, 6> vary_keys{"key", "component", "values", "linspace", "logspace", "uniform"};
-constexpr std::array<std::string_view, 2> level_keys{"h", "l"};
+constexpr std::array<std::string_view, 3> level_keys{"h", "l", "measure"};
 constexpr std::array<std::string_view, 5> event_keys{"name", "quantity", "component", "value", "direction"};
 
 std::int64_t integer(const Table& t, std::string_view key, const toml::node& n, std::int64_t min) {
@@ -202,6 +202,14 @@ void check_combinations(const Table& root, const SweepSpec& s) {
 
 }  // namespace
 
+const char* level_measure_name(LevelMeasure m) { return m == LevelMeasure::liouville ? "liouville" : "uniform"; }
+
+std::optional<LevelMeasure> level_measure_from_name(const std::string& name) {
+  if (name == "liouville") return LevelMeasure::liouville;
+  if (name == "uniform") return LevelMeasure::uniform;
+  return std::nullopt;
+}
+
 std::int64_t SweepSpec::grid_points() const {
   std::int64_t n = 1;
   for (const auto& v : vary)
@@ -261,6 +269,12 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& path) {
     t.check_keys(level_keys);
     s.level_set = LevelSetSpec{t.required_number("h", "the energy H of the level set"),
                                t.required_number("l", "the momentum Pi.Gamma of the level set"), t.line.value_or(0)};
+    if (const toml::node* m = t.get("measure")) {
+      const std::string name = t.string("measure", *m);
+      const auto measure = level_measure_from_name(name);
+      if (!measure) t.fail(*m, "measure", "\"" + name + "\": expected liouville or uniform");
+      s.level_set->measure = *measure;
+    }
   }
   if (const toml::node* n = root.get("event")) {
     const auto* a = n->as_array();

@@ -53,11 +53,22 @@ struct EventSpec {
   std::array<double, 3> axis{};  // gamma_rate: the unit body axis e (a spec sets e_component)
 };
 
+/// The density of a level-set draw (docs/atlas.md §6): the Liouville measure
+/// of {H = h, Π·Γ = l} (the default), or Γ uniform on the sphere (the draw
+/// of lgi before the measure was chosen; kept to reproduce those runs).
+enum class LevelMeasure { liouville, uniform };
+
+/// "liouville" or "uniform".
+const char* level_measure_name(LevelMeasure m);
+/// The measure named `name`, or nothing if it is neither name.
+std::optional<LevelMeasure> level_measure_from_name(const std::string& name);
+
 /// Initial conditions drawn on {H = h, Π·Γ = l} (SWEEPS.md says how).
 struct LevelSetSpec {
   double h = 0.0;
   double l = 0.0;
   std::uint32_t line = 0;
+  LevelMeasure measure = LevelMeasure::liouville;
 };
 
 struct SweepSpec {
