@@ -8,7 +8,9 @@
 // range) right after the parse (cli.hpp, CommandLine::parse), throwing
 // InputError or UsageError; it runs nothing and touches no file.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace lgi::experiments {
@@ -46,6 +48,21 @@ int run_sweep_request(const SweepRequest& request);  // commands/sweep_command.c
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context);  // commands/poincare_command.cpp
+/// The flags of `lgi poincare` (experiments/POINCARE.md) as fields; run
+/// without its command line by lgi.poincare (python/): the same checks, run
+/// and file. Returns the exit status; throws as the subcommand does.
+struct PoincareRequest {
+  std::string scene, out = "poincare.h5", axis, section = "richter", scheme;  // scheme: empty is the default
+  std::string measure;  // empty: liouville (a Cardan top refuses the flag)
+  double l = 0.0, h = 0.0, t_end = 0.0, threshold = 3.0;
+  std::optional<double> dt;
+  std::int64_t ics = 0, max_events = 100000;
+  std::uint64_t seed = 0;
+  int threads = 0;  // 0: all cores
+  bool lyapunov = false, megno = false, force = false, quiet = false;
+  std::string command_line;
+};
+int run_poincare_request(const PoincareRequest& request);  // commands/poincare_command.cpp
 Subcommand add_region_subcommand(CLI::App& app, const CommandContext& context);  // commands/region_command.cpp
 Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context);  // commands/chaos_map_command.cpp
 Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context);  // commands/actions_command.cpp

@@ -14,6 +14,7 @@
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
+#include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/commands/cardan_atlas.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
@@ -34,39 +35,6 @@ struct EquilibriaOptions {
   bool force = false, quiet = false;
   std::string command_line, subcommand = "equilibria";
 };
-
-HeavyTopBody heavy_top(const system::Scene& scene) {
-  const bool gravity = scene.declared<system::GravityTerm>().has_value();
-  if (!scene.is_free_body() && !scene.declares_only<system::GravityTerm>())
-    throw InputError(scene.file + ": lgi equilibria needs a heavy top (gravity and no other torque term)");
-  HeavyTopBody body;
-  body.J = scene.inertia;
-  if (gravity)
-    body.weight = *scene.mass * scene.declared<system::GravityTerm>()->g * scene.center_of_mass.value_or(Vec3::Zero());
-  return body;
-}
-
-std::vector<TableColumn> columns_of(const std::vector<RelativeEquilibrium>& rows) {
-  std::vector<TableColumn> c = {{"omega"},  {"gamma", 3}, {"angular_momentum", 3}, {"l"},
-                                {"h"},      {"branch", 1, true}, {"g1"}, {"g2"},
-                                {"stability", 1, true}, {"nonlinearly_stable", 1, true}, {"fold", 1, true},
-                                {"residual"}};
-  for (const auto& e : rows) {
-    c[0].real.push_back(e.omega);
-    c[1].real.insert(c[1].real.end(), e.gamma.data(), e.gamma.data() + 3);
-    c[2].real.insert(c[2].real.end(), e.angular_momentum.data(), e.angular_momentum.data() + 3);
-    c[3].real.push_back(e.l);
-    c[4].real.push_back(e.h);
-    c[5].whole.push_back(e.branch);
-    c[6].real.push_back(e.g1);
-    c[7].real.push_back(e.g2);
-    c[8].whole.push_back(static_cast<std::int64_t>(e.stability));
-    c[9].whole.push_back(e.nonlinearly_stable ? 1 : 0);
-    c[10].whole.push_back(e.fold ? 1 : 0);
-    c[11].real.push_back(e.residual);
-  }
-  return c;
-}
 
 void print_row(const RelativeEquilibrium& e) {
   std::printf("branch=%d omega=%.17g gamma=(%.17g, %.17g, %.17g) l=%.17g h=%.17g stability=%s g1=%.6e g2=%.6e "
@@ -94,11 +62,7 @@ std::vector<TableGroup> appelrot(const EquilibriaOptions& o, const system::Scene
   if (!scale)
     throw UsageError("--appelrot: " + scene.file +
                      " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
-  const double unit = scale->J3 * scale->c;
-  const std::string range = o.appelrot_h.empty()
-                                ? format_general(-1.1 * unit, 17) + ":" + format_general(5.0 * unit, 17) + ":123"
-                                : o.appelrot_h;
-  const std::vector<double> hs = parse_grid_range(range, "--appelrot-h");
+  const std::vector<double> hs = appelrot_energies(*scale, o.appelrot_h);
   return appelrot_groups(body, *scale, o.appelrot, hs);
 }
 
@@ -111,7 +75,7 @@ int run_equilibria(const EquilibriaOptions& o) {
                                          o.quiet});
   }
   if (o.omega_max) throw UsageError("--omega-max: only for a Cardan top (a scene with [suspension])");
-  const HeavyTopBody body = heavy_top(scene);
+  const HeavyTopBody body = equilibria_body(scene);
   check_flags(o);
   const EquilibriumSet set = o.l ? equilibria_at(body, *o.l) : equilibrium_branches(body, o.samples);
   std::map<std::string, std::string> parameters = {
@@ -119,15 +83,13 @@ int run_equilibria(const EquilibriaOptions& o) {
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
       {"cxx_flags", build_info::cxx_flags}};
   if (o.l) parameters["l"] = format_general(*o.l, 17);
-  std::string branches;
-  for (const auto& b : set.branches) branches += std::to_string(b.id) + ": " + b.kind + "\n";
-  parameters["branches"] = branches;
+  parameters["branches"] = branch_listing(set.branches);
   if (!o.appelrot.empty()) {
     std::string ls;
     for (const double l : o.appelrot) ls += (ls.empty() ? "" : ",") + format_general(l, 17);
     parameters["appelrot_l"] = ls;
   }
-  write_table_file(o.out, o.force, "equilibria", columns_of(set.rows), parameters, appelrot(o, scene, body));
+  write_table_file(o.out, o.force, "equilibria", equilibria_columns(set.rows), parameters, appelrot(o, scene, body));
   if (o.quiet) return exit_ok;
   for (const auto& e : set.rows)
     if (o.l || e.fold) print_row(e);

@@ -26,6 +26,7 @@
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/write_failures.hpp"
+#include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/commands/cardan_atlas.hpp"
 #include "experiments/analysis/cardan_section.hpp"
 #include "experiments/commands/sweep/sweep_chunks.hpp"
@@ -40,17 +41,7 @@
 namespace lgi::experiments {
 namespace {
 
-struct PoincareOptions {
-  std::string scene, out = "poincare.h5", axis, section = "richter", scheme;  // scheme: empty is the default of the system
-  std::string measure;  // empty: liouville (a Cardan top refuses the flag)
-  double l = 0.0, h = 0.0, t_end = 0.0, threshold = 3.0;
-  std::optional<double> dt;
-  std::int64_t ics = 0, max_events = 100000;
-  std::uint64_t seed = 0;
-  int threads = 0;
-  bool lyapunov = false, megno = false, force = false, quiet = false;
-  std::string command_line;
-};
+using PoincareOptions = PoincareRequest;
 
 std::string number(double x) {
   char b[40];
@@ -116,10 +107,7 @@ void check_flags(const PoincareOptions& o) {
 
 void check_options(const PoincareOptions& o, const system::Scene& scene) {
   check_flags(o);
-  const double lowest = minimum_energy(heavy_top(scene), o.l);
-  if (o.h < lowest - 1e-12 * std::max(1.0, std::abs(lowest)))
-    throw UsageError("--h: h is below the minimum energy at this l: h = " + number(o.h) + " < " + number(lowest) +
-                     " = min H at l = " + number(o.l) + " for " + scene.file + " (the level set is empty)");
+  check_level_not_empty(heavy_top(scene), o.l, o.h, scene.file);
 }
 
 /// phi, theta, sheet of every crossing, and the indicators of every orbit.
@@ -308,6 +296,11 @@ int run_poincare(const PoincareOptions& o) {
 }
 
 }  // namespace
+
+int run_poincare_request(const PoincareRequest& request) {
+  check_flags(request);
+  return run_with_write_failures_as_run_errors([&] { return run_poincare(request); });
+}
 
 Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context) {
   auto o = std::make_shared<PoincareOptions>();

@@ -12,13 +12,14 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "experiments/analysis/accessible_region.hpp"
-#include "experiments/analysis/poincare_section.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
+#include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
@@ -54,54 +55,6 @@ std::map<std::string, std::string> provenance(const RegionOptions& o, const syst
           {"cxx_flags", build_info::cxx_flags}, {"grid", std::to_string(o.grid)}};
 }
 
-TableGroup potential_group(const SphereGrid& grid, const Region& region) {
-  TableGroup g{"potential"};
-  TableColumn theta{"theta"}, phi{"phi"}, U{"U", grid.meridians()}, label{"component", grid.meridians(), true};
-  for (int i = 0; i <= grid.n; ++i) theta.real.push_back(grid.theta(i));
-  for (int j = 0; j < grid.meridians(); ++j) phi.real.push_back(grid.phi(j));
-  U.real = grid.U;
-  label.whole = region.label;
-  g.columns = {theta, phi, U, label};
-  return g;
-}
-
-TableGroup critical_group(const CriticalSet& set, double h) {
-  TableGroup g{"critical_points"};
-  std::vector<TableColumn> c = {{"gamma", 3}, {"value"}, {"index", 1, true}, {"circle", 1, true}, {"below", 1, true},
-                                {"omega"},    {"branch", 1, true}, {"stability", 1, true}, {"nonlinearly_stable", 1, true}};
-  for (const auto& p : set.points) {
-    c[0].real.insert(c[0].real.end(), p.gamma.data(), p.gamma.data() + 3);
-    c[1].real.push_back(p.value);
-    c[2].whole.push_back(p.index);
-    c[3].whole.push_back(p.circle ? 1 : 0);
-    c[4].whole.push_back(p.value < h ? 1 : 0);
-    c[5].real.push_back(p.omega);
-    c[6].whole.push_back(p.branch);
-    c[7].whole.push_back(static_cast<std::int64_t>(p.stability));
-    c[8].whole.push_back(p.nonlinearly_stable ? 1 : 0);
-  }
-  g.columns = c;
-  return g;
-}
-
-TableGroup components_group(const Region& region) {
-  TableGroup g{"components"};
-  std::vector<TableColumn> c = {{"id", 1, true},     {"boundaries", 1, true}, {"euler", 1, true},
-                                {"euler_morse", 1, true}, {"minima", 1, true}, {"saddles", 1, true},
-                                {"maxima", 1, true}, {"circles", 1, true},    {"area"}, {"u_min"}};
-  std::string names;
-  for (const auto& k : region.components) {
-    c[0].whole.push_back(k.id), c[1].whole.push_back(k.boundaries), c[2].whole.push_back(k.euler);
-    c[3].whole.push_back(k.euler_morse), c[4].whole.push_back(k.minima), c[5].whole.push_back(k.saddles);
-    c[6].whole.push_back(k.maxima), c[7].whole.push_back(k.circles);
-    c[8].real.push_back(k.area), c[9].real.push_back(k.u_min);
-    names += (names.empty() ? "" : "\n") + k.topology;
-  }
-  g.columns = c;
-  g.attributes["topology"] = names;
-  return g;
-}
-
 /// The checks that need no file (run at parse time and again before a run).
 void check_flags(const RegionOptions& o) {
   if (o.grid < 8 || o.grid > 2000) throw UsageError("--grid: must be between 8 and 2000");
@@ -123,19 +76,15 @@ void check_flags(const RegionOptions& o) {
 
 int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTopBody& body) {
   const double l = *o.l, h = *o.h;
-  const double lowest = minimum_energy(body, l);
-  if (h < lowest - 1e-12 * std::max(1.0, std::abs(lowest)))
-    throw UsageError("--h: h is below the minimum energy at this l: h = " + number(h) + " < " + number(lowest) +
-                     " = min H at l = " + number(l) + " for " + scene.file + " (the level set is empty)");
-  const CriticalSet critical = critical_points(body, l);
-  const SphereGrid grid = potential_grid(body, l, o.grid);
-  const Region region = accessible_region(grid, critical, h);
+  check_level_not_empty(body, l, h, scene.file);
+  const SingleRegion single = single_region(body, l, h, o.grid);
+  const CriticalSet& critical = single.critical;
+  const Region& region = single.region;
   auto parameters = provenance(o, scene);
   parameters["l"] = number(l), parameters["h"] = number(h), parameters["topology"] = region.topology;
   parameters["resolved"] = region.resolved ? "yes" : "no";
   parameters["u_constant"] = critical.constant ? "yes" : "no";
-  write_groups_file(o.out, o.force,
-                    {potential_group(grid, region), critical_group(critical, h), components_group(region)}, parameters);
+  write_groups_file(o.out, o.force, single_region_groups(single, h), parameters);
   if (o.quiet) return exit_ok;
   for (const auto& c : critical.points)
     std::printf("critical point: gamma=(%.17g, %.17g, %.17g) U=%.17g %s%s omega=%.17g branch=%d\n", c.gamma.x(),
@@ -151,57 +100,19 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
   return exit_ok;
 }
 
-/// The index of `name` in `names`, appended if new.
-std::int64_t code_of(std::vector<std::string>& names, const std::string& name) {
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (names[k] == name) return static_cast<std::int64_t>(k);
-  names.push_back(name);
-  return static_cast<std::int64_t>(names.size() - 1);
-}
-
-TableGroup branches_group(const HeavyTopBody& body, int samples) {
-  TableGroup g{"equilibria"};
-  std::vector<TableColumn> c = {{"l"}, {"h"}, {"omega"}, {"branch", 1, true}, {"stability", 1, true}, {"fold", 1, true}};
-  for (const auto& e : equilibrium_branches(body, samples).rows) {
-    c[0].real.push_back(e.l), c[1].real.push_back(e.h), c[2].real.push_back(e.omega);
-    c[3].whole.push_back(e.branch), c[4].whole.push_back(static_cast<std::int64_t>(e.stability));
-    c[5].whole.push_back(e.fold ? 1 : 0);
-  }
-  g.columns = c;
-  return g;
-}
-
 int run_cells(const RegionOptions& o, const system::Scene& scene, const HeavyTopBody& body) {
   const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
-  std::vector<std::string> names = {"empty"};
-  TableColumn l_col{"l"}, h_col{"h"}, h_min{"h_min"};
-  const int width = static_cast<int>(hs.size());
-  TableColumn topology{"topology", width, true}, components{"components", width, true}, euler{"euler", width, true},
-      euler_morse{"euler_morse", width, true}, resolved{"resolved", width, true};
-  h_col.real = hs;
   std::int64_t unresolved = 0;
-  for (const double l : ls) {
-    l_col.real.push_back(l);
-    h_min.real.push_back(minimum_energy(body, l));
-    const auto summaries = region_summaries(potential_grid(body, l, o.grid), critical_points(body, l), hs);
-    for (const auto& s : summaries) {
-      topology.whole.push_back(code_of(names, s.topology));
-      components.whole.push_back(s.components);
-      euler.whole.push_back(s.euler), euler_morse.whole.push_back(s.euler_morse);
-      resolved.whole.push_back(s.resolved ? 1 : 0);
-      unresolved += s.resolved ? 0 : 1;
-    }
-  }
-  TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved}};
-  std::string legend;
-  for (const auto& n : names) legend += (legend.empty() ? "" : "\n") + n;
-  cells.attributes["topology_names"] = legend;
+  const TableGroup cells = cells_group(body, ls, hs, o.grid, unresolved);
   auto parameters = provenance(o, scene);
   parameters["l_range"] = o.l_range, parameters["h_range"] = o.h_range;
   write_groups_file(o.out, o.force, {cells, branches_group(body, o.samples)}, parameters);
   if (o.quiet) return exit_ok;
+  std::vector<std::string> names;
+  std::istringstream legend(cells.attributes.at("topology_names"));
+  for (std::string line; std::getline(legend, line);) names.push_back(line);
   std::map<std::int64_t, std::int64_t> count;
-  for (const auto code : topology.whole) ++count[code];
+  for (const auto code : cells.columns[3].whole) ++count[code];  // topology
   for (const auto& [code, n] : count) std::cout << "topology " << names[static_cast<std::size_t>(code)] << ": " << n << " cells\n";
   std::cout << "region --cells: " << ls.size() << " x " << hs.size() << " cells, " << unresolved
             << " not resolved by the grid; wrote " << o.out << '\n';

@@ -11,19 +11,26 @@ command line `lgi` (python/README.md):
     run.t, run.R, run.q, run.Pi, run.errors["energy"], run.diagnostics["cpu_seconds"]
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
-sweep(); classes: Scene, Stepper, SimulationResult. Units are SI and the
+sweep(), and the atlas of heavy tops (docs/atlas.md): equilibria(), bifurcation(),
+region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
 """
 
 from ._lgi import Scene, Stepper, exact_free_flow, scenes, scenes_dir, schemes, sweep
+from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
 __all__ = [
     "Scene",
     "SimulationResult",
     "Stepper",
+    "bifurcation",
+    "equilibria",
     "exact_free_flow",
+    "poincare",
+    "region",
+    "region_cells",
     "scenes",
     "scenes_dir",
     "schemes",

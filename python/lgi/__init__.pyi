@@ -132,3 +132,61 @@ def sweep(
     force: bool = False,
 ) -> np.ndarray:
     """lgi sweep in-process: the /sweep table as a structured array (one row per trajectory)."""
+
+# The atlas of heavy tops (docs/atlas.md): the tables of lgi equilibria,
+# lgi bifurcation, lgi region and lgi poincare as dicts of NumPy arrays under
+# the column names of the commands' HDF5 files (experiments/EQUILIBRIA.md,
+# REGION.md, POINCARE.md); integer columns are int64.
+Table = dict[str, Any]
+
+def equilibria(scene: SceneLike, l: float) -> Table:
+    """Every relative equilibrium at l (lgi equilibria --l), sorted by h: omega, gamma (n, 3),
+    angular_momentum (n, 3), l, h, branch, g1, g2, stability, nonlinearly_stable, fold, residual,
+    and branches {id: kind}."""
+
+def bifurcation(
+    scene: SceneLike,
+    samples: int = 400,
+    appelrot: Optional[Sequence[float]] = None,
+    appelrot_h: Optional[str] = None,
+) -> Table:
+    """Every branch sampled, with its folds (lgi bifurcation): the columns of equilibria() and
+    branches; with appelrot= (a Kovalevskaya top) also the dicts appelrot, appelrot_equilibria,
+    appelrot_range."""
+
+def region(scene: SceneLike, l: float, h: float, grid: int = 120) -> Table:
+    """lgi region --l --h: the dicts potential, critical_points, components (with topology: a name
+    per component), and topology (str), resolved (bool), u_constant (bool), l, h, grid."""
+
+def region_cells(
+    scene: SceneLike,
+    l_range: Union[str, tuple[float, float, int]],
+    h_range: Union[str, tuple[float, float, int]],
+    grid: int = 120,
+    samples: int = 400,
+) -> Table:
+    """lgi region --cells: the dicts cells (l, h, h_min, topology (n_l, n_h), components, euler,
+    euler_morse, resolved, topology_names) and equilibria (l, h, omega, branch, stability, fold),
+    and unresolved (int)."""
+
+def poincare(
+    scene: SceneLike,
+    l: float,
+    h: float,
+    ics: int,
+    t_end: float,
+    dt: Optional[float] = None,
+    megno: bool = False,
+    lyapunov: bool = False,
+    seed: int = 0,
+    axis: Optional[str] = None,
+    section: Optional[str] = None,
+    scheme: Optional[str] = None,
+    max_events: int = 100000,
+    threads: int = 1,
+    out: Optional[str] = None,
+    force: bool = False,
+) -> Table:
+    """lgi poincare in-process: the dicts events (one row per crossing: index, direction, t, gamma,
+    phi, theta, sheet, ...) and sweep (one row per orbit; lyapunov, megno when asked), parameters
+    (the file's /parameters attributes) and out."""

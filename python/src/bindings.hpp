@@ -21,6 +21,7 @@ void bind_simulate(py::module_& m);    // bind_simulate.cpp: simulate()
 void bind_stepper(py::module_& m);     // bind_stepper.cpp: Stepper
 void bind_exact_flow(py::module_& m);  // bind_exact_flow.cpp: exact_free_flow()
 void bind_sweep(py::module_& m);       // bind_sweep.cpp: sweep()
+void bind_atlas(py::module_& m);       // bind_atlas.cpp: equilibria(), bifurcation(), region(), region_cells(), poincare()
 
 /// lgi.Scene: a scene as read by the command line's scene reader (shared, immutable).
 struct PyScene {

@@ -1,0 +1,56 @@
+#pragma once
+// The tables of the atlas commands, built in memory from the analysis layer:
+// `lgi equilibria` / `lgi bifurcation` (experiments/EQUILIBRIA.md) and
+// `lgi region` (experiments/REGION.md) write them, and the Python module's
+// lgi.equilibria, lgi.bifurcation, lgi.region and lgi.region_cells
+// (python/src/bind_atlas.cpp) return them, so both have the same columns
+// and the same numbers.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "experiments/analysis/accessible_region.hpp"
+#include "experiments/analysis/kovalevskaya_diagram.hpp"
+#include "experiments/analysis/relative_equilibria.hpp"
+#include "experiments/io/table_file.hpp"
+#include "integrators/system/scene.hpp"
+
+namespace lgi::experiments {
+
+/// J and m g χ of a heavy top for `lgi equilibria` / `lgi bifurcation`;
+/// InputError naming the scene unless it is a heavy top or a free body.
+HeavyTopBody equilibria_body(const system::Scene& scene);
+
+/// The /equilibria columns: omega, gamma, angular_momentum, l, h, branch, g1,
+/// g2, stability, nonlinearly_stable, fold, residual.
+std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibrium>& rows);
+
+/// "id: kind" one a line (the /parameters branches attribute).
+std::string branch_listing(const std::vector<EquilibriumBranch>& branches);
+
+/// The energies of --appelrot-h (`range` a:b:n; empty: h/(J3 c) from -1.1 to 5, 123 values).
+std::vector<double> appelrot_energies(const KovalevskayaScale& scale, const std::string& range);
+
+/// UsageError naming --h when h is below the least energy at l (an empty level set).
+void check_level_not_empty(const HeavyTopBody& body, double l, double h, const std::string& scene_file);
+
+/// `lgi region --l --h`: the grid, the critical points and the region.
+struct SingleRegion {
+  CriticalSet critical;
+  SphereGrid grid;
+  Region region;
+};
+SingleRegion single_region(const HeavyTopBody& body, double l, double h, int grid);
+
+/// Its groups /potential, /critical_points and /components.
+std::vector<TableGroup> single_region_groups(const SingleRegion& r, double h);
+
+/// `lgi region --cells`: the /cells group (with the attribute topology_names)
+/// on the raster ls × hs; `unresolved` counts the cells the grid leaves unresolved.
+TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, const std::vector<double>& hs, int grid,
+                       std::int64_t& unresolved);
+
+/// The /equilibria group beside the cells: l, h, omega, branch, stability, fold.
+TableGroup branches_group(const HeavyTopBody& body, int samples);
+
+}  // namespace lgi::experiments
