@@ -50,7 +50,7 @@ std::vector<TableColumn> columns_of(const std::vector<RelativeEquilibrium>& rows
   std::vector<TableColumn> c = {{"omega"},  {"gamma", 3}, {"angular_momentum", 3}, {"l"},
                                 {"h"},      {"branch", 1, true}, {"g1"}, {"g2"},
                                 {"stability", 1, true}, {"nonlinearly_stable", 1, true}, {"fold", 1, true},
-                                {"residual"}};
+                                {"residual"}, {"class_change", 1, true}};
   for (const auto& e : rows) {
     c[0].real.push_back(e.omega);
     c[1].real.insert(c[1].real.end(), e.gamma.data(), e.gamma.data() + 3);
@@ -64,15 +64,17 @@ std::vector<TableColumn> columns_of(const std::vector<RelativeEquilibrium>& rows
     c[9].whole.push_back(e.nonlinearly_stable ? 1 : 0);
     c[10].whole.push_back(e.fold ? 1 : 0);
     c[11].real.push_back(e.residual);
+    c[12].whole.push_back(e.class_change ? 1 : 0);
   }
   return c;
 }
 
+/// One line per equilibrium, numbers to 6 digits (the file has them to round-off).
 void print_row(const RelativeEquilibrium& e) {
-  std::printf("branch=%d omega=%.17g gamma=(%.17g, %.17g, %.17g) l=%.17g h=%.17g stability=%s g1=%.6e g2=%.6e "
-              "nonlinearly_stable=%s%s\n",
+  std::printf("branch=%d omega=%.6g gamma=(%.6g, %.6g, %.6g) l=%.6g h=%.6g stability=%s g1=%.6g g2=%.6g "
+              "nonlinearly_stable=%s%s%s\n",
               e.branch, e.omega, e.gamma.x(), e.gamma.y(), e.gamma.z(), e.l, e.h, stability_name(e.stability), e.g1,
-              e.g2, e.nonlinearly_stable ? "yes" : "no", e.fold ? " fold" : "");
+              e.g2, e.nonlinearly_stable ? "yes" : "no", e.fold ? " fold" : "", e.class_change ? " class_change" : "");
 }
 
 void check_flags(const EquilibriaOptions& o) {
@@ -119,9 +121,13 @@ int run_equilibria(const EquilibriaOptions& o) {
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
       {"cxx_flags", build_info::cxx_flags}};
   if (o.l) parameters["l"] = format_general(*o.l, 17);
-  std::string branches;
-  for (const auto& b : set.branches) branches += std::to_string(b.id) + ": " + b.kind + "\n";
+  std::string branches, labels;
+  for (const auto& b : set.branches) {
+    branches += std::to_string(b.id) + ": " + b.kind + "\n";
+    labels += std::to_string(b.id) + ": " + b.label + "\n";
+  }
   parameters["branches"] = branches;
+  parameters["branch_labels"] = labels;
   if (!o.appelrot.empty()) {
     std::string ls;
     for (const double l : o.appelrot) ls += (ls.empty() ? "" : ",") + format_general(l, 17);
@@ -130,7 +136,7 @@ int run_equilibria(const EquilibriaOptions& o) {
   write_table_file(o.out, o.force, "equilibria", columns_of(set.rows), parameters, appelrot(o, scene, body));
   if (o.quiet) return exit_ok;
   for (const auto& e : set.rows)
-    if (o.l || e.fold) print_row(e);
+    if (o.l || e.fold || e.class_change) print_row(e);
   if (!o.l)
     std::cout << set.rows.size() << " points on " << set.branches.size() << " branches; wrote " << o.out << '\n';
   return exit_ok;
