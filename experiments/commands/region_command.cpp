@@ -68,7 +68,8 @@ TableGroup potential_group(const SphereGrid& grid, const Region& region) {
 TableGroup critical_group(const CriticalSet& set, double h) {
   TableGroup g{"critical_points"};
   std::vector<TableColumn> c = {{"gamma", 3}, {"value"}, {"index", 1, true}, {"circle", 1, true}, {"below", 1, true},
-                                {"omega"},    {"branch", 1, true}, {"stability", 1, true}, {"nonlinearly_stable", 1, true}};
+                                {"omega"},    {"branch", 1, true}, {"stability", 1, true}, {"nonlinearly_stable", 1, true},
+                                {"degenerate", 1, true}};
   for (const auto& p : set.points) {
     c[0].real.insert(c[0].real.end(), p.gamma.data(), p.gamma.data() + 3);
     c[1].real.push_back(p.value);
@@ -79,6 +80,7 @@ TableGroup critical_group(const CriticalSet& set, double h) {
     c[6].whole.push_back(p.branch);
     c[7].whole.push_back(static_cast<std::int64_t>(p.stability));
     c[8].whole.push_back(p.nonlinearly_stable ? 1 : 0);
+    c[9].whole.push_back(p.degenerate ? 1 : 0);
   }
   g.columns = c;
   return g;
@@ -133,12 +135,13 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
   auto parameters = provenance(o, scene);
   parameters["l"] = number(l), parameters["h"] = number(h), parameters["topology"] = region.topology;
   parameters["resolved"] = region.resolved ? "yes" : "no";
+  parameters["degenerate"] = region.degenerate ? "yes" : "no";
   parameters["u_constant"] = critical.constant ? "yes" : "no";
   write_groups_file(o.out, o.force,
                     {potential_group(grid, region), critical_group(critical, h), components_group(region)}, parameters);
   if (o.quiet) return exit_ok;
   for (const auto& c : critical.points)
-    std::printf("critical point: gamma=(%.17g, %.17g, %.17g) U=%.17g %s%s omega=%.17g branch=%d\n", c.gamma.x(),
+    std::printf("critical point: gamma=(%.6g, %.6g, %.6g) U=%.6g %s%s omega=%.6g branch=%d\n", c.gamma.x(),
                 c.gamma.y(), c.gamma.z(), c.value, index_name(c), c.circle ? " (on a circle of critical points)" : "",
                 c.omega, c.branch);
   for (const auto& k : region.components)
@@ -146,8 +149,12 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
                 "circles), %.4g of the sphere\n",
                 k.id, k.topology.c_str(), k.boundaries, k.boundaries == 1 ? "" : "s", k.euler, k.minima, k.saddles,
                 k.maxima, k.circles, k.area);
-  std::cout << "region: l = " << number(l) << ", h = " << number(h) << ": energy surface " << region.topology
-            << (region.resolved ? "" : " (not resolved by the grid: raise --grid)") << "; wrote " << o.out << '\n';
+  std::cout << "region: l = " << format_general(l, 6) << ", h = " << format_general(h, 6) << ": energy surface " << region.topology
+            << (region.resolved ? "" : " (not resolved by the grid: raise --grid)")
+            << (region.degenerate ? " (U_l has a degenerate critical point below h, a bifurcation of relative "
+                                    "equilibria at this l: the topology is the grid's, without the Morse check)"
+                                  : "")
+            << "; wrote " << o.out << '\n';
   return exit_ok;
 }
 
@@ -163,6 +170,7 @@ TableGroup branches_group(const HeavyTopBody& body, int samples) {
   TableGroup g{"equilibria"};
   std::vector<TableColumn> c = {{"l"}, {"h"}, {"omega"}, {"branch", 1, true}, {"stability", 1, true}, {"fold", 1, true}};
   for (const auto& e : equilibrium_branches(body, samples).rows) {
+    if (e.class_change) continue;  // a point between two samples: the curves are drawn from the samples
     c[0].real.push_back(e.l), c[1].real.push_back(e.h), c[2].real.push_back(e.omega);
     c[3].whole.push_back(e.branch), c[4].whole.push_back(static_cast<std::int64_t>(e.stability));
     c[5].whole.push_back(e.fold ? 1 : 0);
@@ -177,7 +185,8 @@ int run_cells(const RegionOptions& o, const system::Scene& scene, const HeavyTop
   TableColumn l_col{"l"}, h_col{"h"}, h_min{"h_min"};
   const int width = static_cast<int>(hs.size());
   TableColumn topology{"topology", width, true}, components{"components", width, true}, euler{"euler", width, true},
-      euler_morse{"euler_morse", width, true}, resolved{"resolved", width, true};
+      euler_morse{"euler_morse", width, true}, resolved{"resolved", width, true},
+      degenerate{"degenerate", width, true};
   h_col.real = hs;
   std::int64_t unresolved = 0;
   for (const double l : ls) {
@@ -189,10 +198,11 @@ int run_cells(const RegionOptions& o, const system::Scene& scene, const HeavyTop
       components.whole.push_back(s.components);
       euler.whole.push_back(s.euler), euler_morse.whole.push_back(s.euler_morse);
       resolved.whole.push_back(s.resolved ? 1 : 0);
+      degenerate.whole.push_back(s.degenerate ? 1 : 0);
       unresolved += s.resolved ? 0 : 1;
     }
   }
-  TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved}};
+  TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved, degenerate}};
   std::string legend;
   for (const auto& n : names) legend += (legend.empty() ? "" : "\n") + n;
   cells.attributes["topology_names"] = legend;
