@@ -237,7 +237,7 @@ int run_chaos_map(const ChaosMapOptions& o) {
   }
   if (!o.quiet)
     std::cout << "chaos-map: " << ls.size() << " x " << hs.size() << " cells, " << o.ics << " orbits each to t = "
-              << number(o.t_end) << ", chaotic where MEGNO > " << number(o.threshold) << "; " << format_general(wall, 3)
+              << format_general(o.t_end, 6) << ", chaotic where MEGNO > " << format_general(o.threshold, 6) << "; " << format_general(wall, 3)
               << " s wall on " << threads << " threads; wrote " << o.out << '\n';
   return exit_ok;
 }
