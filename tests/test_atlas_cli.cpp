@@ -21,8 +21,17 @@ namespace {
 
 const std::string scenes = LGI_SCENES_DIR;
 
-/// No number on a line with more than 6 significant digits (a run of 7 or more digits after a point).
-bool six_digits(const std::string& text) { return !std::regex_search(text, std::regex("[0-9]\\.[0-9]{6,}")); }
+/// No decimal number in the text with more than 6 significant digits (2.2000000000000002 has 17).
+bool six_digits(const std::string& text) {
+  const std::regex number("[0-9]*\\.[0-9]+");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it) {
+    std::string digits;
+    for (const char c : it->str())
+      if (c != '.' && !(digits.empty() && c == '0')) digits += c;  // leading zeros are not significant
+    if (digits.size() > 6) return false;
+  }
+  return true;
+}
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 

@@ -56,7 +56,7 @@ def test_bifurcation_window_labels_and_class_changes(tmp_path):
         ["--out", str(tmp_path), "--l-nonneg"])
     assert bifurcation.default_window(t, args)[0] == 0.0
     out = tmp_path / "fig"
-    plot("bifurcation.py", out, "--l-range", "0:4", "--h-range", "-1:3", path)
+    plot("bifurcation.py", out, "--l-range", "0:4", "--h-range=-1:3", path)
     assert written(out, "bifurcation_general")
     plot("bifurcation.py", out / "b", "--l-nonneg", path)
     r = plot("bifurcation.py", out / "c", "--l-range", "3:1", path, code=2)
@@ -74,7 +74,7 @@ def test_appelrot_arcs_only_where_attained(tmp_path):
     lgi("bifurcation", "--scene", SCENES / "kovalevskaya.toml", "--samples", "60", "--appelrot", "-1,0,1",
         "--appelrot-h", "-1:3:9", "--out", kov)
     out = tmp_path / "fig"
-    plot("bifurcation.py", out, "--l-nonneg", "--h-range", "-1:3", "--k-range", "-0.2:5", kov)
+    plot("bifurcation.py", out, "--l-nonneg", "--h-range=-1:3", "--k-range=-0.2:5", kov)
     assert written(out, "appelrot_kov")
     r = plot("bifurcation.py", out / "x", "--l-range", "5:6", kov, code=1)
     assert "no value of l" in r.stderr
@@ -85,7 +85,7 @@ def test_region_cells_window(tmp_path):
     lgi("region", "--scene", SCENES / "lagrange_top_oblate.toml", "--cells", "--l-range", "-1:3:9", "--h-range",
         "-1.2:3:9", "--grid", "40", "--samples", "60", "--out", cells)
     out = tmp_path / "fig"
-    plot("region.py", out, "--l-nonneg", "--h-range", "-1:2.5", cells)
+    plot("region.py", out, "--l-nonneg", "--h-range=-1:2.5", cells)
     assert written(out, "region_cells_cells")
 
 
