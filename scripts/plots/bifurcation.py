@@ -72,21 +72,37 @@ def default_window(t, args):
     return l0, l1, lo - pad, hi + 3 * pad
 
 
+def merged(names):
+    """Names of branches drawn on one curve: "+e2", "-e2" -> "±e2", others joined by ", "."""
+    names = sorted(set(names))
+    if len(names) == 2 and names[0][1:] == names[1][1:] and {names[0][0], names[1][0]} == {"+", "-"}:
+        return "±" + names[0][1:]
+    return ", ".join(names)
+
+
 def label_branches(ax, t, labels, window):
-    """Each branch's name once (a branch and its mirror l -> -l share it), at a point in view."""
+    """Each curve's name once, at a point in view: a branch and its mirror l -> -l share a name,
+    and branches drawn on one curve (the degenerate families +-e_i) get one merged label."""
     l0, l1, h0, h1 = window
-    done = set()
+    spots = []  # (l, h, [names])
     for b in np.unique(t["branch"]):
         name = labels.get(int(b))
-        if not name or name in done:
+        if not name or any(name in names for _, _, names in spots if name[0] not in "+-" or " " in name):
             continue
         sel = (t["branch"] == b) & (t["fold"] == 0) & (t["l"] > l0) & (t["l"] < l1) & (t["h"] > h0) & (t["h"] < h1)
         if sel.sum() < 2:
             continue
         k = np.flatnonzero(sel)[int(0.6 * (sel.sum() - 1))]
-        done.add(name)
-        ax.annotate(name, (t["l"][k], t["h"][k]), fontsize=6, xytext=(3, 3), textcoords="offset points",
-                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.75), zorder=5)
+        scale = (l1 - l0) + (h1 - h0)
+        for spot in spots:
+            if abs(spot[0] - t["l"][k]) + abs(spot[1] - t["h"][k]) < 1e-6 * scale:
+                spot[2].append(name)
+                break
+        else:
+            spots.append((t["l"][k], t["h"][k], [name]))
+    for l, h, names in spots:
+        ax.annotate(merged(names), (l, h), fontsize=6, xytext=(3, 3), textcoords="offset points",
+                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8), zorder=5)
 
 
 def body(f):
@@ -239,8 +255,10 @@ def bifurcation_figure(t, J, w, name, labels, args, stem):
         for k in range(len(l) - 1):
             ax.plot(l[k:k + 2], h[k:k + 2], color=CLASSES[int(s[k])][1], lw=1.2, zorder=2)
     folds = t["fold"] == 1
-    ax.plot(t["l"][folds], t["h"][folds], "k^", ms=4, zorder=3, label="fold (cusp)")
-    ax.plot(t["l"][cc == 1], t["h"][cc == 1], "D", mfc="white", mec="k", ms=3.5, zorder=3, label="class change")
+    # Class changes often sit at the folds: open diamonds under the filled triangles, both visible.
+    ax.plot(t["l"][cc == 1], t["h"][cc == 1], "D", mfc="white", mec="k", ms=6, mew=0.9, zorder=3,
+            label="class change")
+    ax.plot(t["l"][folds], t["h"][folds], "k^", ms=3.5, zorder=4, label="fold (cusp)")
     for k, (label, colour) in CLASSES.items():
         ax.plot([], [], color=colour, label=label)
     label_branches(ax, t, labels, window)
