@@ -56,7 +56,8 @@ def draw_single(ax, p, cp, par):
         th = np.arccos(np.clip(g[k, 2], -1, 1))
         ph = np.arctan2(g[k, 1], g[k, 0]) % (2 * np.pi)
         m, _ = MARKERS[int(cp["index"][k])]
-        ax.plot(ph, th, m, color="tab:red" if cp["below"][k] else "0.3", ms=5, mfc="none" if cp["circle"][k] else None)
+        ax.plot(ph, th, m, color="tab:red" if cp["below"][k] else "0.3", ms=5, mfc="none" if cp["circle"][k] else None,
+                clip_on=False, zorder=5)  # the poles and phi = 0 are on the frame: markers drawn whole
     ax.set_xlim(0, 2 * np.pi)
     ax.set_ylim(np.pi, 0)
     ax.set_xlabel("$\\varphi$")
