@@ -127,7 +127,8 @@ def main():
     p = c.parser(__doc__.split("\n\n")[0])
     p.add_argument("--colour", choices=("orbit", "megno", "direction"), default="orbit",
                    help="colour of the dots: the orbit's index (default), its MEGNO <Y>, or the crossing's direction")
-    p.add_argument("--dot-size", type=float, help="dot area in points^2 (default 0.6; 1.5 on the Cardan pieces)")
+    p.add_argument("--dot-size", type=float,
+                   help="dot area in points^2 (default 0.6 by orbit, 1.2 by MEGNO or direction; 2.5 on the Cardan pieces)")
     args = p.parse_args()
     if not args.files:
         c.die("give at least one file written by lgi poincare")
@@ -147,7 +148,8 @@ def main():
         y = np.where(ev["sheet"] > 0, ev["theta"], 2 * np.pi - ev["theta"]) if richter else ev["theta"]
         fig, ax = c.plt.subplots(figsize=(5.6, 4.2))
         values, cmap, vmin, vmax, label, ticks = colour_values(args, ev, megno)
-        sc = ax.scatter(ev["phi"], y, c=values, s=args.dot_size or 0.6, cmap=cmap, vmin=vmin, vmax=vmax,
+        size = args.dot_size or (0.6 if args.colour == "orbit" else 1.2)  # one colour per orbit is read from lines
+        sc = ax.scatter(ev["phi"], y, c=values, s=size, cmap=cmap, vmin=vmin, vmax=vmax,
                         linewidths=0)
         add_colour_bar(fig, sc, ax, label, ticks)
         background(ax, args)
