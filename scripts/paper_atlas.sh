@@ -124,8 +124,10 @@ print(repr(float(o["cardan_momentum_1"]["value"][0])), repr(float(o["energy"]["v
     --lyapunov --out "$atlas/cardan/megno_$stem.h5"
   cardan_secs+=("$atlas/cardan/megno_$stem.h5")
 done
-for stem in cardan_euler_symmetric_up cardan_euler_tilted; do
-  run poincare --scene "$scenes/$stem.toml" --l 2.85 --h 6.96 --ics "$s_ics" --t-end "$s_t" --dt 0.005 --megno \
+# each at the level of its scene's initial state, to 3 digits (docs/cardan.md §9.3)
+for level in "cardan_euler_symmetric_up 2.85 6.96" "cardan_euler_tilted 2.51 6.43"; do
+  read -r stem sl sh <<< "$level"
+  run poincare --scene "$scenes/$stem.toml" --l "$sl" --h "$sh" --ics "$s_ics" --t-end "$s_t" --dt 0.005 --megno \
     --out "$atlas/cardan/section_$stem.h5"
 done
 run actions --scene "$scenes/lagrange_top_cigar.toml" --h 2 --grid 41 --out "$atlas/actions/lagrange_top_cigar.h5"
@@ -146,7 +148,7 @@ run actions --scene "$scenes/kovalevskaya.toml" --h 2 --l "$kl" --tori "$kt" --o
   || die "bifurcation.py --appelrot failed"
 "$PY" "$plots/chaos_map.py" --out "$figs" --branches "$atlas/bifurcation/general_top_richter.h5" \
   "$atlas/chaos/general_top_richter.h5" || die "chaos_map.py failed"
-"$PY" "$plots/bifurcation.py" --out "$figs" "${bif_files[@]}" || die "bifurcation.py failed"
+"$PY" "$plots/bifurcation.py" --out "$figs" --l-nonneg "${bif_files[@]}" || die "bifurcation.py failed"
 "$PY" "$plots/poincare.py" --out "$figs" "${sec_files[@]}" || die "poincare.py failed"
 "$PY" "$plots/poincare.py" --out "$figs/megno" --colour megno "$atlas/poincare/general_top_richter.h5" \
   || die "poincare.py --colour megno failed"

@@ -170,3 +170,30 @@ TEST_CASE("component and energy-surface names", "[region]") {
   CHECK(experiments::energy_surface_topology({"S1xS2", "S3"}) == "S3 + S1xS2");
   CHECK(experiments::energy_surface_topology({"S1xS2", "S1xS2"}) == "2(S1xS2)");
 }
+
+TEST_CASE("the Kovalevskaya top at l = 2: a degenerate critical point, not an unresolved grid", "[region]") {
+  // J = (2, 2, 1), m g chi = (1, 0, 0): at l = 2 the family Gamma = (1/w^2, 0, +-sqrt(1 - w^-4)) leaves the
+  // rotation about e1 (w = 1, Gamma = e1, h = 2): U_l has a degenerate critical point there (docs/atlas.md §8).
+  const HeavyTopBody body = top({2.0, 2.0, 1.0}, {1.0, 0.0, 0.0});
+  const auto critical = experiments::critical_points(body, 2.0);
+  int degenerate = 0;
+  for (const auto& c : critical.points) {
+    CHECK_FALSE(c.circle);
+    if (c.degenerate) {
+      ++degenerate;
+      CHECK((c.gamma - lie::Vec3::UnitX()).norm() <= 1e-6);
+    }
+  }
+  CHECK(degenerate >= 1);
+  for (const int grid : {90, 240}) {
+    const auto region = experiments::accessible_region(experiments::potential_grid(body, 2.0, grid), critical, 2.5);
+    CHECK(region.degenerate);
+    CHECK(region.resolved);
+  }
+  // Away from it the count applies again.
+  const auto near = experiments::critical_points(body, 2.2);
+  for (const auto& c : near.points) CHECK_FALSE(c.degenerate);
+  const auto region = experiments::accessible_region(experiments::potential_grid(body, 2.2, 90), near, 2.5);
+  CHECK_FALSE(region.degenerate);
+  CHECK(region.resolved);
+}

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "experiments/analysis/poincare_section.hpp"
+#include "experiments/analysis/section_seeds.hpp"
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/sweep_spec.hpp"
@@ -209,4 +210,37 @@ TEST_CASE("on an unstable permanent rotation the Lyapunov exponent is Grammel's 
     ++checked;
   }
   CHECK(checked >= 2);
+}
+
+TEST_CASE("--seeds: a section point (phi, theta, sheet) becomes the state on the section at (l, h)", "[poincare]") {
+  experiments::HeavyTopBody body;  // general_top_richter: A = (1, 1.5, 2), m g chi = (0.8, 0.4, 0.3)
+  body.J = Vec3(1.0, 1.5, 2.0).asDiagonal();
+  body.weight = Vec3(0.8, 0.4, 0.3);
+  const Vec3 e = body.weight.normalized();
+  const double l = 1.0, h = 2.0;
+  Vec3 f1, f2;
+  experiments::section_frame(e, f1, f2);
+  int made = 0;
+  for (int k = 0; k < 40; ++k) {
+    const double phi = 0.157 * k, theta = 0.3 + 0.06 * k;
+    const Vec3 g = std::sin(theta) * (std::cos(phi) * f1 + std::sin(phi) * f2) + std::cos(theta) * e;
+    for (const int sheet : {1, -1}) {
+      Vec3 Pi;
+      if (!experiments::section_state(body, e, l, h, g, sheet, Pi)) {
+        // No state there: the point is outside the accessible region U_l <= h.
+        CHECK(l * l / (2.0 * g.dot(body.J * g)) + body.weight.dot(g) > h - 1e-12);
+        continue;
+      }
+      ++made;
+      const Mat3 J_inv = body.J.inverse();
+      const Vec3 Omega = J_inv * Pi;
+      CHECK(std::abs(Pi.dot(g) - l) <= 1e-13);
+      CHECK(std::abs(0.5 * Pi.dot(Omega) + body.weight.dot(g) - h) <= 1e-13);
+      CHECK(std::abs(g.cross(Omega).dot(e)) <= 1e-13);  // on Richter's section S = 0
+      const auto p = experiments::section_point(SectionKind::richter, e, g, Pi, J_inv);
+      CHECK(p.sheet == sheet);
+      CHECK(std::abs(p.theta - theta) <= 1e-12);
+    }
+  }
+  CHECK(made >= 20);
 }

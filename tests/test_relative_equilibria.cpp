@@ -167,3 +167,50 @@ TEST_CASE("an energy-Casimir-stable equilibrium is never classed unstable", "[eq
       }
     }
 }
+
+TEST_CASE("class changes are located: the upright sleeping top at Maxwell's bound", "[equilibria]") {
+  // Lagrange top A = 1, C = 2, m g chi = (0, 0, w): the upright sleeping top (Gamma = +e3) is
+  // stable iff (C omega)^2 > 4 A w, so its class changes at omega^2 = 4 A w / C^2 (docs/atlas.md §5).
+  for (const double w : {1.0, 0.3}) {
+    HeavyTopBody body;
+    body.J = lie::Vec3(1.0, 1.0, 2.0).asDiagonal();
+    body.weight = lie::Vec3(0.0, 0.0, w);
+    const auto set = experiments::equilibrium_branches(body, 400);
+    int found = 0;
+    for (const auto& e : set.rows) {
+      if (!e.class_change || std::abs(e.gamma.z() - 1.0) > 1e-12) continue;
+      ++found;
+      CHECK(std::abs(e.omega * e.omega - 4.0 * w / 4.0) <= 1e-9 * w);
+    }
+    CHECK(found == 2);  // omega > 0 and omega < 0
+    // The branches are named by their ends: the upright sleeping top runs from fast spin about +e3 to rest upright.
+    bool upright = false, hanging = false;
+    for (const auto& b : set.branches) {
+      upright = upright || b.label == "+e3 - upright";
+      hanging = hanging || b.label == "hanging - -e3";
+    }
+    CHECK(upright);
+    CHECK(hanging);
+  }
+}
+
+TEST_CASE("class changes of the general top lie between samples of different class", "[equilibria]") {
+  const auto scene = testing::shipped_scene("general_top_richter");
+  const auto set = experiments::equilibrium_branches(body_of(scene), 400);
+  int changes = 0;
+  for (std::size_t k = 1; k + 1 < set.rows.size(); ++k) {
+    const auto& e = set.rows[k];
+    if (!e.class_change) continue;
+    ++changes;
+    std::size_t j = k - 1;  // the sample before it on the same branch (not a fold row)
+    while (j > 0 && (set.rows[j].fold || set.rows[j].class_change)) --j;
+    const auto& before = set.rows[j];
+    REQUIRE(before.branch == e.branch);
+    CHECK(before.stability != e.stability);
+    // On a boundary of Grammel's classes: g2 = 0, g1^2 = 4 g2 or g1 = 0 (to the bisection's precision).
+    const double scale = e.g1 * e.g1 + std::abs(e.g2);
+    const double boundary = std::min({std::abs(e.g2), std::abs(e.g1 * e.g1 - 4.0 * e.g2), e.g1 * e.g1});
+    CHECK(boundary <= 1e-6 * scale);
+  }
+  CHECK(changes >= 2);
+}

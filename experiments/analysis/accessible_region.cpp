@@ -169,7 +169,7 @@ int nearest_vertex(const Triangulation& t, const Vec3& g) {
 /// each put in the component of its nearest grid vertex); false if one of
 /// them falls outside the sub-complex.
 struct MorseCount {
-  int minima = 0, saddles = 0, maxima = 0, circles = 0, euler = 0;
+  int minima = 0, saddles = 0, maxima = 0, circles = 0, euler = 0, degenerate = 0;
 };
 bool morse_counts(const Triangulation& t, ComponentSweep& sweep, const CriticalSet& critical, double h,
                   std::map<int, MorseCount>& out) {
@@ -184,6 +184,10 @@ bool morse_counts(const Triangulation& t, ComponentSweep& sweep, const CriticalS
     MorseCount& m = out[sweep.find(v)];
     if (c.circle) {
       ++m.circles;
+      continue;
+    }
+    if (c.degenerate) {
+      ++m.degenerate;
       continue;
     }
     (c.index == 0 ? m.minima : c.index == 1 ? m.saddles : m.maxima) += 1;
@@ -224,6 +228,16 @@ CriticalSet critical_points(const HeavyTopBody& body, double l) {
     out.constant = true;  // U_0 ≡ 0: every direction is critical
     return out;
   }
+  // Circles of critical points need a symmetry: two equal moments with m g χ on the third axis.
+  const Eigen::SelfAdjointEigenSolver<Mat3> principal(body.J);
+  bool symmetric = false;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const Vec3 a = principal.eigenvectors().col(k);
+    if (std::abs(principal.eigenvalues()(i) - principal.eigenvalues()(j)) <= 1e-12 * body.J.norm() &&
+        body.weight.cross(a).norm() <= 1e-12 * body.weight.norm())
+      symmetric = true;
+  }
   for (const auto& e : equilibria_at(body, l).rows) {
     CriticalPoint c;
     c.gamma = e.gamma, c.value = amended_potential(body, l, e.gamma), c.omega = e.omega, c.branch = e.branch;
@@ -240,7 +254,9 @@ CriticalSet critical_points(const HeavyTopBody& body, double l) {
     const Eigen::Vector2d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(T.transpose() * hess * T).eigenvalues();
     const double scale = hess.norm();
     const double zero = 1e-9 * scale;
-    c.circle = std::abs(lambda(0)) <= zero || std::abs(lambda(1)) <= zero;
+    const bool flat = std::abs(lambda(0)) <= zero || std::abs(lambda(1)) <= zero;
+    c.circle = flat && symmetric;
+    c.degenerate = flat && !symmetric;
     c.index = (lambda(0) < -zero ? 1 : 0) + (lambda(1) < -zero ? 1 : 0);
     out.points.push_back(c);
   }
@@ -309,7 +325,9 @@ Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, do
     c.area = sweep.area(root), c.u_min = t.value[static_cast<std::size_t>(root)];
     const MorseCount m = morse[root];
     c.minima = m.minima, c.saddles = m.saddles, c.maxima = m.maxima, c.circles = m.circles, c.euler_morse = m.euler;
-    if (!critical.constant && c.euler_morse != c.euler) r.resolved = false;
+    c.degenerate = m.degenerate;
+    r.degenerate = r.degenerate || m.degenerate > 0;
+    if (!critical.constant && m.degenerate == 0 && c.euler_morse != c.euler) r.resolved = false;
     id_of[root] = c.id;
     names.push_back(c.topology);
     r.components.push_back(c);
@@ -346,7 +364,8 @@ std::vector<RegionSummary> region_summaries(const SphereGrid& grid, const Critic
       names.push_back(component_topology(2 - euler));
       s.euler += euler;
       s.euler_morse += morse[root].euler;
-      if (!critical.constant && morse[root].euler != euler) s.resolved = false;
+      s.degenerate = s.degenerate || morse[root].degenerate > 0;
+      if (!critical.constant && morse[root].degenerate == 0 && morse[root].euler != euler) s.resolved = false;
     }
     s.components = static_cast<int>(names.size());
     s.topology = energy_surface_topology(names);

@@ -20,7 +20,10 @@
 // per critical point of index λ below h (J. Milnor, Morse Theory, Princeton
 // 1963, Theorem 3.5), so χ = Σ (−1)^index over them, and the critical
 // points of U_ℓ are exactly the relative equilibria at ℓ (equilibria_at). A
-// component whose two counts differ is not resolved by the grid.
+// component whose two counts differ is not resolved by the grid, unless it
+// holds a degenerate critical point (at a bifurcation of relative equilibria,
+// e.g. the Kovalevskaya top's Γ = e1 at ℓ̃ = 2, docs/atlas.md §8): U_ℓ is not
+// a Morse function there, the count does not apply, and the grid alone decides.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,6 +46,7 @@ struct CriticalPoint {
   double value = 0.0;   // U_ℓ(Γ) = h of the equilibrium
   int index = 0;        // Morse index: 0 minimum, 1 saddle, 2 maximum (of the non-degenerate direction on a circle)
   bool circle = false;  // degenerate: on a circle of critical points (a symmetric body; Morse–Bott)
+  bool degenerate = false;  // isolated and degenerate (a bifurcation of relative equilibria at this ℓ): not Morse
   double omega = 0.0;
   int branch = 0;
   EquilibriumStability stability = EquilibriumStability::stable;
@@ -85,13 +89,15 @@ struct RegionComponent {
   double u_min = 0.0;   // the lowest grid value in it
   int minima = 0, saddles = 0, maxima = 0, circles = 0;  // critical points below h in it
   int euler_morse = 0;  // Σ (−1)^index over them (circles count 0)
+  int degenerate = 0;   // degenerate isolated critical points below h in it: no Morse check there
 };
 
 struct Region {
   std::vector<std::int64_t> label;  // per grid point ((n + 1) × 2n), −1 outside P
   std::vector<RegionComponent> components;
   std::string topology;  // of the energy surface
-  bool resolved = true;  // the grid's χ equals the Morse count in every component
+  bool resolved = true;  // the grid's χ equals the Morse count in every component without a degenerate point
+  bool degenerate = false;  // a degenerate critical point below h: that component's topology is the grid's alone
 };
 Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, double h);
 
@@ -102,6 +108,7 @@ struct RegionSummary {
   int components = 0;
   int euler = 0, euler_morse = 0;  // totals over the components
   bool resolved = true;
+  bool degenerate = false;  // as Region::degenerate
 };
 std::vector<RegionSummary> region_summaries(const SphereGrid& grid, const CriticalSet& critical,
                                             const std::vector<double>& energies);

@@ -50,7 +50,7 @@ struct Branch {
   int axis_sign = 1;        // degenerate: sign of Γ_axis
   double omega_min = 0.0;   // degenerate: the family exists for |ω| ≥ omega_min
   double scale = 1.0;       // ν or ω scale for the sampling map
-  std::string kind;
+  std::string kind, label;  // label: its asymptotic ends (EquilibriumBranch)
 };
 
 struct Point {
@@ -95,6 +95,20 @@ Point point_on(const Principal& f, const Branch& br, double tau) {
   return p;
 }
 
+/// Where a regular branch goes as ν tends to an end of its interval (docs/atlas.md §2):
+/// ν → −∞ is ω → 0 with Γ → −χ/|χ| (hanging), ν → +∞ is Γ → +χ/|χ| (upright), and a
+/// pole ν → −A_i is ω → ∞ with Γ → ±e_i, the sign of w_i/(A_i + ν).
+std::string end_label(const Principal& f, double nu, bool from_above) {
+  if (std::isinf(nu)) return nu < 0.0 ? "hanging" : "upright";
+  std::string out;
+  for (int i = 0; i < 3; ++i) {
+    if (f.w[i] == 0.0 || f.A[i] != -nu) continue;
+    const bool plus = (f.w[i] > 0.0) == from_above;
+    out += std::string(out.empty() ? "" : "/") + (plus ? "+e" : "-e") + std::to_string(i + 1);
+  }
+  return out;
+}
+
 std::vector<Branch> make_branches(const Principal& f) {
   std::vector<Branch> out;
   const double scale = std::max({f.A[0], f.A[1], f.A[2]});
@@ -113,6 +127,7 @@ std::vector<Branch> make_branches(const Principal& f) {
         b.a = ends[k], b.b = ends[k + 1], b.sigma = sigma, b.scale = scale;
         b.kind = "regular, nu in (" + std::to_string(b.a) + ", " + std::to_string(b.b) + "), omega " +
                  (sigma > 0 ? "> 0" : "< 0");
+        b.label = end_label(f, b.a, true) + " - " + end_label(f, b.b, false);
         out.push_back(b);
       }
   }
@@ -139,6 +154,7 @@ std::vector<Branch> make_branches(const Principal& f) {
         b.omega_min = std::sqrt(std::sqrt(om4)), b.scale = 1.0;
         b.kind = std::string(f.w.norm() > 0.0 ? "degenerate (Gamma_" : "principal axis (Gamma_") +
                  std::to_string(i + 1) + (sign > 0 ? " > 0" : " < 0") + "), omega " + (sigma > 0 ? "> 0" : "< 0");
+        b.label = (sign > 0 ? "+e" : "-e") + std::to_string(i + 1);
         out.push_back(b);
       }
   }
@@ -255,7 +271,7 @@ EquilibriumSet equilibria_at(const HeavyTopBody& body, double l) {
   EquilibriumSet out;
   const std::vector<Branch> branches = make_branches(f);
   for (const Branch& br : branches) {
-    out.branches.push_back({br.id, br.kind});
+    out.branches.push_back({br.id, br.kind, br.label});
     Point prev;
     double prev_tau = 0.0, prev_f = 0.0;
     for (int k = 1; k < search_samples; ++k) {
@@ -302,11 +318,35 @@ EquilibriumSet equilibria_at(const HeavyTopBody& body, double l) {
   return out;
 }
 
+namespace {
+
+/// The point between samples τ_lo and τ_hi (classes differ) where Grammel's class changes:
+/// bisection on the class to round-off in τ; the row is the first point of the far side.
+RelativeEquilibrium class_change(const HeavyTopBody& body, const Principal& f, const Branch& br, double lo, double hi,
+                                 EquilibriumStability at_lo) {
+  RelativeEquilibrium far = to_body(f, point_on(f, br, hi), br.id);
+  classify(body, far);
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    const Point p = point_on(f, br, mid);
+    if (!p.valid) break;
+    RelativeEquilibrium e = to_body(f, p, br.id);
+    classify(body, e);
+    if (e.stability == at_lo) lo = mid;
+    else hi = mid, far = e;
+  }
+  far.class_change = true;
+  return far;
+}
+
+}  // namespace
+
 EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples) {
   const Principal f = principal_frame(body);
   EquilibriumSet out;
   for (const Branch& br : make_branches(f)) {
-    out.branches.push_back({br.id, br.kind});
+    out.branches.push_back({br.id, br.kind, br.label});
     std::vector<double> taus, ls;
     std::vector<Point> pts;
     for (int k = 1; k < samples; ++k) {
@@ -315,9 +355,13 @@ EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples) {
       if (!p.valid) continue;
       taus.push_back(tau), pts.push_back(p), ls.push_back(l_of(f, p));
     }
+    EquilibriumStability prev_class = EquilibriumStability::stable;
     for (std::size_t k = 0; k < pts.size(); ++k) {
       RelativeEquilibrium e = to_body(f, pts[k], br.id);
       classify(body, e);
+      if (k > 0 && prev_class != e.stability)
+        out.rows.push_back(class_change(body, f, br, taus[k - 1], taus[k], prev_class));
+      prev_class = e.stability;
       out.rows.push_back(e);
       if (k == 0 || k + 1 >= pts.size() || (ls[k] - ls[k - 1]) * (ls[k + 1] - ls[k]) >= 0.0) continue;
       // A turning point of ℓ between the neighbours: golden-section search for the extremum.

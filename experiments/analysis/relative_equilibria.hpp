@@ -48,13 +48,15 @@ struct RelativeEquilibrium {
   EquilibriumStability stability = EquilibriumStability::stable;
   bool nonlinearly_stable = false;
   bool fold = false;       // a turning point of ℓ along its branch (a cusp of the (ℓ, h) diagram)
+  bool class_change = false;  // where Grammel's class changes along its branch (located by bisection)
   double residual = 0.0;   // |ω²JΓ×Γ + Γ×mgχ| (the equilibrium equations)
 };
 
 /// How each branch is made (for the listing in EQUILIBRIA.md and lgi's output).
 struct EquilibriumBranch {
   int id = 0;
-  std::string kind;  // "regular (nu in (a, b))", "principal axis 3", ...
+  std::string kind;   // "regular (nu in (a, b))", "principal axis 3", ...
+  std::string label;  // its asymptotic ends: "hanging - +e1", "+e3 - upright", "+e2" (principal axes)
 };
 
 struct EquilibriumSet {
@@ -66,8 +68,11 @@ struct EquilibriumSet {
 /// method on the full equations, sorted by h (then branch).
 EquilibriumSet equilibria_at(const HeavyTopBody& body, double l);
 
-/// Every branch sampled with `samples` points, and every fold of ℓ along it
-/// located (fold = true), in branch order and along each branch.
+/// Every branch sampled with `samples` points, every fold of ℓ along it
+/// located (fold = true, golden section) and every change of Grammel's class
+/// between neighbouring samples located (class_change = true, bisection to
+/// round-off in the branch parameter; the row has the class of the far side),
+/// in branch order and along each branch.
 EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples);
 
 /// Grammel's coefficients and class, and the energy–Casimir test, of an

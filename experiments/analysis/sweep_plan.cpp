@@ -167,9 +167,14 @@ system::State SweepPlan::initial_state(std::int64_t i, const system::Scene& scen
   if (spec_.level_set) {
     CounterRng rng(spec_.seed, i, level_set_stream);
     Vec3 gamma, Pi;
-    if (!draw_level_point(level_set_body(scene), spec_.level_set->h, spec_.level_set->l, spec_.level_set->measure, rng,
-                          gamma, Pi))
+    const auto& seeds = spec_.level_set->seeds;
+    if (!seeds.empty()) {
+      const auto& s = seeds[static_cast<std::size_t>(i) % seeds.size()];
+      gamma = Vec3(s[0], s[1], s[2]), Pi = Vec3(s[3], s[4], s[5]);
+    } else if (!draw_level_point(level_set_body(scene), spec_.level_set->h, spec_.level_set->l,
+                                         spec_.level_set->measure, rng, gamma, Pi)) {
       throw TrajectorySetupError("the level set (l, h) was not reached in 1e6 random directions of Gamma");
+    }
     x.R = attitude_from_gamma(gamma);
     x.Pi = Pi;
     std::copy(gamma.data(), gamma.data() + 3, flat.begin() + level_offset_);

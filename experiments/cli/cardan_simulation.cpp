@@ -60,9 +60,12 @@ class CardanObserver final : public integrators::torus::TorusObserver {
     sample.orthogonality_error = lie::orthogonality_error(body.R);
     writer_->append(sample);
   }
+  /// p1's error only where p1 is an integral (q1 cyclic: a vertical outer axis or no gravity).
   std::string summary() const {
-    return "energy_error_end=" + format_sci(energy_end_) + " energy_error_max=" + format_sci(energy_max_) +
-           " cardan_momentum_1_error_end=" + format_sci(p1_end_) + " cardan_momentum_1_error_max=" + format_sci(p1_max_);
+    const std::string energy = "energy_error_end=" + format_sci(energy_end_) + " energy_error_max=" + format_sci(energy_max_);
+    if (!top_.outer_angle_cyclic()) return energy + " cardan_momentum_1_conserved=no";
+    return energy + " cardan_momentum_1_error_end=" + format_sci(p1_end_) +
+           " cardan_momentum_1_error_max=" + format_sci(p1_max_);
   }
 
  private:

@@ -52,7 +52,7 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
 /// without its command line by lgi.poincare (python/): the same checks, run
 /// and file. Returns the exit status; throws as the subcommand does.
 struct PoincareRequest {
-  std::string scene, out = "poincare.h5", axis, section = "richter", scheme;  // scheme: empty is the default
+  std::string scene, out = "poincare.h5", axis, section = "richter", scheme, seeds;  // scheme: empty is the default
   std::string measure;  // empty: liouville (a Cardan top refuses the flag)
   double l = 0.0, h = 0.0, t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;

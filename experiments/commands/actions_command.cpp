@@ -184,11 +184,11 @@ int run_actions(const ActionsOptions& o) {
   write_table_file(o.out, o.force, "tori", columns_of(rows), parameters);
   if (o.quiet) return exit_ok;
   if (o.h) {
-    std::cout << rows.size() << " tori on H = " << format_general(*o.h, 17) << "; wrote " << o.out << '\n';
+    std::cout << rows.size() << " tori on H = " << format_general(*o.h, 6) << "; wrote " << o.out << '\n';
     return exit_ok;
   }
   for (const auto& r : rows)
-    std::printf("method=%s h=%.17g actions=(%.15g, %.15g, %.15g) frequencies=(%.15g, %.15g, %.15g) ok=%d\n",
+    std::printf("method=%s h=%.6g actions=(%.6g, %.6g, %.6g) frequencies=(%.6g, %.6g, %.6g) ok=%d\n",
                 r.method == closed_lagrange ? "lagrange" : r.method == closed_euler ? "euler" : "numerical", r.h,
                 r.actions[0], r.actions[1], r.actions[2], r.frequencies[0], r.frequencies[1], r.frequencies[2],
                 r.ok ? 1 : 0);

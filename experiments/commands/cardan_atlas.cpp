@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -76,7 +77,7 @@ int run_cardan_equilibria(const system::Scene& scene, const CardanEquilibriaRequ
   if (r.quiet) return exit_ok;
   if (r.l)
     for (const auto& e : rows)
-      std::printf("q2=%.17g q3=%.17g omega=%.17g l=%.17g h=%.17g stability=%s g1=%.6e g2=%.6e nonlinearly_stable=%s%s%s\n",
+      std::printf("q2=%.6g q3=%.6g omega=%.6g l=%.6g h=%.6g stability=%s g1=%.6g g2=%.6g nonlinearly_stable=%s%s%s\n",
                   e.q(1), e.q(2), e.omega, e.l, e.h, stability_name(e.stability), e.g1, e.g2,
                   e.nonlinearly_stable ? "yes" : "no", e.degenerate ? " degenerate" : "", e.pole ? " pole" : "");
   else
@@ -113,7 +114,9 @@ void add_orbit(OrbitTable& t, const system::CardanTop& top, std::int64_t i, cons
   s[3].real.push_back(o.cpu_seconds);
   push3(s[4].real, o.initial.q), push3(s[5].real, o.initial.p), push3(s[6].real, o.final.q), push3(s[7].real, o.final.p);
   push_body(top, o.final, s[8].real, s[9].real);
-  s[10].real.push_back(o.max_energy_error), s[11].real.push_back(o.max_momentum_error);
+  // p1 is an integral only where q1 is cyclic (docs/cardan.md §3): elsewhere its change is no error.
+  s[10].real.push_back(o.max_energy_error);
+  s[11].real.push_back(top.outer_angle_cyclic() ? o.max_momentum_error : std::nan(""));
   s[12].whole.push_back(static_cast<std::int64_t>(o.crossings.size()));
   if (o.status != 0) t.reasons += std::to_string(i) + ": " + o.reason + "\n";
   auto& e = t.events;
@@ -143,6 +146,10 @@ void check_poincare_request(const system::CardanTop& top, const system::Scene& s
 int run_cardan_poincare(const system::Scene& scene, const CardanPoincareRequest& r) {
   const system::CardanTop top = cardan_top(scene);
   check_poincare_request(top, scene, r);
+  const bool p1_conserved = top.outer_angle_cyclic();
+  if (!p1_conserved)
+    std::cerr << "lgi: warning: --l: p1 is no integral of " << scene.file << " (tilted outer axis with gravity): --l "
+              << "sets each orbit's initial p1 only, and the section is a projection (docs/cardan.md section 9.3)\n";
   CardanOrbitRequest request{r.scheme, r.t_end, r.dt, r.max_events, r.lyapunov || r.megno, r.seed};
   std::vector<CardanOrbit> orbits(static_cast<std::size_t>(r.ics));
   std::vector<char> done(orbits.size(), 0);
@@ -177,6 +184,7 @@ int run_cardan_poincare(const system::Scene& scene, const CardanPoincareRequest&
   for (const auto& [k, v] : std::map<std::string, double>{{"l", r.l}, {"h", r.h}, {"t_end", r.t_end}, {"dt", r.dt}})
     parameters[k] = format_general(v, 17);
   parameters["seed"] = std::to_string(r.seed);
+  parameters["p1_conserved"] = p1_conserved ? "yes" : "no";
   parameters["failed_orbits"] = table.reasons;
   const bool interrupted = finished < r.ics;
   parameters["status"] = interrupted ? "interrupted by signal: " + std::to_string(finished) + " of " +
@@ -190,7 +198,8 @@ int run_cardan_poincare(const system::Scene& scene, const CardanPoincareRequest&
   }
   if (!r.quiet)
     std::cout << "poincare: " << r.ics << " orbits of " << r.scheme << " on the Cardan top " << scene.file
-              << " at l = " << format_general(r.l, 17) << ", h = " << format_general(r.h, 17) << ", " << failed
+              << (p1_conserved ? " at l = " : " at initial p1 = ") << format_general(r.l, 6)
+              << ", h = " << format_general(r.h, 6) << ", " << failed
               << " failed, " << crossings << " crossings; wrote " << r.out << '\n';
   return exit_ok;
 }

@@ -267,7 +267,8 @@ int run_chaos_map(const ChaosMapOptions& o) {
   }
   if (!o.quiet) {
     std::cout << "chaos-map: " << ls.size() << " x " << hs.size() << " cells, " << o.ics << " orbits each (" << o.measure
-              << " measure) to t = " << number(o.t_end) << ", chaotic where MEGNO > " << number(o.threshold) << "; "
+              << " measure) to t = " << format_general(o.t_end, 6) << ", chaotic where MEGNO > "
+              << format_general(o.threshold, 6) << "; "
               << format_general(wall, 3) << " s wall on " << threads << " threads; wrote " << o.out << '\n';
     print_fractions(groups[0]);
   }

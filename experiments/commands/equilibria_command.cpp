@@ -37,10 +37,10 @@ struct EquilibriaOptions {
 };
 
 void print_row(const RelativeEquilibrium& e) {
-  std::printf("branch=%d omega=%.17g gamma=(%.17g, %.17g, %.17g) l=%.17g h=%.17g stability=%s g1=%.6e g2=%.6e "
-              "nonlinearly_stable=%s%s\n",
+  std::printf("branch=%d omega=%.6g gamma=(%.6g, %.6g, %.6g) l=%.6g h=%.6g stability=%s g1=%.6g g2=%.6g "
+              "nonlinearly_stable=%s%s%s\n",
               e.branch, e.omega, e.gamma.x(), e.gamma.y(), e.gamma.z(), e.l, e.h, stability_name(e.stability), e.g1,
-              e.g2, e.nonlinearly_stable ? "yes" : "no", e.fold ? " fold" : "");
+              e.g2, e.nonlinearly_stable ? "yes" : "no", e.fold ? " fold" : "", e.class_change ? " class_change" : "");
 }
 
 void check_flags(const EquilibriaOptions& o) {
@@ -84,6 +84,7 @@ int run_equilibria(const EquilibriaOptions& o) {
       {"cxx_flags", build_info::cxx_flags}};
   if (o.l) parameters["l"] = format_general(*o.l, 17);
   parameters["branches"] = branch_listing(set.branches);
+  parameters["branch_labels"] = branch_label_listing(set.branches);
   if (!o.appelrot.empty()) {
     std::string ls;
     for (const double l : o.appelrot) ls += (ls.empty() ? "" : ",") + format_general(l, 17);
@@ -92,7 +93,7 @@ int run_equilibria(const EquilibriaOptions& o) {
   write_table_file(o.out, o.force, "equilibria", equilibria_columns(set.rows), parameters, appelrot(o, scene, body));
   if (o.quiet) return exit_ok;
   for (const auto& e : set.rows)
-    if (o.l || e.fold) print_row(e);
+    if (o.l || e.fold || e.class_change) print_row(e);
   if (!o.l)
     std::cout << set.rows.size() << " points on " << set.branches.size() << " branches; wrote " << o.out << '\n';
   return exit_ok;

@@ -21,6 +21,7 @@
 
 #include "experiments/analysis/binomial_interval.hpp"
 #include "experiments/analysis/poincare_section.hpp"
+#include "experiments/analysis/section_seeds.hpp"
 #include "experiments/analysis/sweep_trajectory.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
@@ -87,7 +88,8 @@ void check_flags(const PoincareOptions& o) {
   if (!std::isfinite(o.l)) throw UsageError("--l: must be a finite number");
   if (!std::isfinite(o.h)) throw UsageError("--h: must be a finite number");
   if (!(o.t_end > 0.0) || !std::isfinite(o.t_end)) throw UsageError("--t-end: must be a positive number");
-  if (o.ics < 1) throw UsageError("--ics: must be at least 1");
+  if (o.seeds.empty() && o.ics < 1) throw UsageError("--ics: must be at least 1 (or give --seeds)");
+  if (!o.seeds.empty() && o.ics != 0) throw UsageError("--ics: not with --seeds (the file gives the orbits)");
   if (o.max_events < 1) throw UsageError("--max-events: must be at least 1");
   if (o.seed > static_cast<std::uint64_t>(INT64_MAX)) throw UsageError("--seed: at most 2^63 - 1 (a TOML integer)");
   if (!o.measure.empty() && !level_measure_from_name(o.measure))
@@ -191,7 +193,8 @@ SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, cons
                   {"measure", measure(o)},
                   {"scene_file", scene.file},     {"scene_toml", scene.toml_text},
                   {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
-                  {"cxx_flags", build_info::cxx_flags}, {"build_type", build_info::build_type}};
+                  {"cxx_flags", build_info::cxx_flags}, {"build_type", build_info::build_type},
+                  {"seeds_file", o.seeds}};
   a.numbers = {{"t_end", cfg.t_end}, {"dt", cfg.dt}, {"l", o.l}, {"h", o.h}, {"trajectories", static_cast<double>(o.ics)},
                {"seed", static_cast<double>(o.seed)}, {"threshold", o.threshold}, {"axis_1", e.x()}, {"axis_2", e.y()}, {"axis_3", e.z()}};
   a.provenance = {{"command_line", o.command_line},          {"threads", std::to_string(run.threads)},
@@ -221,6 +224,7 @@ int run_cardan(const PoincareOptions& o, const system::Scene& scene) {
   if (o.section != "richter") throw UsageError("--section: the Cardan top's section is fixed (S = -sin q2 dq2/dt = 0)");
   if (!o.measure.empty())
     throw UsageError("--measure: the Cardan top's level draw is its own (docs/cardan.md §9.2); --measure is for tops on SO(3)");
+  if (!o.seeds.empty()) throw UsageError("--seeds: not for a Cardan top (its orbits are drawn on {q1 = 0, H = h, p1 = l})");
   CardanPoincareRequest r;
   r.l = o.l, r.h = o.h, r.t_end = o.t_end, r.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   r.ics = o.ics, r.max_events = o.max_events, r.seed = o.seed;
@@ -232,7 +236,8 @@ int run_cardan(const PoincareOptions& o, const system::Scene& scene) {
   return run_cardan_poincare(scene, r);
 }
 
-int run_poincare(const PoincareOptions& o) {
+int run_poincare(const PoincareOptions& options) {
+  PoincareOptions o = options;
   if (SweepRanks::world().size() > 1) throw UsageError("lgi poincare runs on one MPI rank (use --threads)");
   const system::Scene scene = read_scene(o.scene);
   if (scene.suspension) return run_cardan(o, scene);
@@ -246,11 +251,18 @@ int run_poincare(const PoincareOptions& o) {
   const Vec3 e = axis.empty() ? default_section_axis(scene) : parse_section_axis(axis, scene);
   const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  std::vector<SeedState> seeds;
+  if (!o.seeds.empty()) {
+    seeds = read_section_seeds(o.seeds, heavy_top(scene), kind, e, o.l, o.h);
+    o.ics = static_cast<std::int64_t>(seeds.size());
+  }
   const std::string scene_path = std::filesystem::absolute(o.scene).lexically_normal().string();
   SweepSpec spec = parse_sweep_spec(spec_text(o, scene_path, dt, kind, e), "lgi-poincare.toml");
   if (kind == SectionKind::richter) spec.events[0].axis = {e.x(), e.y(), e.z()};
   else if (spec.events[0].axis != std::array<double, 3>{e.x(), e.y(), e.z()})
     throw UsageError("--axis: the gamma section takes a body axis e1, e2 or e3");
+  for (const SeedState& s : seeds)
+    spec.level_set->seeds.push_back({s.gamma.x(), s.gamma.y(), s.gamma.z(), s.Pi.x(), s.Pi.y(), s.Pi.z()});
   const system::AnyModel model = system::make_model(scene);
   if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
     throw UsageError("--scheme: " + why);
@@ -286,11 +298,11 @@ int run_poincare(const PoincareOptions& o) {
   hdf5::publish(writing, o.out, o.force, "the section is");
   std::remove(partial.c_str());
   if (!o.quiet) {
-    std::cout << "poincare: " << o.ics << " orbits of " << scheme.name << " on " << scene.file << " at l = " << number(o.l)
-              << ", h = " << number(o.h) << " (" << measure(o) << " measure), " << file->failures() << " failed, "
+    std::cout << "poincare: " << o.ics << " orbits of " << scheme.name << " on " << scene.file << " at l = " << format_general(o.l, 6)
+              << ", h = " << format_general(o.h, 6) << " (" << measure(o) << " measure), " << file->failures() << " failed, "
               << run.events << " crossings; " << format_general(run.wall_seconds, 3) << " s wall on " << run.threads
               << " threads; wrote " << o.out << '\n';
-    if (o.megno) std::cout << "  chaotic (MEGNO > " << number(o.threshold) << "): " << fraction << '\n';
+    if (o.megno) std::cout << "  chaotic (MEGNO > " << format_general(o.threshold, 6) << "): " << fraction << '\n';
   }
   return exit_ok;
 }
@@ -312,7 +324,10 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
                                        "docs/cardan.md)")->required();
   sub->add_option("--l", o->l, "l = Pi.Gamma, the vertical angular momentum")->required();
   sub->add_option("--h", o->h, "h, the energy")->required();
-  sub->add_option("--ics", o->ics, "Initial conditions (orbits) drawn on the level set")->required();
+  sub->add_option("--ics", o->ics, "Initial conditions (orbits) drawn on the level set (not with --seeds)");
+  sub->add_option("--seeds", o->seeds,
+                  "CSV of section points phi,theta,sheet or states gamma_1..3,angular_momentum_1..3 on the level: "
+                  "one orbit from each row, instead of --ics draws (experiments/POINCARE.md)");
   sub->add_option("--t-end", o->t_end, "Time span of each orbit")->required();
   sub->add_option("--axis", o->axis,
                   "Section axis e: e1, e2, e3, com or x,y,z (default: e3 for a Lagrange top or the free body, "

@@ -83,11 +83,12 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
   auto parameters = provenance(o, scene);
   parameters["l"] = number(l), parameters["h"] = number(h), parameters["topology"] = region.topology;
   parameters["resolved"] = region.resolved ? "yes" : "no";
+  parameters["degenerate"] = region.degenerate ? "yes" : "no";
   parameters["u_constant"] = critical.constant ? "yes" : "no";
   write_groups_file(o.out, o.force, single_region_groups(single, h), parameters);
   if (o.quiet) return exit_ok;
   for (const auto& c : critical.points)
-    std::printf("critical point: gamma=(%.17g, %.17g, %.17g) U=%.17g %s%s omega=%.17g branch=%d\n", c.gamma.x(),
+    std::printf("critical point: gamma=(%.6g, %.6g, %.6g) U=%.6g %s%s omega=%.6g branch=%d\n", c.gamma.x(),
                 c.gamma.y(), c.gamma.z(), c.value, index_name(c), c.circle ? " (on a circle of critical points)" : "",
                 c.omega, c.branch);
   for (const auto& k : region.components)
@@ -95,8 +96,12 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
                 "circles), %.4g of the sphere\n",
                 k.id, k.topology.c_str(), k.boundaries, k.boundaries == 1 ? "" : "s", k.euler, k.minima, k.saddles,
                 k.maxima, k.circles, k.area);
-  std::cout << "region: l = " << number(l) << ", h = " << number(h) << ": energy surface " << region.topology
-            << (region.resolved ? "" : " (not resolved by the grid: raise --grid)") << "; wrote " << o.out << '\n';
+  std::cout << "region: l = " << format_general(l, 6) << ", h = " << format_general(h, 6) << ": energy surface " << region.topology
+            << (region.resolved ? "" : " (not resolved by the grid: raise --grid)")
+            << (region.degenerate ? " (U_l has a degenerate critical point below h, a bifurcation of relative "
+                                    "equilibria at this l: the topology is the grid's, without the Morse check)"
+                                  : "")
+            << "; wrote " << o.out << '\n';
   return exit_ok;
 }
 

@@ -268,7 +268,8 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& path) {
     const Table t = scene_toml::sub_table(root, "level_set");
     t.check_keys(level_keys);
     s.level_set = LevelSetSpec{t.required_number("h", "the energy H of the level set"),
-                               t.required_number("l", "the momentum Pi.Gamma of the level set"), t.line.value_or(0)};
+                               t.required_number("l", "the momentum Pi.Gamma of the level set"), t.line.value_or(0),
+                               LevelMeasure::liouville, {}};
     if (const toml::node* m = t.get("measure")) {
       const std::string name = t.string("measure", *m);
       const auto measure = level_measure_from_name(name);

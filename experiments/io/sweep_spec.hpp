@@ -69,6 +69,9 @@ struct LevelSetSpec {
   double l = 0.0;
   std::uint32_t line = 0;
   LevelMeasure measure = LevelMeasure::liouville;
+  /// lgi poincare --seeds: trajectory i starts at (Γ, Π) = seeds[i] instead of a draw
+  /// (set by the command, never read from a spec file).
+  std::vector<std::array<double, 6>> seeds;
 };
 
 struct SweepSpec {

@@ -136,13 +136,19 @@ def cardan_table(path):
             kv = dict(item.split("=", 1) for item in line.split() if "=" in item)
             if not kv:
                 continue
-            for key in ("scene", "scheme", "steps", "cpu_seconds", "energy_error_max",
-                        "cardan_momentum_1_error_max"):
+            for key in ("scene", "scheme", "steps", "cpu_seconds", "energy_error_max"):
                 if key not in kv:
                     die(f"{path}: a line without {key}= (not an lgi simulate summary of a Cardan scene)")
+            # p1's error only where it is an integral; lgi says cardan_momentum_1_conserved=no elsewhere.
+            if "cardan_momentum_1_error_max" in kv:
+                p1 = f"{float(kv['cardan_momentum_1_error_max']):.1e}"
+            elif kv.get("cardan_momentum_1_conserved") == "no":
+                p1 = "no integral"
+            else:
+                die(f"{path}: a line without cardan_momentum_1_error_max= or cardan_momentum_1_conserved=no")
             rows.append(f"{tex(kv['scene'])} & \\texttt{{{kv['scheme']}}} & {kv['steps']} & "
                         f"{1e3 * float(kv['cpu_seconds']):.1f} & {float(kv['energy_error_max']):.1e} & "
-                        f"{float(kv['cardan_momentum_1_error_max']):.1e} \\\\")
+                        f"{p1} \\\\")
     if not rows:
         die(f"{path}: no run")
     head = "scene & scheme & steps & CPU (ms) & energy error & $p_1$ error \\\\"

@@ -2,21 +2,30 @@
 """The (l, h) bifurcation diagram of a heavy top from `lgi bifurcation` files
 (experiments/EQUILIBRIA.md: /equilibria, every branch of relative equilibria).
 
-Usage: bifurcation.py --out DIR BRANCHES.h5 ...   (one file per scene)
+Usage: bifurcation.py --out DIR [--l-range A:B] [--h-range A:B] [--k-range A:B] [--l-nonneg] BRANCHES.h5 ...
 
 Writes DIR/bifurcation_<scene stem>.{pdf,png}: h against l along every branch,
-coloured by Grammel's stability class (docs/atlas.md §3), folds (the cusps)
-marked. Where the scene is integrable in closed form the known critical sets
-are drawn under the branches as grey dashes: the free body's principal-axis
-rotations h = l²/(2A_i), and the Lagrange top's carrousels and sleeping top
-(docs/atlas.md §5).
+coloured by Grammel's stability class (docs/atlas.md §3), folds (the cusps,
+triangles) and changes of class along a branch (diamonds) marked, each branch
+named by its asymptotic ends (/parameters branch_labels: hanging, upright,
++-e_i). The default window frames the folds and class changes (the cusps);
+--l-range, --h-range and --l-nonneg (l >= 0 only: the diagram is symmetric)
+set it. The legend is outside the axes. Where the scene is integrable in
+closed form the known critical sets are drawn under the branches as grey
+dashes: the free body's principal-axis rotations h = l²/(2A_i), and the
+Lagrange top's carrousels and sleeping top (docs/atlas.md §5).
 
 A file of `lgi bifurcation --appelrot L,...` (a Kovalevskaya top) also gives
 DIR/appelrot_<file stem>.{pdf,png}: the (h, k) diagram at each l, in the scaled
-values h/(J3 c) and k = K/c² (docs/atlas.md §9): the Appelrot families (k = 0,
-k = (h − l²/2)², the parametric family, and at l = 0 the line k = 1 + h²), the
-range of k on the energy surfaces found by lgi (grey: where orbits exist) and the
-relative equilibria (black dots).
+values h/(J3 c) and k = K/c² (docs/atlas.md §9): the range of k on the energy
+surfaces found by lgi (grey, "motion"; white, "no motion"), the arcs of the
+Appelrot families (k = 0, k = (h − l²/2)², the parametric family, and at l = 0
+the line k = 1 + h²) that lie in that attained range (solid where they bound
+it, dotted inside it; the parts outside, which are no critical values of the
+motion, are not drawn) and the relative equilibria (black dots). --l-range
+and --l-nonneg choose the panels (values of l), --h-range and --k-range the
+window (default: from the least energy to 1.5 above the highest relative
+equilibrium, where the critical arcs are, and the attained k there).
 """
 import os
 import tomllib
@@ -29,6 +38,73 @@ CLASSES = {0: ("linearly stable", "tab:blue"), 1: ("singly unstable", "tab:red")
            2: ("doubly unstable", "tab:purple"), 3: ("complex unstable", "tab:orange")}
 
 
+def branch_labels(f):
+    """{branch id: its asymptotic ends} from /parameters branch_labels ("id: label" lines)."""
+    text = c.attrs(f["parameters"]).get("branch_labels", "")
+    out = {}
+    for line in text.splitlines():
+        if ":" in line:
+            k, v = line.split(":", 1)
+            out[int(k)] = v.strip()
+    return out
+
+
+def default_window(t, args):
+    """(l0, l1, h0, h1): the folds, class changes and static equilibria framed with a
+    margin; the 90th percentiles of |l| and h where there are none (the free body)."""
+    marks = (t["fold"] == 1) | (t.get("class_change", np.zeros_like(t["fold"])) == 1)
+    lm = np.abs(t["l"][marks])
+    if len(lm) and lm.max() > 0:
+        L = 1.5 * lm.max()
+    else:
+        L = np.percentile(np.abs(t["l"]), 90) if len(t["l"]) else 1.0
+    l0, l1 = args.l_range if args.l_range else ((0.0 if args.l_nonneg else -L), L)
+    if args.h_range:
+        return l0, l1, args.h_range[0], args.h_range[1]
+    inside = (t["l"] >= l0) & (t["l"] <= l1)
+    hs = t["h"][inside]
+    if not len(hs):
+        return l0, l1, -1.0, 1.0
+    lo = hs.min()
+    hm = t["h"][marks & inside]
+    hi = max(hm.max(), np.percentile(hs, 25)) if len(hm) else np.percentile(hs, 90)
+    pad = 0.08 * (hi - lo if hi > lo else 1.0)
+    return l0, l1, lo - pad, hi + 3 * pad
+
+
+def merged(names):
+    """Names of branches drawn on one curve: "+e2", "-e2" -> "±e2", others joined by ", "."""
+    names = sorted(set(names))
+    if len(names) == 2 and names[0][1:] == names[1][1:] and {names[0][0], names[1][0]} == {"+", "-"}:
+        return "±" + names[0][1:]
+    return ", ".join(names)
+
+
+def label_branches(ax, t, labels, window):
+    """Each curve's name once, at a point in view: a branch and its mirror l -> -l share a name,
+    and branches drawn on one curve (the degenerate families +-e_i) get one merged label."""
+    l0, l1, h0, h1 = window
+    spots = []  # (l, h, [names])
+    for b in np.unique(t["branch"]):
+        name = labels.get(int(b))
+        if not name or any(name in names for _, _, names in spots if name[0] not in "+-" or " " in name):
+            continue
+        sel = (t["branch"] == b) & (t["fold"] == 0) & (t["l"] > l0) & (t["l"] < l1) & (t["h"] > h0) & (t["h"] < h1)
+        if sel.sum() < 2:
+            continue
+        k = np.flatnonzero(sel)[int(0.6 * (sel.sum() - 1))]
+        scale = (l1 - l0) + (h1 - h0)
+        for spot in spots:
+            if abs(spot[0] - t["l"][k]) + abs(spot[1] - t["h"][k]) < 1e-6 * scale:
+                spot[2].append(name)
+                break
+        else:
+            spots.append((t["l"][k], t["h"][k], [name]))
+    for l, h, names in spots:
+        ax.annotate(merged(names), (l, h), fontsize=6, xytext=(3, 3), textcoords="offset points",
+                    bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8), zorder=5)
+
+
 def body(f):
     """J (diagonal as given), m g chi, from the scene text stored in the file."""
     scene = tomllib.loads(c.attrs(f["parameters"])["scene_toml"])
@@ -39,8 +115,8 @@ def body(f):
     return J, b.get("mass", 0.0) * g * chi, scene.get("name", "")
 
 
-def overlays(ax, J, w, lmax):
-    l = np.linspace(-lmax, lmax, 400)
+def overlays(ax, J, w, l0, l1):
+    l = np.linspace(l0, l1, 400)
     if not np.any(w):  # Euler: rotations about the principal axes
         for A in J:
             ax.plot(l, l * l / (2 * A), color="0.6", ls="--", lw=0.8, zorder=1)
@@ -62,75 +138,153 @@ FAMILIES = {0: ("k = 0", "tab:blue"), 1: ("$k = (h - \\ell^2/2)^2$", "tab:red"),
             2: ("parametric family", "tab:green"), 3: ("$k = 1 + h^2$ ($\\ell = 0$)", "tab:purple")}
 
 
-def appelrot_figure(f, stem, out):
+def attained(h, k, rng_h, rng_lo, rng_hi, comps):
+    """Per point: 2 on the boundary of the attained range (k_min or k_max of a component,
+    to 1 % of the k scale), 1 inside it, 0 outside (no motion there)."""
+    tol = 0.01 * max(1.0, np.nanmax(rng_hi) if len(rng_hi) else 1.0)
+    out = np.zeros(len(h), dtype=int)
+    for comp in np.unique(comps):
+        sel = comps == comp
+        hh, order = rng_h[sel], np.argsort(rng_h[sel])
+        hh, lo, hi = hh[order], rng_lo[sel][order], rng_hi[sel][order]
+        if len(hh) < 2:
+            continue
+        span = (h >= hh[0]) & (h <= hh[-1])
+        klo, khi = np.interp(h, hh, lo), np.interp(h, hh, hi)
+        inside = span & (k >= klo - tol) & (k <= khi + tol)
+        edge = inside & ((np.abs(k - klo) <= tol) | (np.abs(k - khi) <= tol))
+        out = np.maximum(out, np.where(edge, 2, np.where(inside, 1, 0)))
+    return out
+
+
+def label_regions(ax, rng, r, hlim, klim):
+    """Name the two kinds of region of the (h, k) plane at a column in view: "motion" inside the
+    attained range (its widest point), "no motion" above it."""
+    hs = rng["h_scaled"][r]
+    inview = r & (rng["h_scaled"] > hlim[0]) & (rng["h_scaled"] < hlim[1])
+    if not np.any(inview):
+        return
+    target = hlim[0] + 0.6 * (hlim[1] - hlim[0])  # a column a little right of the middle
+    k = int(np.argmin(np.where(inview, np.abs(rng["h_scaled"] - target), np.inf)))
+    h, lo, hi = rng["h_scaled"][k], rng["k_min"][k], rng["k_max"][k]
+    box = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.7)
+    ax.text(h, 0.5 * (lo + hi), "motion", fontsize=6.5, ha="center", va="center", color="0.25", bbox=box)
+    top = hs.max() if len(hs) else hlim[1]
+    above = hi + 0.12 * (klim[1] - klim[0])
+    if above < klim[1] and h < top:
+        ax.text(h, above, "no motion", fontsize=6.5, ha="center", va="bottom", color="0.45")
+
+
+def appelrot_panel(ax, l, cur, eq, rng, args):
+    r = rng["l"] == l
+    for comp in np.unique(rng["component"][r]):
+        sel = r & (rng["component"] == comp)
+        ax.fill_between(rng["h_scaled"][sel], rng["k_min"][sel], rng["k_max"][sel], color="0.85", lw=0,
+                        label="attained $(h, k)$" if comp == 0 else None)
+    kmax = rng["k_max"][r].max() if np.any(r) else 4.0
+    for fam, (label, colour) in FAMILIES.items():
+        for branch in (-1, 0, 1):
+            sel = (cur["l"] == l) & (cur["family"] == fam) & (cur["branch"] == branch)
+            if not np.any(sel):
+                continue
+            order = np.argsort(cur["s"][sel])
+            h, k = cur["h_scaled"][sel][order], cur["k"][sel][order]
+            where = attained(h, k, rng["h_scaled"][r], rng["k_min"][r], rng["k_max"][r], rng["component"][r])
+            first = branch != 1 or fam != 2
+            ax.plot(h, np.where(where == 2, k, np.nan), color=colour, lw=1.3, label=label if first else None)
+            ax.plot(h, np.where(where == 1, k, np.nan), color=colour, lw=0.9, ls=":")
+    e = eq["l"] == l
+    ax.plot(eq["h_scaled"][e], eq["k"][e], "ko", ms=3, label="relative equilibria", zorder=4)
+    if args.h_range:
+        h0, h1 = args.h_range
+    elif np.any(r):  # from the least energy to 1.5 above the highest relative equilibrium: the critical arcs
+        h0 = rng["h_scaled"][r].min() - 0.1
+        h1 = min(rng["h_scaled"][r].max(), max(eq["h_scaled"][eq["l"] == l].max(initial=h0) + 1.5, h0 + 2.0))
+    else:
+        h0, h1 = -1.1, 5.0
+    if args.k_range:
+        k0, k1 = args.k_range
+    else:
+        view = r & (rng["h_scaled"] <= h1)
+        kmax = rng["k_max"][view].max() if np.any(view) else kmax
+        k0, k1 = -0.05 * kmax, 1.1 * kmax
+    ax.set_xlim(h0, h1)
+    ax.set_ylim(k0, k1)
+    label_regions(ax, rng, r, (h0, h1), (k0, k1))
+    ax.set_xlabel("$h / (J_3 c)$")
+    ax.set_ylabel("$k = K / c^2$")
+    ax.set_title(f"$\\ell$ = {c.num(l)} (scaled {c.num(cur['l_scaled'][cur['l'] == l][0])})", fontsize=8)
+
+
+def appelrot_figure(f, stem, out, args):
     """The Kovalevskaya (h, k) diagram at each l of the file (scaled values)."""
     cur = {k: np.asarray(f["appelrot"][k][()]) for k in f["appelrot"]}
     eq = {k: np.asarray(f["appelrot_equilibria"][k][()]) for k in f["appelrot_equilibria"]}
     rng = {k: np.asarray(f["appelrot_range"][k][()]) for k in f["appelrot_range"]}
     ls = np.unique(cur["l"])
+    if args.l_nonneg:
+        ls = ls[ls >= 0]
+    if args.l_range:
+        ls = ls[(ls >= args.l_range[0]) & (ls <= args.l_range[1])]
+    if not len(ls):
+        c.die(f"{stem}: no value of l of the file in the chosen --l-range / --l-nonneg")
     cols = min(3, len(ls))
     rows = (len(ls) + cols - 1) // cols
-    fig, axes = c.plt.subplots(rows, cols, figsize=(3.2 * cols, 2.8 * rows), squeeze=False)
+    fig, axes = c.plt.subplots(rows, cols, figsize=(3.2 * cols, 2.9 * rows), squeeze=False)
     for ax, l in zip(axes.ravel(), ls):
-        r = rng["l"] == l
-        for comp in np.unique(rng["component"][r]):
-            sel = r & (rng["component"] == comp)
-            ax.fill_between(rng["h_scaled"][sel], rng["k_min"][sel], rng["k_max"][sel], color="0.82", lw=0,
-                            label="range of k" if comp == 0 else None)
-        kmax = rng["k_max"][r].max() if np.any(r) else 4.0
-        for fam, (label, colour) in FAMILIES.items():
-            for branch in (-1, 0, 1):
-                sel = (cur["l"] == l) & (cur["family"] == fam) & (cur["branch"] == branch)
-                if np.any(sel):
-                    order = np.argsort(cur["s"][sel])
-                    ax.plot(cur["h_scaled"][sel][order], cur["k"][sel][order], color=colour, lw=0.9,
-                            label=label if branch != 1 or fam != 2 else None)
-        e = eq["l"] == l
-        ax.plot(eq["h_scaled"][e], eq["k"][e], "ko", ms=3, label="relative equilibria")
-        ax.set_xlim(cur["h_scaled"].min(), cur["h_scaled"].max())
-        ax.set_ylim(-0.05 * kmax, 1.1 * kmax)
-        ax.set_xlabel("$h / (J_3 c)$")
-        ax.set_ylabel("$k = K / c^2$")
-        ax.set_title(f"$\\ell$ = {l:g} (scaled {cur['l_scaled'][cur['l'] == l][0]:.3g})", fontsize=8)
+        appelrot_panel(ax, l, cur, eq, rng, args)
     for ax in axes.ravel()[len(ls):]:
         ax.axis("off")
-    axes.ravel()[0].legend(fontsize=6, loc="upper left")
-    fig.tight_layout()
+    handles, labels = axes.ravel()[0].get_legend_handles_labels()
+    handles.append(c.plt.Line2D([], [], color="0.3", ls=":"))
+    labels.append("arc inside the attained range")
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, -0.02))
+    fig.tight_layout(rect=(0, 0.1 if rows == 1 else 0.06, 1, 1))
     c.save(fig, out, f"appelrot_{stem}")
 
 
+def bifurcation_figure(t, J, w, name, labels, args, stem):
+    window = default_window(t, args)
+    l0, l1, h0, h1 = window
+    fig, ax = c.plt.subplots(figsize=(5.6, 3.6))
+    overlays(ax, J, w, l0, l1)
+    cc = t.get("class_change", np.zeros_like(t["fold"]))
+    for b in np.unique(t["branch"]):
+        sel = (t["branch"] == b) & (t["fold"] == 0)
+        l, h, s = t["l"][sel], t["h"][sel], t["stability"][sel]
+        for k in range(len(l) - 1):
+            ax.plot(l[k:k + 2], h[k:k + 2], color=CLASSES[int(s[k])][1], lw=1.2, zorder=2)
+    folds = t["fold"] == 1
+    # Class changes often sit at the folds: open diamonds under the filled triangles, both visible.
+    ax.plot(t["l"][cc == 1], t["h"][cc == 1], "D", mfc="white", mec="k", ms=6, mew=0.9, zorder=3,
+            label="class change")
+    ax.plot(t["l"][folds], t["h"][folds], "k^", ms=3.5, zorder=4, label="fold (cusp)")
+    for k, (label, colour) in CLASSES.items():
+        ax.plot([], [], color=colour, label=label)
+    label_branches(ax, t, labels, window)
+    ax.set_xlim(l0, l1)
+    ax.set_ylim(h0, h1)
+    ax.set_xlabel("$\\ell = \\Pi\\cdot\\Gamma$")
+    ax.set_ylabel("$h$")
+    ax.set_title(name, fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=6.5, borderaxespad=0)
+    c.save(fig, args.out, f"bifurcation_{stem}")
+
+
 def main():
-    args = c.parser(__doc__.split("\n\n")[0]).parse_args()
+    p = c.add_plane_options(c.parser(__doc__.split("\n\n")[0]), k_range=True)
+    args = p.parse_args()
     if not args.files:
         c.die("give at least one file written by lgi bifurcation")
     for path in args.files:
+        stem = os.path.splitext(os.path.basename(path))[0]
         with c.h5py.File(path, "r") as f:
             t = {k: np.asarray(f["equilibria"][k][()]) for k in f["equilibria"]}
             J, w, name = body(f)
+            labels = branch_labels(f)
             if "appelrot" in f:
-                appelrot_figure(f, os.path.splitext(os.path.basename(path))[0], args.out)
-        fig, ax = c.plt.subplots(figsize=(4.6, 3.4))
-        lmax = np.percentile(np.abs(t["l"]), 90) if len(t["l"]) else 1.0
-        overlays(ax, J, w, lmax)
-        for b in np.unique(t["branch"]):
-            sel = (t["branch"] == b) & (t["fold"] == 0)
-            l, h, s = t["l"][sel], t["h"][sel], t["stability"][sel]
-            for k in range(len(l) - 1):
-                ax.plot(l[k:k + 2], h[k:k + 2], color=CLASSES[int(s[k])][1], lw=1.2, zorder=2)
-        folds = t["fold"] == 1
-        ax.plot(t["l"][folds], t["h"][folds], "k^", ms=4, zorder=3, label="fold")
-        for k, (label, colour) in CLASSES.items():
-            ax.plot([], [], color=colour, label=label)
-        ax.set_xlim(-lmax, lmax)
-        hs = t["h"][np.abs(t["l"]) <= lmax]
-        if len(hs):
-            ax.set_ylim(hs.min() - 0.05 * np.ptp(hs), np.percentile(hs, 90))
-        ax.set_xlabel("$\\ell = \\Pi\\cdot\\Gamma$")
-        ax.set_ylabel("$h$")
-        ax.set_title(name, fontsize=8)
-        ax.legend(loc="upper center", fontsize=6.5, ncol=3)
-        stem = os.path.splitext(os.path.basename(path))[0]
-        c.save(fig, args.out, f"bifurcation_{stem}")
+                appelrot_figure(f, stem, args.out, args)
+        bifurcation_figure(t, J, w, name, labels, args, stem)
 
 
 if __name__ == "__main__":

@@ -203,6 +203,34 @@ def parser(description):
     return p
 
 
+def _range(text):
+    """A:B (A < B, finite) for --l-range / --h-range / --k-range (an argparse type)."""
+    try:
+        a, b = (float(x) for x in text.split(":"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}': expected A:B, two numbers")
+    if not (np.isfinite(a) and np.isfinite(b) and a < b):
+        raise argparse.ArgumentTypeError(f"'{text}': expected A:B with A < B, both finite")
+    return (a, b)
+
+
+def add_plane_options(p, k_range=False):
+    """--l-range, --h-range (and --k-range) and --l-nonneg: the window of an (l, h)
+    (or (h, k)) figure; without them the script frames the features itself."""
+    p.add_argument("--l-range", type=_range, metavar="A:B", help="l shown from A to B (default: framed on the data)")
+    p.add_argument("--h-range", type=_range, metavar="A:B", help="h shown from A to B (default: framed on the data)")
+    if k_range:
+        p.add_argument("--k-range", type=_range, metavar="A:B", help="k shown from A to B (default: the attained k)")
+    p.add_argument("--l-nonneg", action="store_true",
+                   help="only l >= 0 (the diagrams are symmetric under l -> -l, h -> h)")
+    return p
+
+
+def num(x):
+    """A number for a title or label: 6 significant digits (2.2, never 2.2000000000000002)."""
+    return f"{float(x):.6g}"
+
+
 def die(msg):
     print(f"{os.path.basename(sys.argv[0])}: {msg}", file=sys.stderr)
     sys.exit(1)

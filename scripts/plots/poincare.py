@@ -2,20 +2,28 @@
 """Poincaré sections from `lgi poincare` files (experiments/POINCARE.md: /events
 phi, theta, sheet; /sweep megno where computed).
 
-Usage: poincare.py --out DIR [--colour orbit|megno] SECTION.h5 ...
+Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S] SECTION.h5 ...
+
+(MEGNO colours are drawn on a grey ground, where the chaotic orbits' yellow shows.)
 
 Writes DIR/poincare_<file stem>.{pdf,png}: Richter's section drawn on the torus
 of the two glued Poisson spheres (docs/atlas.md §6), phi against the torus
 angle theta on the sheet +1 and 2 pi - theta on the sheet -1, one dot per
-crossing, coloured by orbit (default) or by the orbit's MEGNO <Y> (2: regular,
-above: chaotic; needs a file made with --megno). A file of the gamma section
-(--section gamma) is drawn as phi against theta (the angle of Pi from the axis).
-A file of a Cardan top (docs/cardan.md section 9: /events piece, x, y) is drawn
-as the seed's four pieces: the two copies of the shape torus (q3, q2), told
-apart by the sign of dq3/dt, and the two cylinders (q3, psi) at q2 = 0 and pi,
-psi the direction of the shape velocity.
+crossing, coloured by orbit (default), by the orbit's MEGNO <Y> (2: regular,
+above: chaotic; needs a file made with --megno) or by the crossing's
+direction (/events direction: in, dS/dt > 0, or out), with a colour bar. The
+boundary of the accessible region U_l(Gamma) = h (docs/atlas.md §1, what lgi
+region finds) is drawn on Richter's section as a black line: no crossing lies
+outside it. A file of the gamma section (--section gamma) is drawn as phi
+against theta (the angle of Pi from the axis). A file of a Cardan top
+(docs/cardan.md section 9: /events piece, x, y) is drawn as the seed's four
+pieces: the two copies of the shape torus (q3, q2), told apart by the sign
+of dq3/dt, and the two cylinders (q3, psi) at q2 = 0 and pi, psi the
+direction of the shape velocity; the title says what is fixed (p1 and h where
+p1 is an integral, else h and the orbits' initial p1).
 """
 import os
+import tomllib
 
 import numpy as np
 
@@ -26,37 +34,101 @@ PIECES = ((1, "torus copy $\\dot q_3 > 0$", "$q_2$"), (-1, "torus copy $\\dot q_
           (2, "cylinder $q_2 = 0$", "$\\psi$"), (3, "cylinder $q_2 = \\pi$", "$\\psi$"))
 
 
+def colour_values(args, ev, megno):
+    """(values, colour map, vmin, vmax, colour-bar label, ticks) of --colour."""
+    if args.colour == "megno":
+        return np.clip(megno[ev["index"]], 0.0, 8.0), "viridis", 0.0, 8.0, \
+            "MEGNO $\\langle Y\\rangle$ (clipped at 8; 2: regular)", None
+    if args.colour == "direction":
+        cmap = c.matplotlib.colors.ListedColormap(["tab:orange", "tab:blue"])
+        return np.asarray(ev["direction"], dtype=float), cmap, -1.5, 1.5, "crossing", (-1, 1)
+    return ev["index"] % 20, "tab20", -0.5, 19.5, "orbit index (mod 20)", range(0, 20, 4)
+
+
+def background(ax, args):
+    """MEGNO's yellow (chaotic) is lost on white: a grey ground under MEGNO colours."""
+    if args.colour == "megno":
+        ax.set_facecolor("0.55")
+        ax.grid(color="0.7", alpha=0.4)
+
+
+def add_colour_bar(fig, sc, axes, label, ticks):
+    bar = fig.colorbar(sc, ax=axes, label=label, shrink=0.9)
+    if ticks is not None:
+        bar.set_ticks(list(ticks))
+        if tuple(ticks) == (-1, 1):
+            bar.set_ticklabels(["out ($\\dot S < 0$)", "in ($\\dot S > 0$)"])
+    return bar
+
+
 def draw_cardan(f, path, args):
-    """The four pieces of the T^3 section, coloured by orbit or MEGNO."""
-    ev = {k: np.asarray(f["events"][k][()]) for k in ("index", "piece", "x", "y")}
+    """The four pieces of the T^3 section, coloured by orbit, MEGNO or direction."""
+    ev = {k: np.asarray(f["events"][k][()]) for k in ("index", "piece", "x", "y", "direction")}
     megno = np.asarray(f["sweep"]["megno"][()]) if "megno" in f["sweep"] else None
     par = c.attrs(f["parameters"])
     if args.colour == "megno" and megno is None:
         c.die(f"{path}: no /sweep/megno (run lgi poincare with --megno)")
-    fig, axes = c.plt.subplots(2, 2, figsize=(7.0, 6.0))
+    values, cmap, vmin, vmax, label, ticks = colour_values(args, ev, megno)
+    fig, axes = c.plt.subplots(2, 2, figsize=(7.6, 6.0), layout="constrained")
+    size = args.dot_size if args.dot_size else 2.5
+    sc = None
     for ax, (piece, title, ylabel) in zip(axes.flat, PIECES):
         m = ev["piece"] == piece
-        if args.colour == "megno":
-            col = np.clip(megno[ev["index"][m]], 0.0, 8.0)
-            ax.scatter(ev["x"][m], ev["y"][m], c=col, s=0.4, cmap="viridis", vmin=0.0, vmax=8.0, linewidths=0)
-        else:
-            ax.scatter(ev["x"][m], ev["y"][m], c=ev["index"][m] % 20, s=0.4, cmap="tab20", vmin=0, vmax=19,
-                       linewidths=0)
+        sc = ax.scatter(ev["x"][m], ev["y"][m], c=values[m], s=size, cmap=cmap, vmin=vmin, vmax=vmax, linewidths=0)
+        background(ax, args)
         ax.set_xlim(0, 2 * np.pi)
         ax.set_ylim((0, 2 * np.pi) if piece in (1, -1) else (-np.pi, np.pi))
         ax.set_title(f"{title}: {int(m.sum())} crossings", fontsize=8)
         ax.set_xlabel("$q_3$")
         ax.set_ylabel(ylabel)
-    fig.suptitle(f"{c.scene_label(par)}: $p_1$ = {float(par.get('l', 0)):g}, h = {float(par.get('h', 0)):g}", fontsize=8)
-    fig.tight_layout()
+    add_colour_bar(fig, sc, axes.ravel().tolist(), label, ticks)
+    fixed = (f"$p_1$ = {c.num(par.get('l', 0))} (an integral), h = {c.num(par.get('h', 0))}"
+             if par.get("p1_conserved", "yes") == "yes" else
+             f"h = {c.num(par.get('h', 0))}; $p_1$ is no integral here: "
+             f"{c.num(par.get('l', 0))} at the start of each orbit only")
+    fig.suptitle(f"{c.scene_label(par)}: {fixed}", fontsize=8)
     stem = os.path.splitext(os.path.basename(path))[0]
     c.save(fig, args.out, f"poincare_{stem}")
 
 
+def section_frame(e):
+    """f1, f2 of analysis/poincare_section.cpp: f1 the body axis least aligned with e, made orthogonal."""
+    k = int(np.argmin(np.abs(e)))
+    f1 = np.eye(3)[k] - e[k] * e
+    f1 /= np.linalg.norm(f1)
+    return f1, np.cross(e, f1)
+
+
+def region_boundary(ax, par):
+    """U_l(Gamma(phi, theta)) = h on both sheets of Richter's torus (docs/atlas.md §1)."""
+    scene = tomllib.loads(par["scene_toml"])
+    J = c.inertia_of(scene)
+    g = scene.get("gravity", {}).get("g", 9.81) if "gravity" in scene else 0.0
+    b = scene.get("body", {})
+    w = float(b.get("mass", 0.0)) * g * np.asarray(b.get("center_of_mass", [0, 0, 0]), dtype=float)
+    e = np.array([float(par.get(f"axis_{k}", 0.0)) for k in (1, 2, 3)])
+    if not np.linalg.norm(e):
+        return
+    f1, f2 = section_frame(e / np.linalg.norm(e))
+    phi, th = np.meshgrid(np.linspace(0, 2 * np.pi, 361), np.linspace(0, np.pi, 181))
+    G = (np.sin(th) * np.cos(phi))[..., None] * f1 + (np.sin(th) * np.sin(phi))[..., None] * f2 \
+        + np.cos(th)[..., None] * e
+    l, h = float(par.get("l", 0.0)), float(par.get("h", 0.0))
+    U = l * l / (2 * np.einsum("...i,ij,...j->...", G, J, G)) + G @ w
+    if not U.min() < h < U.max():  # the whole sphere (or nothing) is accessible: no boundary
+        return
+    for y in (th, 2 * np.pi - th):
+        ax.contour(phi, y, U, levels=[h], colors="k", linewidths=0.8)
+    ax.plot([], [], color="k", lw=0.8, label="$U_\\ell = h$ (accessible region)")
+    ax.legend(loc="lower right", fontsize=6.5)
+
+
 def main():
     p = c.parser(__doc__.split("\n\n")[0])
-    p.add_argument("--colour", choices=("orbit", "megno"), default="orbit",
-                   help="colour of the dots: the orbit's index (default) or its MEGNO <Y>")
+    p.add_argument("--colour", choices=("orbit", "megno", "direction"), default="orbit",
+                   help="colour of the dots: the orbit's index (default), its MEGNO <Y>, or the crossing's direction")
+    p.add_argument("--dot-size", type=float,
+                   help="dot area in points^2 (default 0.6 by orbit, 1.2 by MEGNO or direction; 2.5 on the Cardan pieces)")
     args = p.parse_args()
     if not args.files:
         c.die("give at least one file written by lgi poincare")
@@ -67,29 +139,32 @@ def main():
                 continue
             if "events" not in f or "phi" not in f["events"]:
                 c.die(f"{path}: no /events/phi (not a file written by lgi poincare)")
-            ev = {k: np.asarray(f["events"][k][()]) for k in ("index", "phi", "theta", "sheet")}
+            ev = {k: np.asarray(f["events"][k][()]) for k in ("index", "phi", "theta", "sheet", "direction")}
             megno = np.asarray(f["sweep"]["megno"][()]) if "megno" in f["sweep"] else None
             par = c.attrs(f["parameters"])
         if args.colour == "megno" and megno is None:
             c.die(f"{path}: no /sweep/megno (run lgi poincare with --megno)")
         richter = par.get("section", "richter") == "richter"
         y = np.where(ev["sheet"] > 0, ev["theta"], 2 * np.pi - ev["theta"]) if richter else ev["theta"]
-        fig, ax = c.plt.subplots(figsize=(5.2, 4.2))
-        if args.colour == "megno":
-            col = np.clip(megno[ev["index"]], 0.0, 8.0)
-            sc = ax.scatter(ev["phi"], y, c=col, s=0.4, cmap="viridis", vmin=0.0, vmax=8.0, linewidths=0)
-            fig.colorbar(sc, ax=ax, label="MEGNO $\\langle Y\\rangle$ (clipped at 8)")
-        else:
-            ax.scatter(ev["phi"], y, c=ev["index"] % 20, s=0.4, cmap="tab20", vmin=0, vmax=19, linewidths=0)
+        fig, ax = c.plt.subplots(figsize=(5.6, 4.2))
+        values, cmap, vmin, vmax, label, ticks = colour_values(args, ev, megno)
+        size = args.dot_size or (0.6 if args.colour == "orbit" else 1.2)  # one colour per orbit is read from lines
+        sc = ax.scatter(ev["phi"], y, c=values, s=size, cmap=cmap, vmin=vmin, vmax=vmax,
+                        linewidths=0)
+        add_colour_bar(fig, sc, ax, label, ticks)
+        background(ax, args)
         ax.set_xlim(0, 2 * np.pi)
         ax.set_ylim(0, 2 * np.pi if richter else np.pi)
         ax.set_xlabel("$\\varphi$")
         if richter:
             ax.axhline(np.pi, color="0.5", lw=0.5)
             ax.set_ylabel("$\\vartheta$ (sheet +1),  $2\\pi - \\vartheta$ (sheet $-1$)")
+            region_boundary(ax, par)
         else:
             ax.set_ylabel("angle of $\\Pi$ from the axis")
-        ax.set_title(f"{c.scene_label(par)}: $\\ell$ = {par.get('l', 0):g}, h = {par.get('h', 0):g}", fontsize=8)
+        seeds = " (orbits from --seeds)" if par.get("seeds_file") else ""
+        ax.set_title(f"{c.scene_label(par)}: $\\ell$ = {c.num(par.get('l', 0))}, h = {c.num(par.get('h', 0))}{seeds}",
+                     fontsize=8)
         stem = os.path.splitext(os.path.basename(path))[0]
         c.save(fig, args.out, f"poincare_{stem}")
 

@@ -3,7 +3,7 @@
 (experiments/REGION.md: /potential, /critical_points, /components; with --cells, /cells
 and /equilibria).
 
-Usage: region.py --out DIR [--combine NAME] REGION.h5 ...
+Usage: region.py --out DIR [--combine NAME] [--l-range A:B] [--h-range A:B] [--l-nonneg] REGION.h5 ...
 
 A file of `lgi region --l L --h H` gives DIR/region_<file stem>.{pdf,png}: the amended
 potential U_l on the sphere (phi across, theta down, body axes), the accessible region
@@ -13,7 +13,9 @@ index, and the energy surface's topology in the title (docs/atlas.md §8). With
 seed's "Poisson sphere potentials" with the topologies named). A file of
 `lgi region --cells` gives DIR/region_cells_<file stem>.{pdf,png}: the (l, h) plane
 coloured by the topology of the energy surface, with the branches of relative
-equilibria on top and each patch named.
+equilibria on top, each large patch named and a legend of every topology that
+occurs (so a small patch is told by its colour); --l-range, --h-range and
+--l-nonneg set its window (default: the file's grid).
 """
 import os
 
@@ -54,16 +56,17 @@ def draw_single(ax, p, cp, par):
         th = np.arccos(np.clip(g[k, 2], -1, 1))
         ph = np.arctan2(g[k, 1], g[k, 0]) % (2 * np.pi)
         m, _ = MARKERS[int(cp["index"][k])]
-        ax.plot(ph, th, m, color="tab:red" if cp["below"][k] else "0.3", ms=5, mfc="none" if cp["circle"][k] else None)
+        ax.plot(ph, th, m, color="tab:red" if cp["below"][k] else "0.3", ms=5, mfc="none" if cp["circle"][k] else None,
+                clip_on=False, zorder=5)  # the poles and phi = 0 are on the frame: markers drawn whole
     ax.set_xlim(0, 2 * np.pi)
     ax.set_ylim(np.pi, 0)
     ax.set_xlabel("$\\varphi$")
     ax.set_ylabel("$\\vartheta$")
-    ax.set_title(f"$\\ell$ = {float(par['l']):g}, h = {h:g}: {tex_topology(par['topology'])}"
+    ax.set_title(f"$\\ell$ = {c.num(par['l'])}, h = {c.num(h)}: {tex_topology(par['topology'])}"
                  + ("" if par.get("resolved", "yes") == "yes" else " (unresolved)"), fontsize=8)
 
 
-def draw_cells(ax, f):
+def draw_cells(ax, f, args):
     cells = {k: np.asarray(f["cells"][k][()]) for k in f["cells"]}
     names = c.attrs(f["cells"])["topology_names"].split("\n")
     l, h, code = cells["l"], cells["h"], cells["topology"]
@@ -93,15 +96,28 @@ def draw_cells(ax, f):
                 continue
             ax.text(l[int(np.median(il))], h[int(np.median(ih))], tex_topology(name), ha="center", va="center",
                     fontsize=7, bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.7))
-    ax.set_xlim(l[0] - dl / 2, l[-1] + dl / 2)
-    ax.set_ylim(h[0] - dh / 2, h[-1] + dh / 2)
+    l0, l1 = args.l_range if args.l_range else (l[0] - dl / 2, l[-1] + dl / 2)
+    if args.l_nonneg:
+        l0 = max(l0, 0.0)
+    ax.set_xlim(l0, l1)
+    ax.set_ylim(*(args.h_range if args.h_range else (h[0] - dh / 2, h[-1] + dh / 2)))
     ax.set_xlabel("$\\ell = \\Pi\\cdot\\Gamma$")
     ax.set_ylabel("$h$")
+    # Every topology present, small patches too, and the grey of unresolved cells.
+    present = sorted(set(np.unique(code[cells["resolved"] == 1]).tolist()))
+    handles = [c.matplotlib.patches.Patch(fc=colours[k], ec="0.4", lw=0.4, label=tex_topology(names[k]))
+               for k in present]
+    if np.any(cells["resolved"] == 0):
+        handles.append(c.matplotlib.patches.Patch(fc=(0.55, 0.55, 0.55), label="not resolved by the grid"))
+    handles.append(c.plt.Line2D([], [], color="k", lw=0.7, label="relative equilibria"))
+    handles.append(c.plt.Line2D([], [], color="k", lw=0.7, ls="--", label="least energy"))
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=6.5, borderaxespad=0)
 
 
 def main():
     p = c.parser(__doc__.split("\n\n")[0])
     p.add_argument("--combine", metavar="NAME", help="put every single-region file into one figure NAME")
+    c.add_plane_options(p)
     args = p.parse_args()
     if not args.files:
         c.die("give at least one file written by lgi region")
@@ -109,8 +125,8 @@ def main():
     for path in args.files:
         with c.h5py.File(path, "r") as f:
             if "cells" in f:
-                fig, ax = c.plt.subplots(figsize=(5.0, 3.8))
-                draw_cells(ax, f)
+                fig, ax = c.plt.subplots(figsize=(6.0, 3.8))
+                draw_cells(ax, f, args)
                 ax.set_title(c.scene_label(c.attrs(f["parameters"])), fontsize=8)
                 c.save(fig, args.out, f"region_cells_{c.file_stem(path)}")
             elif "potential" in f:

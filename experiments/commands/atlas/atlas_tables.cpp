@@ -36,7 +36,8 @@ TableGroup potential_group(const SphereGrid& grid, const Region& region) {
 TableGroup critical_group(const CriticalSet& set, double h) {
   TableGroup g{"critical_points"};
   std::vector<TableColumn> c = {{"gamma", 3}, {"value"}, {"index", 1, true}, {"circle", 1, true}, {"below", 1, true},
-                                {"omega"},    {"branch", 1, true}, {"stability", 1, true}, {"nonlinearly_stable", 1, true}};
+                                {"omega"},    {"branch", 1, true}, {"stability", 1, true}, {"nonlinearly_stable", 1, true},
+                                {"degenerate", 1, true}};
   for (const auto& p : set.points) {
     c[0].real.insert(c[0].real.end(), p.gamma.data(), p.gamma.data() + 3);
     c[1].real.push_back(p.value);
@@ -47,6 +48,7 @@ TableGroup critical_group(const CriticalSet& set, double h) {
     c[6].whole.push_back(p.branch);
     c[7].whole.push_back(static_cast<std::int64_t>(p.stability));
     c[8].whole.push_back(p.nonlinearly_stable ? 1 : 0);
+    c[9].whole.push_back(p.degenerate ? 1 : 0);
   }
   g.columns = c;
   return g;
@@ -95,7 +97,7 @@ std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibriu
   std::vector<TableColumn> c = {{"omega"},  {"gamma", 3}, {"angular_momentum", 3}, {"l"},
                                 {"h"},      {"branch", 1, true}, {"g1"}, {"g2"},
                                 {"stability", 1, true}, {"nonlinearly_stable", 1, true}, {"fold", 1, true},
-                                {"residual"}};
+                                {"residual"}, {"class_change", 1, true}};
   for (const auto& e : rows) {
     c[0].real.push_back(e.omega);
     c[1].real.insert(c[1].real.end(), e.gamma.data(), e.gamma.data() + 3);
@@ -109,6 +111,7 @@ std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibriu
     c[9].whole.push_back(e.nonlinearly_stable ? 1 : 0);
     c[10].whole.push_back(e.fold ? 1 : 0);
     c[11].real.push_back(e.residual);
+    c[12].whole.push_back(e.class_change ? 1 : 0);
   }
   return c;
 }
@@ -116,6 +119,12 @@ std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibriu
 std::string branch_listing(const std::vector<EquilibriumBranch>& branches) {
   std::string text;
   for (const auto& b : branches) text += std::to_string(b.id) + ": " + b.kind + "\n";
+  return text;
+}
+
+std::string branch_label_listing(const std::vector<EquilibriumBranch>& branches) {
+  std::string text;
+  for (const auto& b : branches) text += std::to_string(b.id) + ": " + b.label + "\n";
   return text;
 }
 
@@ -151,7 +160,8 @@ TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, 
   TableColumn l_col{"l"}, h_col{"h"}, h_min{"h_min"};
   const int width = static_cast<int>(hs.size());
   TableColumn topology{"topology", width, true}, components{"components", width, true}, euler{"euler", width, true},
-      euler_morse{"euler_morse", width, true}, resolved{"resolved", width, true};
+      euler_morse{"euler_morse", width, true}, resolved{"resolved", width, true},
+      degenerate{"degenerate", width, true};
   h_col.real = hs;
   unresolved = 0;
   for (const double l : ls) {
@@ -163,10 +173,11 @@ TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, 
       components.whole.push_back(s.components);
       euler.whole.push_back(s.euler), euler_morse.whole.push_back(s.euler_morse);
       resolved.whole.push_back(s.resolved ? 1 : 0);
+      degenerate.whole.push_back(s.degenerate ? 1 : 0);
       unresolved += s.resolved ? 0 : 1;
     }
   }
-  TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved}};
+  TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved, degenerate}};
   std::string legend;
   for (const auto& n : names) legend += (legend.empty() ? "" : "\n") + n;
   cells.attributes["topology_names"] = legend;
@@ -177,6 +188,7 @@ TableGroup branches_group(const HeavyTopBody& body, int samples) {
   TableGroup g{"equilibria"};
   std::vector<TableColumn> c = {{"l"}, {"h"}, {"omega"}, {"branch", 1, true}, {"stability", 1, true}, {"fold", 1, true}};
   for (const auto& e : equilibrium_branches(body, samples).rows) {
+    if (e.class_change) continue;  // a point between two samples: the curves are drawn from the samples
     c[0].real.push_back(e.l), c[1].real.push_back(e.h), c[2].real.push_back(e.omega);
     c[3].whole.push_back(e.branch), c[4].whole.push_back(static_cast<std::int64_t>(e.stability));
     c[5].whole.push_back(e.fold ? 1 : 0);

@@ -27,6 +27,8 @@ std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibriu
 
 /// "id: kind" one a line (the /parameters branches attribute).
 std::string branch_listing(const std::vector<EquilibriumBranch>& branches);
+/// "id: label" per line: each branch named by its asymptotic axes (hanging, upright, +-e_i).
+std::string branch_label_listing(const std::vector<EquilibriumBranch>& branches);
 
 /// The energies of --appelrot-h (`range` a:b:n; empty: h/(J3 c) from -1.1 to 5, 123 values).
 std::vector<double> appelrot_energies(const KovalevskayaScale& scale, const std::string& range);
