@@ -11,12 +11,12 @@ command line `lgi` (python/README.md):
     run.t, run.R, run.q, run.Pi, run.errors["energy"], run.diagnostics["cpu_seconds"]
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
-sweep(); classes: Scene, Stepper, SimulationResult. Units are SI and the
+sweep(), indicators(), tangent_flow(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
 """
 
-from ._lgi import Scene, Stepper, exact_free_flow, scenes, scenes_dir, schemes, sweep
+from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_dir, schemes, sweep, tangent_flow
 from ._lgi import _simulate
 
 __all__ = [
@@ -24,11 +24,13 @@ __all__ = [
     "SimulationResult",
     "Stepper",
     "exact_free_flow",
+    "indicators",
     "scenes",
     "scenes_dir",
     "schemes",
     "simulate",
     "sweep",
+    "tangent_flow",
 ]
 
 

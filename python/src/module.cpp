@@ -51,4 +51,5 @@ PYBIND11_MODULE(_lgi, m) {
   lp::bind_stepper(m);
   lp::bind_exact_flow(m);
   lp::bind_sweep(m);
+  lp::bind_indicators(m);
 }
