@@ -175,7 +175,6 @@ Subcommand add_indicators_subcommand(CLI::App& app, const CommandContext& contex
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
-  sub->footer(exit_status_help);
   return {sub,
           [o, context] {
             o->command_line = context.command_line;
