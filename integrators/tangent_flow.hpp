@@ -31,6 +31,8 @@
 //   Lyapunov (G. Benettin, L. Galgani, A. Giorgilli, J.-M. Strelcyn,
 //   Meccanica 15 (1980) 9–20, renormalised tangent vector):
 //     λ(s) = (1/s) Σ Δₙ;
+//   and the same over the run's second half, [T/2, T] (to the step at or
+//   after T/2), as an estimate of its convergence;
 //   MEGNO (P. M. Cincotta, C. Simó, Astron. Astrophys. Suppl. Ser. 147 (2000)
 //   205–228): Y(s) = (2/s) ∫₀ˢ σ (d/dσ ln|δ(σ)|) dσ and its mean
 //   ⟨Y⟩(s) = (1/s) ∫₀ˢ Y(σ) dσ; here ∫ over step n is σ_{n−½} Δₙ (midpoint
@@ -48,12 +50,11 @@
 namespace lgi::integrators {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;  // six tangent vectors as columns (the Lyapunov spectrum)
 
-/// v̇ = A(x) v at the state (R, Π) and time t (top of this file).
-template <class Model>
-Vec6 tangent_rate(const Model& model, const lie::Mat3& R, const lie::Vec3& Pi, double t, const Vec6& v) {
-  const lie::Vec3 Omega = model.omega(Pi);
-  const auto jac = model.momentum_rate_jacobian(R, Pi, Omega, t);
+/// A v for one tangent vector v = (ξ, δΠ), given Ω and the model's Jacobian at the state.
+template <class Model, class Jacobian>
+Vec6 apply_tangent_matrix(const Model& model, const lie::Vec3& Omega, const Jacobian& jac, const Vec6& v) {
   const lie::Vec3 xi = v.head<3>(), dPi = v.tail<3>();
   Vec6 r;
   r.head<3>() = xi.cross(Omega) + model.omega_jacobian() * dPi;
@@ -61,18 +62,36 @@ Vec6 tangent_rate(const Model& model, const lie::Mat3& R, const lie::Vec3& Pi, d
   return r;
 }
 
-/// One RKMK4 step of the product (x, v) of size h from time t (top of this file).
+/// v̇ = A(x) v at the state (R, Π) and time t (top of this file).
 template <class Model>
-void tangent_step(const Model& model, system::State& x, Vec6& v, double t, double h) {
+Vec6 tangent_rate(const Model& model, const lie::Mat3& R, const lie::Vec3& Pi, double t, const Vec6& v) {
+  const lie::Vec3 Omega = model.omega(Pi);
+  return apply_tangent_matrix(model, Omega, model.momentum_rate_jacobian(R, Pi, Omega, t), v);
+}
+
+/// V̇ = A(x) V for six tangent vectors, the columns of V.
+template <class Model>
+Mat6 tangent_rate(const Model& model, const lie::Mat3& R, const lie::Vec3& Pi, double t, const Mat6& V) {
+  const lie::Vec3 Omega = model.omega(Pi);
+  const auto jac = model.momentum_rate_jacobian(R, Pi, Omega, t);
+  Mat6 r;
+  for (int k = 0; k < 6; ++k) r.col(k) = apply_tangent_matrix(model, Omega, jac, Vec6(V.col(k)));
+  return r;
+}
+
+/// One RKMK4 step of the product (x, v) of size h from time t (top of this
+/// file); v is one tangent vector (Vec6) or six (Mat6), advanced alike.
+template <class Model, class Tangent>
+void tangent_step(const Model& model, system::State& x, Tangent& v, double t, double h) {
   constexpr double a[4] = {0.0, 0.5, 0.5, 1.0};
   constexpr double b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
   lie::Vec3 F = lie::Vec3::Zero(), K = lie::Vec3::Zero(), theta = lie::Vec3::Zero(), dPi = lie::Vec3::Zero();
-  Vec6 W = Vec6::Zero(), dv = Vec6::Zero();
+  Tangent W = Tangent::Zero(), dv = Tangent::Zero();
   for (int i = 0; i < 4; ++i) {
     const lie::Vec3 Ti = (h * a[i]) * F;
     const lie::Mat3 Ri = i == 0 ? x.R : lie::Mat3(x.R * lie::exp_so3(Ti));
     const lie::Vec3 Pi_i = x.Pi + (h * a[i]) * K;
-    const Vec6 Vi = v + (h * a[i]) * W;
+    const Tangent Vi = v + (h * a[i]) * W;
     const double ti = t + a[i] * h;
     const lie::Vec3 Omega = model.omega(Pi_i);
     F = i == 0 ? Omega : lie::dexpinv_body(Ti, Omega);
@@ -101,18 +120,28 @@ class ChaosAccumulator {
     y_ = y;
     s_ = s;
   }
+  /// Remembers the sums so far: lyapunov_since_mark() is λ over the time since.
+  void mark() {
+    marked_log_sum_ = log_sum_;
+    marked_s_ = s_;
+  }
+  double lyapunov_since_mark() const {
+    return s_ > marked_s_ ? (log_sum_ - marked_log_sum_) / (s_ - marked_s_) : std::nan("");
+  }
   double lyapunov() const { return s_ > 0.0 ? log_sum_ / s_ : 0.0; }
   double megno() const { return y_; }  // Y(s)
   double mean_megno() const { return s_ > 0.0 ? mean_sum_ / s_ : 0.0; }  // ⟨Y⟩(s)
 
  private:
   double log_sum_ = 0.0, weighted_ = 0.0, mean_sum_ = 0.0, y_ = 0.0, s_ = 0.0;
+  double marked_log_sum_ = 0.0, marked_s_ = 0.0;
 };
 
 struct ChaosIndicators {
   double lyapunov = 0.0;   // λ(t_end)
   double megno = 0.0;      // ⟨Y⟩(t_end)
   double megno_y = 0.0;    // Y(t_end)
+  double lyapunov_last_half = 0.0;  // λ over [s½, t_end], s½ the first step's end at or after the midpoint
   std::int64_t steps = 0;
   bool ok = true;          // false: the tangent or the state blew up (the values are NaN)
 };
@@ -133,6 +162,7 @@ ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_fin
   }
   v.normalize();
   double t = t0;
+  bool marked = false;
   while (t < t_end) {
     const double h = (t_end - t) < 1.0000001 * dt ? t_end - t : dt;
     step(t, h, v);
@@ -140,14 +170,19 @@ ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_fin
     const double n = v.norm();
     if (!std::isfinite(n) || !(n > 0.0) || !state_finite()) {
       out.ok = false;
-      out.lyapunov = out.megno = out.megno_y = std::nan("");
+      out.lyapunov = out.megno = out.megno_y = out.lyapunov_last_half = std::nan("");
       return out;
     }
     v /= n;
     acc.add(t - t0, h, n);
     ++out.steps;
+    if (!marked && t - t0 >= 0.5 * (t_end - t0)) {
+      acc.mark();
+      marked = true;
+    }
   }
   out.lyapunov = acc.lyapunov();
+  out.lyapunov_last_half = acc.lyapunov_since_mark();
   out.megno = acc.mean_megno();
   out.megno_y = acc.megno();
   return out;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "experiments/errors/input_error.hpp"
+#include "experiments/io/gamma_attitude.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "lie/charts.hpp"
 #include "lie/quaternion.hpp"
@@ -219,6 +220,28 @@ tol = 1e-6
   CHECK(*s.tol == 1e-6);
   CHECK(!s.declared<lgi::system::GravityTerm>());
 
+}
+
+TEST_CASE("scene: [initial] gamma sets the attitude as the sweep specs' initial.gamma", "[scene]") {
+  const auto text = [](const std::string& gamma) {
+    return "name = \"g\"\n[body]\ninertia = [1, 1.5, 2]\n[initial]\ngamma = " + gamma +
+           "\nangular_momentum = [0.3, -0.2, 1.1]\n";
+  };
+  const Vec3 g = Vec3(0.48, -0.6, 0.64);  // a unit vector
+  const auto s = parse_scene(text("[0.48, -0.6, 0.64]"), "test.toml");
+  CHECK(near(Vec3(s.initial.R.transpose() * Vec3::UnitZ()), g, 1e-15));
+  // ψ = 0: R = Rx(θ) Rz(φ) with γ = (sinθ sinφ, sinθ cosφ, cosθ), the rule of experiments/SWEEPS.md.
+  CHECK(near(s.initial.R, lgi::experiments::attitude_from_gamma(g), 0.0));
+  CHECK(near(s.initial.R, Mat3(lgi::lie::rot_x(std::acos(0.64)) * lgi::lie::rot_z(std::atan2(0.48, -0.6))), 1e-15));
+  CHECK(lgi::lie::orthogonality_error(s.initial.R) < 1e-15);
+  CHECK(s.initial.Pi == Vec3(0.3, -0.2, 1.1));
+  // Not a unit vector: normalised (a note goes to stderr), the same attitude.
+  const auto twice = parse_scene(text("[0.96, -1.2, 1.28]"), "test.toml");
+  CHECK(near(twice.initial.R, s.initial.R, 1e-15));
+  // The vertical itself and its opposite.
+  CHECK(near(parse_scene(text("[0, 0, 1]"), "test.toml").initial.R, Mat3::Identity(), 1e-15));
+  CHECK(near(Vec3(parse_scene(text("[0, 0, -2]"), "test.toml").initial.R.transpose() * Vec3::UnitZ()),
+             Vec3(0, 0, -1), 1e-15));
 }
 
 TEST_CASE("every [run] key is optional: the command line gives what a scene lacks", "[scene]") {

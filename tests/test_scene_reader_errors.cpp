@@ -80,6 +80,18 @@ t_end = 1
   CHECK_THAT(m, StartsWith("test.toml:6: [initial] euler_zxz: conflicts with quaternion (line 5)"));
 }
 
+TEST_CASE("bad input: [initial] gamma", "[scene][bad]") {
+  const std::string head = "name = \"t\"\n[body]\ninertia = [1, 1, 1]\n[initial]\n";
+  CHECK_THAT(error_of(head + "gamma = [0, 0, 0]\nangular_momentum = [1, 0, 0]\n"),
+             StartsWith("test.toml:5: [initial] gamma: must be a nonzero vector"));
+  CHECK_THAT(error_of(head + "gamma = [0, 1]\n"), StartsWith("test.toml:5: [initial] gamma: expected 3 numbers"));
+  CHECK_THAT(error_of(head + "quaternion = [1, 0, 0, 0]\ngamma = [0, 0, 1]\n"),
+             StartsWith("test.toml:6: [initial] gamma: conflicts with quaternion (line 5): give at most one "
+                        "attitude key (quaternion, euler_zxz, rotation_vector, matrix, gamma)"));
+  CHECK_THAT(error_of(head + "gamma = [0, 0, 1]\neuler_zxz_rates = [0, 0, 1]\n"),
+             StartsWith("test.toml:6: [initial] euler_zxz_rates: needs the attitude given as euler_zxz (here: gamma)"));
+}
+
 TEST_CASE("bad input: two motion keys", "[scene][bad]") {
   const auto m = error_of(R"(name = "t"
 [body]

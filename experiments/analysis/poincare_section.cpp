@@ -6,7 +6,7 @@
 #include <sstream>
 #include <variant>
 
-#include "experiments/analysis/seeded_random.hpp"
+#include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "integrators/system/model.hpp"
 #include "integrators/tangent_flow.hpp"
@@ -95,12 +95,7 @@ double minimum_energy(const HeavyTopBody& body, double l) {
 
 OrbitIndicators orbit_indicators(const system::Scene& scene, const system::State& x0, double t_end, double dt,
                                  std::uint64_t seed, std::int64_t index) {
-  integrators::Vec6 v;
-  std::uint64_t state = splitmix64_mix(seed ^ splitmix64_mix(static_cast<std::uint64_t>(index) ^ 0x7a1e5c0ffee15ULL));
-  for (int k = 0; k < 6; ++k) {
-    state += 0x9e3779b97f4a7c15ULL;
-    v(k) = 2.0 * static_cast<double>(splitmix64_mix(state) >> 11) * 0x1.0p-53 - 1.0;
-  }
+  const integrators::Vec6 v = initial_tangent(seed, index);
   const system::AnyModel model = system::make_model(scene);
   return std::visit(
       [&](const auto& m) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "experiments/io/gamma_attitude.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scene_toml.hpp"
 #include "lie/charts.hpp"
@@ -24,11 +25,6 @@ using lie::Vec3;
 
 constexpr std::uint64_t level_set_stream = 1u << 20;
 
-/// R with Γ = Rᵀe3 = γ and ψ = 0: R = Rx(θ) Rz(φ), γ = (sinθ sinφ, sinθ cosφ, cosθ).
-Mat3 attitude_from_gamma(const Vec3& gamma) {
-  const double theta = std::acos(std::clamp(gamma.z(), -1.0, 1.0));
-  const double phi = std::atan2(gamma.x(), gamma.y());
-  return lie::matrix_from_euler_zxz({0.0, theta, phi});
 }
 
 /// Sets key `name` of table `table` (creating the table) to the numbers.

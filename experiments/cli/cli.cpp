@@ -53,6 +53,7 @@ CommandLine::CommandLine(int argc, const char* const* argv)
       add_region_subcommand(app_, context_),
       add_chaos_map_subcommand(app_, context_),
       add_actions_subcommand(app_, context_),
+      add_indicators_subcommand(app_, context_),
   };
 }
 

@@ -66,5 +66,6 @@ int run_poincare_request(const PoincareRequest& request);  // commands/poincare_
 Subcommand add_region_subcommand(CLI::App& app, const CommandContext& context);  // commands/region_command.cpp
 Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context);  // commands/chaos_map_command.cpp
 Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context);  // commands/actions_command.cpp
+Subcommand add_indicators_subcommand(CLI::App& app, const CommandContext& context);  // commands/indicators_command.cpp
 
 }  // namespace lgi::experiments

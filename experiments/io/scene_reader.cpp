@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <initializer_list>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/io/gamma_attitude.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/scene_term_tables.hpp"
 #include "experiments/io/scene_toml.hpp"
@@ -48,7 +50,8 @@ constexpr double symmetry_tolerance = 1e-12;       // |J_ij − J_ji| relative t
 // the parallel-axis sum or the eigen-decomposition from rejecting them.
 constexpr double triangle_slack = 1e-12;
 
-constexpr std::array<std::string_view, 4> attitude_keys = {"quaternion", "euler_zxz", "rotation_vector", "matrix"};
+constexpr std::array<std::string_view, 5> attitude_keys = {"quaternion", "euler_zxz", "rotation_vector", "matrix",
+                                                           "gamma"};
 constexpr std::array<std::string_view, 3> motion_keys = {"angular_velocity", "angular_momentum", "euler_zxz_rates"};
 constexpr std::array<std::string_view, 3> inertia_keys = {"inertia", "inertia_cm", "inertia_tensor"};
 /// The tables a scene file may have: [body], the torque terms', [suspension], [initial], [run].
@@ -151,6 +154,22 @@ BodyInfo read_body(const Table& body, Scene& s) {
   return {key, line_of(n)};
 }
 
+/// [initial] gamma: the vertical in the body frame; a zero vector is refused, any
+/// other is normalised, with a note on stderr where |γ| differs from 1 by more
+/// than 1e-12 (experiments/scenes/README.md).
+Vec3 unit_gamma(const Table& initial, const toml::node& n) {
+  const Vec3 g = initial.vec3("gamma", n);
+  const double norm = g.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm))
+    initial.fail(n, "gamma", "must be a nonzero vector (the vertical direction in the body frame), got " + fmt(g));
+  if (!(std::abs(norm - 1.0) <= unit_norm_tolerance)) {
+    const Line line = line_of(n);
+    std::cerr << "lgi: note: " << initial.rd.file() << (line ? ":" + std::to_string(*line) : std::string()) << ": ["
+              << initial.name << "] gamma: |gamma| = " << fmt(norm) << ", normalised to a unit vector\n";
+  }
+  return g / norm;
+}
+
 void read_initial(const Table& initial, Scene& s) {
   std::vector<std::string_view> keys(attitude_keys.begin(), attitude_keys.end());
   keys.insert(keys.end(), motion_keys.begin(), motion_keys.end());
@@ -173,6 +192,8 @@ void read_initial(const Table& initial, Scene& s) {
       R = lie::matrix_from_euler_zxz(euler);
     } else if (key == "rotation_vector") {
       R = lie::matrix_from_rotation_vector(initial.vec3(key, n));
+    } else if (key == "gamma") {
+      R = attitude_from_gamma(unit_gamma(initial, n));
     } else {
       R = initial.matrix(key, n);
       const double orth = lie::orthogonality_error(R);

@@ -69,7 +69,7 @@ void read_cardan_initial(const Table& initial, system::Scene& s) {
     if (rates) initial.fail(*rates, "cardan_rates", "needs a [suspension] table");
     return;
   }
-  for (std::string_view key : {"quaternion", "euler_zxz", "rotation_vector", "matrix", "angular_velocity",
+  for (std::string_view key : {"quaternion", "euler_zxz", "rotation_vector", "matrix", "gamma", "angular_velocity",
                                "angular_momentum", "euler_zxz_rates"})
     if (const toml::node* n = initial.get(key))
       initial.fail(*n, key, "a scene with [suspension] gives its state as cardan_angles and cardan_rates");

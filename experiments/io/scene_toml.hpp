@@ -90,6 +90,7 @@ class Reader {
     std::replace_if(m.begin(), m.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
     throw InputError(m);
   }
+  const std::string& file() const { return file_; }
 
  private:
   std::string file_;

@@ -11,13 +11,13 @@ command line `lgi` (python/README.md):
     run.t, run.R, run.q, run.Pi, run.errors["energy"], run.diagnostics["cpu_seconds"]
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
-sweep(), and the atlas of heavy tops (docs/atlas.md): equilibria(), bifurcation(),
-region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
+sweep(), indicators(), tangent_flow(), and the atlas of heavy tops (docs/atlas.md): equilibria(),
+bifurcation(), region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
 """
 
-from ._lgi import Scene, Stepper, exact_free_flow, scenes, scenes_dir, schemes, sweep
+from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_dir, schemes, sweep, tangent_flow
 from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
@@ -28,6 +28,7 @@ __all__ = [
     "bifurcation",
     "equilibria",
     "exact_free_flow",
+    "indicators",
     "poincare",
     "region",
     "region_cells",
@@ -36,6 +37,7 @@ __all__ = [
     "schemes",
     "simulate",
     "sweep",
+    "tangent_flow",
 ]
 
 

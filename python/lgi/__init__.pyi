@@ -84,6 +84,10 @@ class Stepper:
     @property
     def state(self) -> dict[str, FloatArray]:
         """{'R': (3, 3), 'Pi': (3,)}"""
+    @state.setter
+    def state(self, value: dict[str, Any]) -> None:
+        """{'Pi': (3,), 'R': (3, 3)} or {'Pi': (3,), 'gamma': (3,)}; ValueError if R is not a
+        rotation to 1e-12 or gamma is zero. t and the step count are kept."""
     @property
     def t(self) -> float: ...
     @property
@@ -190,3 +194,27 @@ def poincare(
     """lgi poincare in-process: the dicts events (one row per crossing: index, direction, t, gamma,
     phi, theta, sheet, ...) and sweep (one row per orbit; lyapunov, megno when asked), parameters
     (the file's /parameters attributes) and out."""
+def indicators(
+    scene: SceneLike,
+    t_end: Optional[float] = None,
+    dt: Optional[float] = None,
+    states: Optional[Union[str, PathLike[str], dict[str, Any]]] = None,
+    spectrum: bool = False,
+    seed: int = 0,
+    rtol: float = 0.05,
+) -> dict[str, np.ndarray]:
+    """The records of `lgi indicators` (experiments/INDICATORS.md), one row per state: index,
+    lyapunov, lyapunov_last_half, megno, t_end, converged (int64 0/1), angular_momentum (n, 3),
+    gamma (n, 3), and spectrum (n, 6) with spectrum=True. states: None (the scene's initial
+    state), a state file (HDF5/CSV with angular_momentum and gamma) or a dict of (n, 3) arrays."""
+
+def tangent_flow(
+    scene: SceneLike,
+    state: dict[str, Any],
+    v: FloatArray,
+    dt: float,
+    steps: int = 1,
+    t0: float = 0.0,
+) -> dict[str, Any]:
+    """`steps` RKMK4 steps of the state with tangent vector(s) v ((6,) or (6, k), k <= 6; not
+    renormalised): {'R', 'Pi', 'v', 't'}. state as Stepper.state (Pi with R or gamma)."""

@@ -46,15 +46,9 @@ class Stepper {
     if (!failure.empty()) throw std::runtime_error(failure);
   }
 
-  py::dict state() const {
-    std::vector<double> R(9);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) R[static_cast<std::size_t>(3 * r + c)] = state_.R(r, c);
-    py::dict d;
-    d["R"] = to_numpy(std::move(R), {3, 3});
-    d["Pi"] = to_numpy(std::vector<double>{state_.Pi[0], state_.Pi[1], state_.Pi[2]}, {3});
-    return d;
-  }
+  py::dict state() const { return state_dict(state_); }
+  /// The next step starts from `d` at the current time (t and the step count are kept).
+  void set_state(const py::dict& d) { state_ = state_from_dict(d); }
 
   py::dict stats() const {
     py::dict d;
@@ -128,7 +122,10 @@ void bind_stepper(py::module_& m) {
       .def("step", &Stepper::step, py::arg("n") = 1,
            "Takes n steps (the GIL is released). RuntimeError with the run's message if a step fails\n"
            "(the state is then the one the failed step left).")
-      .def_property_readonly("state", &Stepper::state, "The current state: dict with R (3x3) and Pi (3,), copies.")
+      .def_property("state", &Stepper::state, &Stepper::set_state,
+                    "The current state: dict with R (3x3) and Pi (3,), copies. Settable: a dict with Pi and R (a\n"
+                    "rotation to 1e-12; ValueError otherwise) or gamma (the vertical in the body frame, the attitude\n"
+                    "with the rotation about the vertical fixed as in scene files); t and the step count are kept.")
       .def_property_readonly("t", &Stepper::t, "The current time, t0 + steps * dt.")
       .def_property_readonly("dt", &Stepper::dt)
       .def_property_readonly("scheme", &Stepper::scheme)

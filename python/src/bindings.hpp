@@ -22,6 +22,7 @@ void bind_stepper(py::module_& m);     // bind_stepper.cpp: Stepper
 void bind_exact_flow(py::module_& m);  // bind_exact_flow.cpp: exact_free_flow()
 void bind_sweep(py::module_& m);       // bind_sweep.cpp: sweep()
 void bind_atlas(py::module_& m);       // bind_atlas.cpp: equilibria(), bifurcation(), region(), region_cells(), poincare()
+void bind_indicators(py::module_& m);  // bind_indicators.cpp: indicators(), tangent_flow()
 
 /// lgi.Scene: a scene as read by the command line's scene reader (shared, immutable).
 struct PyScene {
@@ -37,6 +38,13 @@ const integrators::SchemeInfo& scheme_argument(const std::string& name);
 /// A Python dict (nested dicts: tables; lists of dicts: arrays of tables;
 /// NumPy arrays through tolist()) as TOML text.
 std::string toml_text_from_dict(const py::dict& d);
+
+/// A state as a dict {R (3, 3), Pi (3,)} (copies), and back: R may be given as
+/// gamma (3,) instead (the attitude of experiments/io/gamma_attitude.hpp);
+/// ValueError on anything else, on an R that is not a rotation to 1e-12 and
+/// on a zero gamma (bind_indicators.cpp).
+py::dict state_dict(const system::State& x);
+system::State state_from_dict(const py::dict& d);
 
 /// The folder of the compiled extension (_lgi*.so), found through dladdr.
 std::string extension_path();

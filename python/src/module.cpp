@@ -52,4 +52,5 @@ PYBIND11_MODULE(_lgi, m) {
   lp::bind_exact_flow(m);
   lp::bind_sweep(m);
   lp::bind_atlas(m);
+  lp::bind_indicators(m);
 }
