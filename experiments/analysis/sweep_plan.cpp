@@ -25,8 +25,6 @@ using lie::Vec3;
 
 constexpr std::uint64_t level_set_stream = 1u << 20;
 
-}
-
 /// Sets key `name` of table `table` (creating the table) to the numbers.
 void set_toml_value(toml::table& doc, const std::string& table, const std::string& name, const double* v, int width) {
   if (!doc.contains(table)) doc.insert(table, toml::table{});
