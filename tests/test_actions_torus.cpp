@@ -54,7 +54,7 @@ TEST_CASE("Numerical tori of the Lagrange and Trindade tops are the closed form"
   }
 }
 
-TEST_CASE("Numerical tori of the Kovalevskaya top at h = 2: success rate and agreement between runs", "[actions]") {
+TEST_CASE("Numerical tori of the Kovalevskaya top at h = 2: success rate and agreement between runs", "[actions][slow]") {
   // Six tori of `lgi actions --scene experiments/scenes/kovalevskaya.toml --h 2 --l 0,0.5,1,1.5 --tori 30`
   // (tori 5, 15, 25 of l = 0.5 and 1.5), with its 400 crossings: 5 pass there, as here. The whole
   // grid (94 of 120) is measured in docs/actions.md §3.
@@ -92,6 +92,28 @@ TEST_CASE("Numerical tori of the Kovalevskaya top at h = 2: success rate and agr
   CHECK(tried == 6);
   CHECK(ok >= 5);
   CHECK(compared == 1);
+}
+
+TEST_CASE("Numerical tori of the Kovalevskaya top at h = 2: two tori, and two numbers of crossings", "[actions]") {
+  // The short version of the test above (which runs under the CTest label "slow").
+  const system::Scene scene = testing::shipped_scene("kovalevskaya");
+  const experiments::HeavyTopBody body{scene.inertia, Vec3(1, 0, 0)};
+  const auto states = experiments::level_set_states(body, 0.5, 2.0, 30);
+  REQUIRE(states.size() == 30);
+  experiments::NumericalTorusOptions o;
+  o.crossings = 200;
+  const auto t = experiments::numerical_torus(scene, states[5], o);
+  const auto t2 = experiments::numerical_torus(scene, states[15], o);
+  INFO(t.status << "; " << t2.status);
+  REQUIRE(t.ok);
+  CHECK(t2.ok);
+  o.crossings = 300;
+  const auto u = experiments::numerical_torus(scene, states[5], o);
+  REQUIRE(u.ok);
+  INFO(std::setprecision(12) << "I_a " << t.action_a << " vs " << u.action_a << ", I_b " << t.action_b << " vs "
+                             << u.action_b);
+  CHECK(std::abs(u.action_a - t.action_a) < 1e-7 * std::max(1.0, t.action_a));
+  CHECK(std::abs(u.action_b - t.action_b) < 1e-5 * std::max(1.0, std::abs(t.action_b)));
 }
 
 TEST_CASE("A failed numerical torus has a reason and NaN actions", "[actions]") {

@@ -102,6 +102,7 @@ struct NumericalTorusOptions {
   double max_time = 1e5;
   double max_fit_residual = 1e-6;   // above it the torus is not ok (docs/actions.md §3)
   double min_section_window = 0.05;  // narrowest window free of turning values for a section
+  int pilot_turns = 100;             // turning points of Γ3 in the pilot run that chooses the section
 };
 
 /// Why a numerical torus failed (the `reason` column of /tori, experiments/ACTIONS.md).

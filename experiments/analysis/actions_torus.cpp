@@ -304,11 +304,12 @@ NumericalTorus failed(NumericalTorus r, TorusFailure reason, const std::string& 
   return r;
 }
 
-/// The section from a pilot run of the same orbit: every step's (Π, Γ) until max(64, N/4)
-/// turning points of Γ3 (docs/actions.md §3, step 1).
+/// The section from a pilot run of the same orbit: every step's (Π, Γ) until `pilot_turns`
+/// turning points of Γ3 (docs/actions.md §3, step 1). Not tied to the crossings asked for: a
+/// different section may cut other cycles, and runs with other --crossings must agree.
 SectionChoice pilot_section(const integrators::SchemeInfo& info, const system::AnyModel& model,
                             const system::State& x0, const NumericalTorusOptions& options) {
-  PilotRecorder pilot(std::max(64, options.crossings / 4), 200000);
+  PilotRecorder pilot(options.pilot_turns, 200000);
   integrators::RunConfig cfg;
   cfg.t_end = options.max_time;
   cfg.dt = options.dt;

@@ -113,6 +113,7 @@ def draw(ax, t, par):
         ax.plot_trisurf(I[:, 0], I[:, 1], I[:, 2], cmap="viridis", linewidth=0.1, antialiased=True, alpha=0.9)
     elif len(I):
         I = I.copy()
+        I[:, 0] = np.round(I[:, 0], 9)  # l of the tori is Pi.Gamma of their states: 1e-16 apart
         n = np.round(t["rotation_number"][keep])
         I[:, 2] += n * I[:, 1]
         # Tori cut by different sections have different cycles a: one surface per section.
@@ -135,7 +136,9 @@ def main():
     if not args.files:
         c.die("give at least one file written by lgi actions --h")
     data = [read(path) for path in args.files]
-    fig = c.plt.figure(figsize=(3.4 * len(data), 3.2))
+    # Numerical panels are larger: several sheets, one per section, share them.
+    widths = [5.5 if (t["method"] == 2).all() else 3.4 for t, _ in data]
+    fig = c.plt.figure(figsize=(sum(widths), 3.2 if max(widths) < 5 else 5.0))
     for i, (t, par) in enumerate(data):
         ax = fig.add_subplot(1, len(data), i + 1, projection="3d")
         draw(ax, t, par)
