@@ -18,14 +18,17 @@
 //   with complete elliptic integrals of the third kind (docs/actions.md §2);
 //   ω = (0, ω_g, ω_l).
 // - Any top, numerically (docs/actions.md §3): the reduced torus at fixed ℓ
-//   cut by the section p_θ = 0; the rotation number of the return map and the
-//   mean return time by weighted Birkhoff averages, the section curve's
+//   cut by a section F = c transverse to the flow (actions_section.hpp); the
+//   rotation number of the return map from the order of the points along the
+//   curve, the mean return time by a weighted Birkhoff average, the section curve's
 //   action from a Fourier fit in the conjugating angle, the other action from
 //   the time average of p_θ θ̇ + p_φ φ̇ = 2T − ℓψ̇.
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "experiments/analysis/actions_section.hpp"
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "integrators/system/rigid_body.hpp"
 #include "integrators/system/scene.hpp"
@@ -75,7 +78,8 @@ std::optional<EulerActions> euler_actions(const Vec3& moments, const Vec3& Pi, d
 std::optional<EulerActions> euler_actions_at(const Vec3& moments, double l, double G, double h);
 
 /// The energy surface H = h in action space: the closed-form tori on a grid of
-/// n × n values of (ℓ, L3) (Lagrange: |ℓ|, |L3| ≤ √(2 max(A, C)(h + |w|))) or
+/// n × n values of (ℓ, L3) (Lagrange: |ℓ|, |L3| ≤ √(2 max(A, C)(h + |w|)); an even n is raised
+/// to n + 1 so that the grid holds ℓ = L3 = 0 and both lines ℓ = ±L3) or
 /// of (G, ℓ) (Euler: G between √(2h J_min) and √(2h J_max), |ℓ| ≤ G); points
 /// without a torus are left out.
 std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h, int n);
@@ -92,24 +96,42 @@ struct NumericalTorusOptions {
   std::string scheme = "rkmk4";
   double dt = 1e-2;
   int crossings = 400;  // section crossings used (the run stops after this many)
-  int harmonics = 24;   // Fourier modes of the section curve
+  int max_extend = 8;   // up to max_extend × crossings where the points do not resolve the curve (§3 step 3)
+  int harmonics = 64;   // most Fourier modes of the section curve (fewer where the points cannot resolve them)
+  int refine_harmonics = 24;  // Fourier modes of the fits that refine ρ
   double max_time = 1e5;
-  double max_fit_residual = 1e-6;  // above it the torus is not ok (docs/actions.md §3)
+  double max_fit_residual = 1e-6;   // above it the torus is not ok (docs/actions.md §3)
+  double min_section_window = 0.05;  // narrowest window free of turning values for a section
+  int pilot_turns = 100;             // turning points of Γ3 in the pilot run that chooses the section
+};
+
+/// Why a numerical torus failed (the `reason` column of /tori, experiments/ACTIONS.md).
+enum class TorusFailure : int {
+  none = 0,        // ok
+  scheme = 1,      // unknown scheme
+  no_section = 2,  // no coordinate of (Π, Γ) has a level free of turning values
+  crossings = 3,   // fewer section crossings than asked before max_time (or the run failed)
+  periodic = 4,    // the section is one point: a periodic orbit, not a 2-torus
+  resonance = 5,   // the points leave gaps in kρ (near a resonance)
+  fit = 6,         // the section is not k ≤ 3 smooth circles (fit residual too large)
 };
 
 struct NumericalTorus {
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   double l = 0.0, h = 0.0;
-  double action_a = 0.0;  // (1/2π)∮ p dq along the section curve (oriented so that it is ≥ 0)
-  double action_b = 0.0;  // along one return of the flow closed by an arc of the section curve
-  double rotation_number = 0.0;  // of the return map, in (−½, ½], in the orientation of cycle a
-  double return_time = 0.0;      // mean return time
-  double omega_a = 0.0, omega_b = 0.0;  // ∂H/∂I_a = 2πρ/T̄, ∂H/∂I_b = 2π/T̄
-  double mean_pq = 0.0;          // time average of p_θ θ̇ + p_φ φ̇
-  double fit_residual = 0.0;     // largest residual of the Fourier fit of the section curve
+  double action_a = nan;  // (1/2π)∮ p dq along the section curve (oriented so that it is ≥ 0); NaN if not ok
+  double action_b = nan;  // along k returns of the flow closed by an arc of the section curve; NaN if not ok
+  double rotation_number = nan;  // of the k-th return map, in the orientation of cycle a (lifted, §3 step 4)
+  double return_time = nan;      // mean return time
+  double omega_a = nan, omega_b = nan;  // ∂H/∂I_a = 2πρ/(kT̄), ∂H/∂I_b = 2π/(kT̄)
+  double mean_pq = nan;          // time average of p_θ θ̇ + p_φ φ̇
+  double fit_residual = nan;     // largest residual of the Fourier fit (Π relative to its largest |Π|)
+  SectionChoice section;         // the section F = c (docs/actions.md §3, step 1)
   int winding = 0;               // turns of φ along the section curve
   int crossings = 0;
   double t_end = 0.0;
   bool ok = false;
+  int reason = 0;                // a TorusFailure
   std::string status;
 };
 

@@ -2,8 +2,10 @@
 // §1 and §2, where every formula below is derived).
 #include <algorithm>
 #include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/ellint_2.hpp>
 #include <boost/math/special_functions/ellint_3.hpp>
+#include <boost/math/special_functions/ellint_rd.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -21,26 +23,33 @@ struct Cubic {
   double derivative(double u) const { return (3.0 * c3 * u + 2.0 * c2) * u + c1; }
 };
 
-/// The root of f in [a, b] where f(a) and f(b) differ in sign (f(a) < 0 or
-/// f(b) < 0), by bisection to adjacent doubles.
-double bisect(const Cubic& f, double a, double b) {
-  const bool a_negative = f(a) < 0.0;
-  for (int i = 0; i < 2000; ++i) {
+/// The smallest v in [0, b] with g(v) > 0 on (v, b], for g(0) ≤ 0 < g(b), by bisection to
+/// adjacent doubles; the invariant g(a) ≤ 0 < g(b) is kept, and a is returned, so a root at
+/// v = 0 exactly (g(0) = 0, a torus through a pole) is returned as 0.
+template <class G>
+double root_from_zero(const G& g, double b) {
+  double a = 0.0;
+  for (int i = 0; i < 2200; ++i) {
     const double m = 0.5 * (a + b);
     if (m <= a || m >= b) break;
-    if ((f(m) < 0.0) == a_negative) a = m;
-    else b = m;
+    if (g(m) > 0.0) b = m;
+    else a = m;
   }
-  return 0.5 * (a + b);
+  return a;
 }
 
 /// The Lagrange top with w > 0 (w < 0 is mapped to it by u → −u, L3 → −L3).
+/// The turning points are kept as their distances d1 = 1 + u1 and d2 = 1 − u2 from the poles,
+/// found from f written about each pole (docs/actions.md §1), so that on the lines ℓ = ±L3,
+/// where f(∓1) = −(ℓ ± L3)²/A² vanishes and the torus passes through the hanging or upright
+/// position, the pole is the turning point exactly, and near them d1, d2 keep their digits.
 struct Reduced {
   LagrangeBody body;
   double l = 0.0, L3 = 0.0, h = 0.0;
   double sign = 1.0;  // −1 where the body was reflected
   Cubic f;
   double u1 = 0.0, u2 = 0.0, u3 = 0.0;
+  double d1 = 0.0, d2 = 0.0;  // 1 + u1, 1 − u2
 };
 
 std::optional<Reduced> reduce(const LagrangeBody& b, double l, double L3, double h) {
@@ -51,16 +60,27 @@ std::optional<Reduced> reduce(const LagrangeBody& b, double l, double L3, double
   r.l = l;
   r.L3 = r.sign * L3;
   r.h = h;
-  const double A = b.A, w = r.body.w, hp = h - L3 * L3 / (2.0 * b.C);
+  const double A = b.A, w = r.body.w, hp = h - L3 * L3 / (2.0 * b.C), Ls = r.L3;
   // f(u) = (2/A)(h' − w u)(1 − u²) − (ℓ − L3 u)²/A², h' = h − L3²/(2C).
-  r.f = {2.0 * w / A, -2.0 * hp / A - r.L3 * r.L3 / (A * A), -2.0 * w / A + 2.0 * l * r.L3 / (A * A),
+  r.f = {2.0 * w / A, -2.0 * hp / A - Ls * Ls / (A * A), -2.0 * w / A + 2.0 * l * Ls / (A * A),
          2.0 * hp / A - l * l / (A * A)};
   const double disc = r.f.c2 * r.f.c2 - 3.0 * r.f.c3 * r.f.c1;
   if (!(disc > 0.0)) return std::nullopt;
   const double uc = (-r.f.c2 - std::sqrt(disc)) / (3.0 * r.f.c3);  // the local maximum of f
   if (!(uc > -1.0 && uc < 1.0) || !(r.f(uc) > 0.0)) return std::nullopt;
-  r.u1 = bisect(r.f, -1.0, uc);
-  r.u2 = bisect(r.f, uc, 1.0);
+  // f about the poles: f(−1 + v) = (2/A)(h' + w − w v)(2v − v²) − (ℓ + L3 − L3 v)²/A²,
+  //                    f(1 − v)  = (2/A)(h' − w + w v)(2v − v²) − (ℓ − L3 + L3 v)²/A².
+  const double em = l + Ls, ep = l - Ls;
+  const auto below = [&](double v) {
+    return (2.0 / A) * (hp + w - w * v) * v * (2.0 - v) - (em - Ls * v) * (em - Ls * v) / (A * A);
+  };
+  const auto above = [&](double v) {
+    return (2.0 / A) * (hp - w + w * v) * v * (2.0 - v) - (ep + Ls * v) * (ep + Ls * v) / (A * A);
+  };
+  r.d1 = root_from_zero(below, 1.0 + uc);
+  r.d2 = root_from_zero(above, 1.0 - uc);
+  r.u1 = r.d1 - 1.0;
+  r.u2 = 1.0 - r.d2;
   r.u3 = -r.f.c2 / r.f.c3 - r.u1 - r.u2;  // Vieta, then Newton
   for (int i = 0; i < 3; ++i) {
     const double d = r.f.derivative(r.u3);
@@ -70,26 +90,36 @@ std::optional<Reduced> reduce(const LagrangeBody& b, double l, double L3, double
   return r;
 }
 
+/// Π(n, k) = R_F(0, k'², 1) + (n/3) R_J(0, k'², 1, 1 − n) (DLMF 19.25.2), with 1 − n and
+/// k'² = 1 − k² given directly: near n = 1 (a torus passing close to a pole) 1 − n keeps its
+/// digits where n itself would round to 1.
+double ellint_3_carlson(double kc2, double n, double one_minus_n) {
+  return boost::math::ellint_rf(0.0, kc2, 1.0) + n / 3.0 * boost::math::ellint_rj(0.0, kc2, 1.0, one_minus_n);
+}
+
 }  // namespace
 
 std::optional<LagrangeActions> lagrange_actions(const LagrangeBody& body, double l, double L3, double h) {
   const auto r = reduce(body, l, L3, h);
   if (!r) return std::nullopt;
   const double A = body.A, C = body.C, c3 = r->f.c3;
-  const double u1 = r->u1, u2 = r->u2, u3 = r->u3, Ls = r->L3;
-  const double m = (u2 - u1) / (u3 - u1), k = std::sqrt(m);
-  const double K = boost::math::ellint_1(k), E = boost::math::ellint_2(k);
+  const double u1 = r->u1, u2 = r->u2, u3 = r->u3, Ls = r->L3, d1 = r->d1, d2 = r->d2;
+  // Carlson's forms with k² = (u2 − u1)/(u3 − u1) and k'² = (u3 − u2)/(u3 − u1) taken apart
+  // (DLMF 19.25.1): K = R_F(0, k'², 1), K − E = (k²/3) R_D(0, k'², 1).
+  const double k2 = (u2 - u1) / (u3 - u1), kc2 = (u3 - u2) / (u3 - u1);
+  const double K = boost::math::ellint_rf(0.0, kc2, 1.0), K_minus_E = k2 / 3.0 * boost::math::ellint_rd(0.0, kc2, 1.0);
   const double scale = 2.0 / std::sqrt(c3 * (u3 - u1));
   // J0 = ∫du/√f, J1 = ∫u du/√f, Jm = ∫du/((1−u)√f), Jp = ∫du/((1+u)√f) over [u1, u2].
   const double J0 = scale * K;
-  const double J1 = scale * (u1 * K + (u3 - u1) * (K - E));
+  const double J1 = scale * (u1 * K + (u3 - u1) * K_minus_E);
   const double am = (l - Ls) * (l - Ls), ap = (l + Ls) * (l + Ls);
-  // A torus that passes at round-off distance from a pole (u1 = −1 or u2 = 1 to the last bits) has
-  // no usable characteristic for Π(n|k): refuse it rather than return a non-finite action.
-  if ((am != 0.0 && !(1.0 - u1 > 0.0 && (u2 - u1) / (1.0 - u1) < 1.0)) || (ap != 0.0 && !(1.0 + u1 > 0.0)))
-    return std::nullopt;
-  const double Jm = am == 0.0 ? 0.0 : scale * boost::math::ellint_3(k, (u2 - u1) / (1.0 - u1)) / (1.0 - u1);
-  const double Jp = ap == 0.0 ? 0.0 : scale * boost::math::ellint_3(k, -(u2 - u1) / (1.0 + u1)) / (1.0 + u1);
+  // On ℓ = ±L3 the torus passes through a pole (d2 = 0 or d1 = 0) and (ℓ ∓ L3)² = 0: the term
+  // of the centrifugal potential singular there has a zero coefficient and is left out (the
+  // rest, (ℓ − L3u)²/(1 − u²) = −L3² + 2L3²/(1 ∓ u), is finite at that pole). Off these lines
+  // 1 − n− = d2/(1 − u1) and 1 − n+ = (1 + u2)/d1 are formed without cancellation.
+  if ((am != 0.0 && !(d2 > 0.0)) || (ap != 0.0 && !(d1 > 0.0))) return std::nullopt;
+  const double Jm = am == 0.0 ? 0.0 : scale * ellint_3_carlson(kc2, (u2 - u1) / (2.0 - d1), d2 / (2.0 - d1)) / (2.0 - d1);
+  const double Jp = ap == 0.0 ? 0.0 : scale * ellint_3_carlson(kc2, -(u2 - u1) / d1, (2.0 - d2) / d1) / d1;
   const double hp = h - L3 * L3 / (2.0 * C);
   const double I_theta =
       (A / pi) * ((2.0 * hp / A + Ls * Ls / (A * A)) * J0 - c3 * J1 - am / (2.0 * A * A) * Jm - ap / (2.0 * A * A) * Jp);
@@ -179,11 +209,13 @@ namespace lgi::experiments {
 std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h, int n) {
   std::vector<LagrangeActions> rows;
   const double L = std::sqrt(2.0 * std::max(body.A, body.C) * (h + std::abs(body.w)));
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      // Symmetric in sign bit for bit (node n−1−i is −node i), so that ℓ = ±L3, the tori through a pole,
-      // are hit exactly and not at a round-off distance where the nutation integrals blow up.
-      const double l = n > 1 ? L * (2 * i - (n - 1)) / (n - 1) : 0.0, L3 = n > 1 ? L * (2 * j - (n - 1)) / (n - 1) : 0.0;
+  // An odd number of nodes, symmetric in sign bit for bit (node N−1−i is −node i): the lines
+  // ℓ = ±L3, the tori through the hanging and the upright position, are hit exactly and not at a
+  // round-off distance, and ℓ = L3 = 0 (the apex of the surface, where both lines meet) is a node.
+  const int N = std::max(3, n % 2 == 0 ? n + 1 : n);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      const double l = L * (2 * i - (N - 1)) / (N - 1), L3 = L * (2 * j - (N - 1)) / (N - 1);
       if (const auto a = lagrange_actions(body, l, L3, h)) rows.push_back(*a);
     }
   return rows;

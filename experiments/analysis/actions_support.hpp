@@ -40,6 +40,11 @@ class CrossingRecorder : public integrators::Observer {
   const integrators::EventFunctions& events() const { return event_; }
   const std::atomic<bool>* stop_flag() const { return &stop_; }
   const std::vector<integrators::EventHit>& hits() const { return hits_; }
+  /// Asks for more crossings: the run can be continued from where it stopped.
+  void extend(int wanted) {
+    wanted_ = wanted;
+    stop_.store(false);
+  }
 
  private:
   RisingEvent event_;

@@ -3,15 +3,16 @@
 // Chart: ZXZ Euler angles (docs/conventions.md §2); at fixed p_ψ = ℓ the
 // reduced coordinates are (θ, φ, p_θ, p_φ) with the canonical one-form
 // λ = p_θ dθ + p_φ dφ, and along the flow p_θ θ̇ + p_φ φ̇ = 2T − ℓψ̇.
-// Section: p_θ = 0 crossed upwards, i.e. g = Π1Γ2 − Π2Γ1 rising
-// (p_θ = g/sinθ). Cycle a is one of the k circles C of the section (every
-// k-th point), fitted as a Fourier series of (Π, Γ) in α_j = jρ with ρ refined
-// to make the fit smooth; cycle b is k returns of the flow closed by the arc
-// of C back by ρ. Then
-//   I_a = (1/2π)∮_C λ = (1/2π)∮_C Π3 (Γ2 dΓ1 − Γ1 dΓ2)/(Γ1² + Γ2²)   (p_θ = 0 on C),
+// Section: F = c crossed rising, F a coordinate of (Π, Γ) and c a level free
+// of F's turning values, both from a pilot run (actions_section.hpp). Cycle a
+// is one of the k circles C of the section (every k-th point), fitted as a
+// Fourier series of (Π, Γ) in α_j = jρ with ρ refined to make the fit smooth;
+// cycle b is k returns of the flow closed by the arc of C back by ρ. Then
+//   I_a = (1/2π)∮_C λ,  λ = [(Π1Γ2 − Π2Γ1)(−dΓ3) + Π3(Γ2 dΓ1 − Γ1 dΓ2)]/(Γ1² + Γ2²),
 //   ω_b = 2π/(k T̄), ω_a = 2πρ/(k T̄),  I_a ω_a + I_b ω_b = ⟨2T − ℓψ̇⟩   (time average),
-// with ρ, T̄ and the time average as weighted Birkhoff averages.
+// with T̄ and the time average as weighted Birkhoff averages.
 #include <Eigen/Dense>
+#include <atomic>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "experiments/analysis/actions.hpp"
+#include "experiments/analysis/actions_section.hpp"
 #include "experiments/analysis/actions_support.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/invariants.hpp"
@@ -31,80 +33,115 @@ namespace {
 constexpr double pi = std::numbers::pi;
 
 struct SectionPoint4 {
-  double t = 0.0, theta = 0.0, phi = 0.0, p_theta = 0.0, p_phi = 0.0;
+  double t = 0.0;
   Vec3 Pi = Vec3::Zero(), Gamma = Vec3::Zero();  // the curve is fitted in these (no chart pole)
 };
 
-SectionPoint4 section_coordinates(double t, const system::State& s) {
-  const Vec3 gamma = s.R.row(2).transpose();
-  const double sin_theta = std::hypot(gamma.x(), gamma.y());
-  SectionPoint4 p;
-  p.t = t;
-  p.theta = std::atan2(sin_theta, gamma.z());
-  p.phi = std::atan2(gamma.x(), gamma.y());
-  p.p_theta = (s.Pi.x() * gamma.y() - s.Pi.y() * gamma.x()) / sin_theta;
-  p.p_phi = s.Pi.z();
-  p.Pi = s.Pi;
-  p.Gamma = gamma;
+Point6 point6(const system::State& s) {
+  Point6 p;
+  p << s.Pi, s.R.row(2).transpose();
   return p;
 }
 
-/// Keeps (t, 2T, ψ unwrapped) at every step and the section crossings.
+/// The pilot run: every step's (Π, Γ), until `wanted` rising crossings of p_θ = 0 (the
+/// turning points of Γ3, a clock of the slow motion) or `max_samples` steps.
+class PilotRecorder final : public integrators::Observer {
+ public:
+  PilotRecorder(int wanted, std::size_t max_samples)
+      : event_([](const system::State& s) { return s.Pi.x() * s.R(2, 1) - s.Pi.y() * s.R(2, 0); }),
+        wanted_(wanted), max_samples_(max_samples) {}
+  void observe(std::int64_t, double, const system::State& s) override {
+    samples.push_back(point6(s));
+    if (samples.size() >= max_samples_) stop_.store(true);
+  }
+  void on_event(const integrators::EventHit&) override {
+    if (++hits_ >= wanted_) stop_.store(true);
+  }
+  const integrators::EventFunctions& events() const { return event_; }
+  const std::atomic<bool>* stop_flag() const { return &stop_; }
+  std::vector<Point6> samples;
+
+ private:
+  RisingEvent event_;
+  int wanted_, hits_ = 0;
+  std::size_t max_samples_;
+  std::atomic<bool> stop_{false};
+};
+
+/// Keeps (t, 2T, ψ and φ unwrapped) at every step and the crossings of the section F = c.
 class TorusRecorder final : public CrossingRecorder {
  public:
-  TorusRecorder(const Mat3& J_inv, int wanted)
-      : CrossingRecorder([](const system::State& s) { return s.Pi.x() * s.R(2, 1) - s.Pi.y() * s.R(2, 0); }, wanted),
+  TorusRecorder(const Mat3& J_inv, const SectionChoice& section, int wanted)
+      : CrossingRecorder([section](const system::State& s) { return point6(s)[section.coordinate] - section.level; },
+                         wanted),
         J_inv_(J_inv) {}
   void observe(std::int64_t, double t, const system::State& s) override {
-    const double psi = std::atan2(s.R(0, 2), -s.R(1, 2));
+    if (!t_.empty() && !(t > t_.back())) return;  // a continued run starts with the last state again
+    const double psi = std::atan2(s.R(0, 2), -s.R(1, 2)), phi = std::atan2(s.R(2, 0), s.R(2, 1));
     psi_.push_back(psi_.empty() ? psi : psi_.back() + std::remainder(psi - psi_.back(), 2.0 * pi));
+    phi_.push_back(phi_.empty() ? phi : phi_.back() + std::remainder(phi - phi_.back(), 2.0 * pi));
     t_.push_back(t);
     two_T_.push_back(s.Pi.dot(J_inv_ * s.Pi));
   }
-  /// ⟨2T − ℓψ̇⟩ over [0, τ] with the Birkhoff weight; ⟨ψ̇⟩ by parts, −(1/τ)∫w'ψ/∫w.
-  double mean_pq(double l) const {
-    const double tau = t_.back();
-    double w_sum = 0.0, tw = 0.0, psi_w = 0.0;
-    for (std::size_t j = 0; j < t_.size(); ++j) {
-      const double s = t_[j] / tau;
-      w_sum += birkhoff_weight(s);
-      tw += birkhoff_weight(s) * two_T_[j];
-      psi_w += birkhoff_weight_derivative(s) * psi_[j];
-    }
-    return tw / w_sum + l * psi_w / (tau * w_sum);
-  }
-  std::size_t samples() const { return t_.size(); }
+  /// ⟨2T − ℓψ̇⟩ over [0, τ] with the Birkhoff weight.
+  double mean_pq(double l) const { return mean(two_T_) - l * mean_rate(psi_); }
+  /// ⟨φ̇⟩, φ unwrapped step by step (a slip of 2π near the chart's pole moves it by 2π/τ,
+  /// far below what the rounding of the lift of ρ in numerical_torus can see).
+  double mean_phi_rate() const { return mean_rate(phi_); }
   double t_end() const { return t_.empty() ? 0.0 : t_.back(); }
 
  private:
+  double mean(const std::vector<double>& f) const {
+    const double tau = t_.back();
+    double w_sum = 0.0, fw = 0.0;
+    for (std::size_t j = 0; j < t_.size(); ++j) {
+      w_sum += birkhoff_weight(t_[j] / tau);
+      fw += birkhoff_weight(t_[j] / tau) * f[j];
+    }
+    return fw / w_sum;
+  }
+  /// The weighted mean of ḟ by parts, −(1/τ)∫w'f/∫w (the weight vanishes at both ends).
+  double mean_rate(const std::vector<double>& f) const {
+    const double tau = t_.back();
+    double w_sum = 0.0, fw = 0.0;
+    for (std::size_t j = 0; j < t_.size(); ++j) {
+      w_sum += birkhoff_weight(t_[j] / tau);
+      fw += birkhoff_weight_derivative(t_[j] / tau) * f[j];
+    }
+    return -fw / (tau * w_sum);
+  }
   Mat3 J_inv_;
-  std::vector<double> t_, two_T_, psi_;
+  std::vector<double> t_, two_T_, psi_, phi_;
 };
 
-/// ρ from the angle increments of the section points: of φ itself where the
-/// points wind around the φ-circle (mean resultant length of e^{iφ} below ½),
-/// otherwise about their mean in the plane of the two principal components
-/// of (θ, φ − φ̄, p_φ), each coordinate scaled to unit spread.
-double rotation_number(const std::vector<SectionPoint4>& pts) {
+/// ρ from the angle increments of the section points, weighted-Birkhoff averaged: of φ itself
+/// where the points wind around the φ-circle (mean resultant length of e^{iφ} below ½),
+/// otherwise about their mean in the plane of the two principal components of (Π, Γ), each
+/// coordinate scaled to unit spread. Very accurate where that angle is a circle coordinate (a
+/// section about the symmetry axis of a Lagrange top), useless where it is not.
+double birkhoff_rotation_number(const std::vector<SectionPoint4>& pts) {
   const Eigen::Index n = static_cast<Eigen::Index>(pts.size());
   double c = 0.0, s = 0.0;
-  for (const auto& p : pts) c += std::cos(p.phi), s += std::sin(p.phi);
+  std::vector<double> phi;
+  for (const auto& p : pts) phi.push_back(std::atan2(p.Gamma.x(), p.Gamma.y()));
+  for (const double f : phi) c += std::cos(f), s += std::sin(f);
   const bool winds = std::hypot(c, s) < 0.5 * static_cast<double>(n);
   const double phi_bar = std::atan2(s, c);
-  Eigen::MatrixXd Y(n, 3);
+  (void)phi_bar;
+  Eigen::MatrixXd Y(n, 6);
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto& p = pts[static_cast<std::size_t>(k)];
-    Y.row(k) << p.theta, std::remainder(p.phi - phi_bar, 2.0 * pi), p.p_phi;
+    Y.row(k) << p.Pi.transpose(), p.Gamma.transpose();
   }
   Y.rowwise() -= Y.colwise().mean();
-  for (Eigen::Index j = 0; j < 3; ++j) {
+  for (Eigen::Index j = 0; j < 6; ++j) {
     const double spread = Y.col(j).norm() / std::sqrt(static_cast<double>(n));
     if (spread > 1e-12) Y.col(j) /= spread;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(Y.transpose() * Y);
-  const Eigen::Vector3d e1 = pca.eigenvectors().col(2), e2 = pca.eigenvectors().col(1);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> pca(Y.transpose() * Y);
+  const Eigen::VectorXd e1 = pca.eigenvectors().col(5), e2 = pca.eigenvectors().col(4);
   auto angle = [&](Eigen::Index k) {
-    return winds ? pts[static_cast<std::size_t>(k)].phi : std::atan2(Y.row(k).dot(e2), Y.row(k).dot(e1));
+    return winds ? phi[static_cast<std::size_t>(k)] : std::atan2(Y.row(k).dot(e2), Y.row(k).dot(e1));
   };
   // Increments lifted about their circular mean, not into (−π, π]: near ρ = ½ they straddle
   // ±π, and wrapped values alias (+π − ε and −π + ε average to about 0).
@@ -127,9 +164,10 @@ struct CurveFit {
   double residual = 0.0, rms = 0.0;
   double gap = 0.0;  // largest gap between the α_j (fraction of the circle)
   int M = 0;
+  bool limited = false;  // M was cut below the harmonics asked for by the number of points or the gap
 };
 
-CurveFit fit_section_curve(const std::vector<SectionPoint4>& pts, double rho, int harmonics) {
+CurveFit fit_section_curve(const std::vector<SectionPoint4>& pts, double rho, int harmonics, double pi_scale) {
   CurveFit f;
   const std::size_t n = pts.size();
   // Near a resonance ρ ≈ p/q the α_j fill q short arcs only, and a series whose shortest
@@ -145,6 +183,7 @@ CurveFit fit_section_curve(const std::vector<SectionPoint4>& pts, double rho, in
   for (std::size_t j = 1; j < n; ++j) f.gap = std::max(f.gap, sorted[j] - sorted[j - 1]);
   const int resolvable = f.gap > 0.0 ? static_cast<int>(std::floor(0.5 / f.gap)) : harmonics;
   f.M = std::max(1, std::min({harmonics, static_cast<int>(n) / 4, resolvable}));
+  f.limited = f.M < harmonics;
   if (resolvable < 4) {
     f.residual = f.rms = std::numeric_limits<double>::infinity();
     return f;
@@ -159,27 +198,29 @@ CurveFit fit_section_curve(const std::vector<SectionPoint4>& pts, double rho, in
       D(k, 2 * m) = std::sin(2.0 * pi * m * a);
     }
     const auto& p = pts[static_cast<std::size_t>(k)];
-    V.row(k) << p.Pi.transpose(), p.Gamma.transpose();
+    V.row(k) << p.Pi.transpose() / pi_scale, p.Gamma.transpose();  // Π relative to its largest |Π|
   }
   f.coef = D.colPivHouseholderQr().solve(V);
   const Eigen::MatrixXd e = D * f.coef - V;
   f.residual = e.cwiseAbs().maxCoeff();
   f.rms = e.norm() / std::sqrt(static_cast<double>(e.size()));
+  f.coef.leftCols(3) *= pi_scale;
   return f;
 }
 
 /// ρ refined so that the points lie on one smooth curve in α = jρ: the rms of the fit is
-/// minimised on shrinking grids about the Birkhoff estimate (few harmonics first, whose
+/// minimised on shrinking grids about the polygon estimate (few harmonics first, whose
 /// basin in ρ is wider). The conjugacy to the rotation makes the true ρ the minimiser
 /// (cf. A. Luque & J. Villanueva, "Numerical computation of rotation numbers of
 /// quasi-periodic planar curves", Physica D 238 (2009) 2025).
-double refine_rotation_number(const std::vector<SectionPoint4>& pts, double rho, int harmonics) {
-  double width = 1e-4;  // the Birkhoff estimate is good to ~1e-6; wider brackets meet resonant aliases
-  for (int stage = 0; width > 1e-12; ++stage, width /= 5.0) {
-    const int M = stage == 0 ? 3 : stage == 1 ? 8 : harmonics;
-    double best = fit_section_curve(pts, rho, M).rms, arg = rho;
+double refine_rotation_number(const std::vector<SectionPoint4>& pts, double rho, int harmonics, double pi_scale) {
+  // The polygon estimate is within a few 1/m² of ρ (m = min(n, 400) points); within that
+  // bracket the rms of the full fit has one minimum (its aliases lie 1/(nM) and more away).
+  const double m = static_cast<double>(std::min<std::size_t>(pts.size(), 400));
+  for (double width = 2.0 / (m * m); width > 1e-13; width /= 5.0) {
+    double best = fit_section_curve(pts, rho, harmonics, pi_scale).rms, arg = rho;
     for (int j = -10; j <= 10; ++j) {
-      const double r = rho + width * j / 10.0, e = j == 0 ? best : fit_section_curve(pts, r, M).rms;
+      const double r = rho + width * j / 10.0, e = j == 0 ? best : fit_section_curve(pts, r, harmonics, pi_scale).rms;
       if (e < best) best = e, arg = r;
     }
     rho = arg;
@@ -187,7 +228,7 @@ double refine_rotation_number(const std::vector<SectionPoint4>& pts, double rho,
   return rho;
 }
 
-/// (1/2π)∮_C λ on the fitted curve. On C p_θ = 0, so λ = p_θ dθ + p_φ dφ with
+/// (1/2π)∮_C λ on the fitted curve: λ = p_θ dθ + p_φ dφ with
 /// dθ = −dΓ3/sinθ, dφ = (Γ2 dΓ1 − Γ1 dΓ2)/sin²θ, p_θ sinθ = Π1Γ2 − Π2Γ1, p_φ = Π3;
 /// the periodic trapezoid rule on q points (geometric convergence; q large since the
 /// integrand is steep where C passes near the pole). Sets the winding of φ along C.
@@ -221,16 +262,63 @@ struct CircleFit {
 CircleFit fit_section_circles(const std::vector<SectionPoint4>& pts, const NumericalTorusOptions& options) {
   CircleFit best;
   best.fit.residual = std::numeric_limits<double>::infinity();
+  double pi_scale = 0.0;
+  for (const auto& p : pts) pi_scale = std::max(pi_scale, p.Pi.norm());
   for (int k = 1; k <= 3; ++k) {
     std::vector<SectionPoint4> circle;
-    for (std::size_t j = 0; j < pts.size(); j += static_cast<std::size_t>(k)) circle.push_back(pts[j]);
+    std::vector<Point6> y;
+    for (std::size_t j = 0; j < pts.size(); j += static_cast<std::size_t>(k)) {
+      circle.push_back(pts[j]);
+      y.push_back((Point6() << pts[j].Pi / pi_scale, pts[j].Gamma).finished());
+    }
     if (circle.size() < 64) break;
-    const double rho = refine_rotation_number(circle, rotation_number(circle), options.harmonics);
-    CircleFit c{k, rho, fit_section_curve(circle, rho, options.harmonics)};
-    if (k == 1 || c.fit.residual < best.fit.residual) best = c;
+    // Two first estimates (docs/actions.md §3, step 2), each refined; the better fit is kept.
+    for (const double rho0 : {polygon_rotation_number(y), std::abs(birkhoff_rotation_number(circle))}) {
+      const double rho =
+          refine_rotation_number(circle, rho0, std::min(options.harmonics, options.refine_harmonics), pi_scale);
+      CircleFit c{k, rho, fit_section_curve(circle, rho, options.harmonics, pi_scale)};
+      if (!(best.fit.residual <= c.fit.residual)) best = c;
+    }
     if (best.fit.residual < options.max_fit_residual) break;
   }
+  // Every k-th point on one circle does not make k circles: on a single circle with ρ ≈ m/k the
+  // first estimates can miss ρ while the k-th return map, rotating by kρ − m, is fitted. Then one
+  // of ρ = (ρ_k + m)/k fits all the points, and cycle b is one return, not k.
+  if (best.k > 1 && best.fit.residual < options.max_fit_residual) {
+    for (int m = 0; m < best.k; ++m) {
+      const double rho0 = (best.rho + m) / best.k;
+      const double rho = refine_rotation_number(pts, rho0, std::min(options.harmonics, options.refine_harmonics), pi_scale);
+      CircleFit one{1, rho, fit_section_curve(pts, rho, options.harmonics, pi_scale)};
+      if (one.fit.residual < options.max_fit_residual) return one;
+    }
+  }
   return best;
+}
+
+/// The failure of a torus (docs/actions.md §3): its reason and status; actions and frequencies stay NaN.
+NumericalTorus failed(NumericalTorus r, TorusFailure reason, const std::string& status) {
+  r.ok = false;
+  r.reason = static_cast<int>(reason);
+  r.status = status;
+  r.action_a = r.action_b = r.omega_a = r.omega_b = std::numeric_limits<double>::quiet_NaN();
+  return r;
+}
+
+/// The section from a pilot run of the same orbit: every step's (Π, Γ) until `pilot_turns`
+/// turning points of Γ3 (docs/actions.md §3, step 1). Not tied to the crossings asked for: a
+/// different section may cut other cycles, and runs with other --crossings must agree.
+SectionChoice pilot_section(const integrators::SchemeInfo& info, const system::AnyModel& model,
+                            const system::State& x0, const NumericalTorusOptions& options) {
+  PilotRecorder pilot(options.pilot_turns, 200000);
+  integrators::RunConfig cfg;
+  cfg.t_end = options.max_time;
+  cfg.dt = options.dt;
+  cfg.events = &pilot.events();
+  cfg.stop = pilot.stop_flag();
+  cfg.cpu_clock = false;
+  system::State x = x0;
+  info.run(model, x, cfg, pilot);
+  return choose_section(pilot.samples, options.min_section_window);
 }
 
 }  // namespace
@@ -239,14 +327,16 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
                                const NumericalTorusOptions& options) {
   NumericalTorus r;
   const Mat3 J_inv = scene.inertia.inverse();
-  const Vec3 gamma0 = x0.R.row(2).transpose();
-  r.l = x0.Pi.dot(gamma0);
+  r.l = x0.Pi.dot(x0.R.row(2).transpose());
   const integrators::SchemeInfo* info = integrators::find_scheme(options.scheme);
-  if (info == nullptr) {
-    r.status = "unknown scheme " + options.scheme;
-    return r;
-  }
-  TorusRecorder recorder(J_inv, options.crossings);
+  if (info == nullptr) return failed(r, TorusFailure::scheme, "unknown scheme " + options.scheme);
+  const system::AnyModel model = system::make_model(scene);
+  r.h = system::SceneInvariants(scene, model).energy(x0);
+  r.section = pilot_section(*info, model, x0, options);
+  if (r.section.coordinate < 0)
+    return failed(r, TorusFailure::no_section,
+                  "no transverse section: every coordinate of (Pi, Gamma) has turning values across its range");
+  TorusRecorder recorder(J_inv, r.section, options.crossings);
   integrators::RunConfig cfg;
   cfg.t_end = options.max_time;
   cfg.dt = options.dt;
@@ -254,48 +344,60 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
   cfg.stop = recorder.stop_flag();
   cfg.cpu_clock = false;
   system::State x = x0;
-  const system::AnyModel model = system::make_model(scene);
-  const auto stats = info->run(model, x, cfg, recorder);
-  r.h = system::SceneInvariants(scene, model).energy(x0);
-  r.t_end = recorder.t_end();
-  r.crossings = static_cast<int>(recorder.hits().size());
-  if (r.crossings < std::max(16, options.crossings)) {
-    r.status = "only " + std::to_string(r.crossings) + " section crossings (" + stats.status + ")";
-    return r;
-  }
   std::vector<SectionPoint4> pts;
-  std::vector<double> returns;
-  for (const auto& hit : recorder.hits()) {
-    pts.push_back(section_coordinates(hit.t, hit.state));
-    if (pts.size() > 1) returns.push_back(pts.back().t - pts[pts.size() - 2].t);
+  CircleFit c;
+  // Where the fit fails (mostly because the points cannot resolve the harmonics the curve needs:
+  // too few points per circle, or gaps near a resonance ρ ≈ p/q), the run goes on to twice the
+  // crossings, up to max_extend times those asked for (docs/actions.md §3, step 3).
+  for (int wanted = options.crossings;; wanted *= 2) {
+    recorder.extend(wanted);
+    const auto stats = info->run(model, x, cfg, recorder);
+    cfg.t0 = stats.t_final;
+    r.t_end = recorder.t_end();
+    r.crossings = static_cast<int>(recorder.hits().size());
+    if (r.crossings < std::max(16, wanted))
+      return failed(r, TorusFailure::crossings,
+                    "only " + std::to_string(r.crossings) + " section crossings (" + stats.status + ")");
+    std::vector<double> returns;
+    pts.clear();
+    for (const auto& hit : recorder.hits()) {
+      pts.push_back({hit.t, hit.state.Pi, hit.state.R.row(2).transpose()});
+      if (pts.size() > 1) returns.push_back(pts.back().t - pts[pts.size() - 2].t);
+    }
+    r.return_time = birkhoff_average(returns);
+    double spread = 0.0;
+    for (const auto& p : pts)
+      spread = std::max(spread, (p.Gamma - pts.front().Gamma).norm() + (p.Pi - pts.front().Pi).norm());
+    if (spread < 1e-6)
+      return failed(r, TorusFailure::periodic, "the section is one point (a periodic orbit, not a 2-torus)");
+    c = fit_section_circles(pts, options);
+    r.fit_residual = c.fit.residual;
+    if (r.fit_residual < options.max_fit_residual || 2 * wanted > options.max_extend * options.crossings)
+      break;
   }
-  r.return_time = birkhoff_average(returns);
-  double spread = 0.0;
-  for (const auto& p : pts) spread = std::max(spread, (p.Gamma - pts.front().Gamma).norm() + (p.Pi - pts.front().Pi).norm());
-  if (spread < 1e-6) {
-    r.status = "the section is one point (a periodic orbit, not a 2-torus)";
-    return r;
-  }
-  const CircleFit c = fit_section_circles(pts, options);
-  r.fit_residual = c.fit.residual;
-  if (!std::isfinite(r.fit_residual)) {
-    r.status = "the section points leave gaps in the angle kρ (near a resonance: more crossings)";
-    return r;
-  }
+  if (!std::isfinite(r.fit_residual))
+    return failed(r, TorusFailure::resonance,
+                  "the section points leave gaps in the angle k rho after " + std::to_string(r.crossings) +
+                      " crossings (near a resonance)");
+  if (!(r.fit_residual < options.max_fit_residual))
+    return failed(r, TorusFailure::fit, "the section is not k <= 3 smooth circles (fit residual " +
+                                            std::to_string(r.fit_residual) + " after " + std::to_string(r.crossings) +
+                                            " crossings)");
   double I_a = section_curve_action(c.fit, r.winding), rho = c.rho;
+  // Cycle b: k returns closed by the arc of the circle back by ρ + m. Where C winds about the
+  // φ-circle, m makes b's net turn of φ zero (k T̄⟨φ̇⟩/2π = w(ρ + m)); for the Lagrange top b is
+  // then the nutation cycle and I_b = I_θ (docs/actions.md §3, step 4). Else ρ ∈ (−½, ½].
+  const double phi_turns = c.k * r.return_time * recorder.mean_phi_rate() / (2.0 * pi);
+  rho += r.winding != 0 ? std::round(phi_turns / r.winding - rho) : -std::round(rho);
   if (I_a < 0.0) I_a = -I_a, rho = -rho;  // orient cycle a so that its action is ≥ 0
-  rho -= std::round(rho);
   r.rotation_number = rho;  // of the k-th return map on one circle
   r.action_a = I_a;
-  r.omega_b = 2.0 * pi / (c.k * r.return_time);  // cycle b: k returns, closed by an arc of the circle
+  r.omega_b = 2.0 * pi / (c.k * r.return_time);
   r.omega_a = rho * r.omega_b;
   r.mean_pq = recorder.mean_pq(r.l);
   r.action_b = (r.mean_pq - I_a * r.omega_a) / r.omega_b;
-  // A section that is not k smooth circles permuted by the return map (an arc whose ends are
-  // tangencies of the flow to Σ, a resonant or degenerate torus) shows as a large fit residual.
-  r.ok = r.fit_residual < options.max_fit_residual;
-  r.status = r.ok ? "ok (" + std::to_string(c.k) + " circle" + (c.k > 1 ? "s)" : ")")
-                  : "the section is not k smooth circles (fit residual " + std::to_string(r.fit_residual) + ")";
+  r.ok = true;
+  r.status = "ok (" + std::to_string(c.k) + " circle" + (c.k > 1 ? "s)" : ")");
   return r;
 }
 

@@ -45,6 +45,9 @@ struct Row {
   Vec3 actions = Vec3::Zero(), frequencies = Vec3::Zero();
   double h = 0.0, rotation_number = nan(), return_time = nan(), fit_residual = nan();
   bool ok = true;
+  int reason = 0;       // method 2: a TorusFailure (experiments/ACTIONS.md)
+  int section = -1;     // method 2: the section's coordinate of (Π, Γ), 0..5 (−1: none)
+  std::string status;   // method 2: the printed status
   static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
 };
 
@@ -84,6 +87,9 @@ Row numerical_row(const system::Scene& scene, const system::State& x, const Acti
   r.return_time = t.return_time;
   r.fit_residual = t.fit_residual;
   r.ok = t.ok;
+  r.reason = t.reason;
+  r.section = t.section.coordinate;
+  r.status = t.status;
   return r;
 }
 
@@ -142,7 +148,8 @@ std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& 
 
 std::vector<TableColumn> columns_of(const std::vector<Row>& rows) {
   std::vector<TableColumn> c = {{"method", 1, true}, {"actions", 3}, {"h"}, {"frequencies", 3},
-                                {"rotation_number"}, {"return_time"}, {"fit_residual"}, {"ok", 1, true}};
+                                {"rotation_number"}, {"return_time"}, {"fit_residual"}, {"ok", 1, true},
+                                {"reason", 1, true}, {"section", 1, true}};
   for (const auto& r : rows) {
     c[0].whole.push_back(r.method);
     c[1].real.insert(c[1].real.end(), r.actions.data(), r.actions.data() + 3);
@@ -152,6 +159,8 @@ std::vector<TableColumn> columns_of(const std::vector<Row>& rows) {
     c[5].real.push_back(r.return_time);
     c[6].real.push_back(r.fit_residual);
     c[7].whole.push_back(r.ok ? 1 : 0);
+    c[8].whole.push_back(r.reason);
+    c[9].whole.push_back(r.section);
   }
   return c;
 }
@@ -184,14 +193,22 @@ int run_actions(const ActionsOptions& o) {
   write_table_file(o.out, o.force, "tori", columns_of(rows), parameters);
   if (o.quiet) return exit_ok;
   if (o.h) {
-    std::cout << rows.size() << " tori on H = " << format_general(*o.h, 6) << "; wrote " << o.out << '\n';
+    std::size_t failures = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (!rows[i].ok) {
+        ++failures;
+        std::printf("torus %zu (l = %.6g): failed, reason %d: %s\n", i, rows[i].actions[0], rows[i].reason,
+                    rows[i].status.c_str());
+      }
+    std::cout << rows.size() << " tori on H = " << format_general(*o.h, 6) << ", " << rows.size() - failures
+              << " ok; wrote " << o.out << '\n';
     return exit_ok;
   }
   for (const auto& r : rows)
-    std::printf("method=%s h=%.6g actions=(%.6g, %.6g, %.6g) frequencies=(%.6g, %.6g, %.6g) ok=%d\n",
+    std::printf("method=%s h=%.6g actions=(%.10g, %.10g, %.10g) frequencies=(%.10g, %.10g, %.10g) ok=%d%s%s\n",
                 r.method == closed_lagrange ? "lagrange" : r.method == closed_euler ? "euler" : "numerical", r.h,
                 r.actions[0], r.actions[1], r.actions[2], r.frequencies[0], r.frequencies[1], r.frequencies[2],
-                r.ok ? 1 : 0);
+                r.ok ? 1 : 0, r.method == numerical ? " status=" : "", r.method == numerical ? r.status.c_str() : "");
   return exit_ok;
 }
 

@@ -41,8 +41,8 @@ def test_single_lagrange_torus_closed_form_and_numerical(tmp_path):
     (l0, L3, I_theta), (l1, Ia, Ib) = t["actions"]
     assert abs(l0 - l1) < 1e-14 * abs(l0)
     assert abs(Ia - abs(L3)) < 1e-9 * abs(L3)
-    n = (Ib - I_theta) / abs(L3)
-    assert abs(n - round(n)) < 1e-8
+    assert abs(Ib - I_theta) < 1e-8 * (abs(L3) + I_theta)  # cycle b: the nutation (docs/actions.md §3)
+    assert list(t["reason"]) == [0, 0] and t["section"][1] == 5  # the section Gamma3 = c
     w0, w1 = t["frequencies"]
     assert abs(w1[2] - w0[2]) < 1e-8 * w0[2]
     assert abs((w1[1] * Ia + w1[2] * Ib) - (w0[1] * L3 + w0[2] * I_theta)) < 1e-8 * abs(w0[1] * L3)
@@ -70,6 +70,17 @@ def test_lagrange_energy_surface_and_plot(tmp_path):
     r = subprocess.run([sys.executable, script, "--out", str(tmp_path / "figs"), out], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert os.path.getsize(str(tmp_path / "figs" / "actions.png")) > 1000
+
+
+def test_failed_torus_has_reason_and_nan_actions(tmp_path):
+    out = str(tmp_path / "k.h5")
+    # The first torus of l = 0 at h = 2 is a periodic orbit: its section is one point.
+    r = lgi("actions", "--scene", KOVALEVSKAYA, "--h", "2", "--l", "0", "--tori", "1", "--out", out)
+    assert "torus 0 (l = 0): failed, reason 4: the section is one point" in r.stdout
+    assert "1 tori on H = 2, 0 ok" in r.stdout
+    t = tori(out)
+    assert list(t["ok"]) == [0] and list(t["reason"]) == [4]
+    assert np.all(np.isnan(t["actions"][:, 1:])) and np.all(np.isnan(t["frequencies"]))
 
 
 def test_bad_flags(tmp_path):
