@@ -162,3 +162,17 @@ TEST_CASE("The numerical torus of an Euler top is the closed form up to the chan
   CHECK(std::abs(t.action_b - (a->actions[1] - a->actions[2])) < 1e-6 * a->actions[1]);
   CHECK(relative(t.omega_b, -a->frequencies[2]) < 1e-8);
 }
+
+TEST_CASE("A section curve through the chart's pole is refused, not reported with a wrong I_a", "[actions]") {
+  // free_body_hlw starts at the identity, Γ = e3: its section circle runs through the pole of
+  // the Euler-angle chart, where λ = p dq is singular (docs/actions.md §3).
+  const system::Scene scene = testing::shipped_scene("free_body_hlw");
+  experiments::NumericalTorusOptions o;
+  o.crossings = 200;
+  const auto t = experiments::numerical_torus(scene, scene.initial, o);
+  CHECK(!t.ok);
+  CHECK(t.reason == static_cast<int>(experiments::TorusFailure::chart_pole));
+  CHECK(t.status.find("pole") != std::string::npos);
+  CHECK(std::isnan(t.action_a));
+  CHECK(std::isnan(t.action_b));
+}

@@ -103,6 +103,7 @@ struct NumericalTorusOptions {
   double max_fit_residual = 1e-6;   // above it the torus is not ok (docs/actions.md §3)
   double min_section_window = 0.05;  // narrowest window free of turning values for a section
   int pilot_turns = 100;             // turning points of Γ3 in the pilot run that chooses the section
+  double min_pole_distance = 1e-3;   // rad: a section curve closer to Γ = ±e3 is refused (reason 7)
 };
 
 /// Why a numerical torus failed (the `reason` column of /tori, experiments/ACTIONS.md).
@@ -114,6 +115,7 @@ enum class TorusFailure : int {
   periodic = 4,    // the section is one point: a periodic orbit, not a 2-torus
   resonance = 5,   // the points leave gaps in kρ (near a resonance)
   fit = 6,         // the section is not k ≤ 3 smooth circles (fit residual too large)
+  chart_pole = 7,  // the section curve passes through the Euler-angle chart's pole Γ = ±e3
 };
 
 struct NumericalTorus {

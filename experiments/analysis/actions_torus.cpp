@@ -231,10 +231,12 @@ double refine_rotation_number(const std::vector<SectionPoint4>& pts, double rho,
 /// (1/2π)∮_C λ on the fitted curve: λ = p_θ dθ + p_φ dφ with
 /// dθ = −dΓ3/sinθ, dφ = (Γ2 dΓ1 − Γ1 dΓ2)/sin²θ, p_θ sinθ = Π1Γ2 − Π2Γ1, p_φ = Π3;
 /// the periodic trapezoid rule on q points (geometric convergence; q large since the
-/// integrand is steep where C passes near the pole). Sets the winding of φ along C.
-double section_curve_action(const CurveFit& f, int& winding) {
+/// integrand is steep where C passes near the pole). Sets the winding of φ along C and the
+/// least sin²θ = Γ1² + Γ2² on C.
+double section_curve_action(const CurveFit& f, int& winding, double& least_sin2) {
   const int q = std::max(4096, 16 * f.M);
   double sum = 0.0, turns = 0.0;
+  least_sin2 = std::numeric_limits<double>::infinity();
   for (int j = 0; j < q; ++j) {
     const double a = static_cast<double>(j) / q;
     Eigen::VectorXd x = f.coef.row(0).transpose(), dx = Eigen::VectorXd::Zero(6);
@@ -244,6 +246,7 @@ double section_curve_action(const CurveFit& f, int& winding) {
       dx += w * (-s * f.coef.row(2 * m - 1).transpose() + c * f.coef.row(2 * m).transpose());
     }
     const double s2 = x(3) * x(3) + x(4) * x(4), phi_d = (x(4) * dx(3) - x(3) * dx(4)) / s2;
+    least_sin2 = std::min(least_sin2, s2);
     sum += (x(0) * x(4) - x(1) * x(3)) * (-dx(5)) / s2 + x(2) * phi_d;
     turns += phi_d;
   }
@@ -383,7 +386,14 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
     return failed(r, TorusFailure::fit, "the section is not k <= 3 smooth circles (fit residual " +
                                             std::to_string(r.fit_residual) + " after " + std::to_string(r.crossings) +
                                             " crossings)");
-  double I_a = section_curve_action(c.fit, r.winding), rho = c.rho;
+  double least_sin2 = 0.0;
+  double I_a = section_curve_action(c.fit, r.winding, least_sin2), rho = c.rho;
+  // Through the chart's pole λ is singular and I_a is off by a multiple of ℓ (docs/actions.md §3):
+  // refused rather than reported.
+  if (least_sin2 < options.min_pole_distance * options.min_pole_distance)
+    return failed(r, TorusFailure::chart_pole,
+                  "the section curve passes within " + std::to_string(std::sqrt(least_sin2)) +
+                      " rad of the chart's pole Gamma = +-e3, where p dq is singular");
   // Cycle b: k returns closed by the arc of the circle back by ρ + m. Where C winds about the
   // φ-circle, m makes b's net turn of φ zero (k T̄⟨φ̇⟩/2π = w(ρ + m)); for the Lagrange top b is
   // then the nutation cycle and I_b = I_θ (docs/actions.md §3, step 4). Else ρ ∈ (−½, ½].
