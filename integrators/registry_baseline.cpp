@@ -93,7 +93,7 @@ void add_baseline_schemes(std::vector<SchemeInfo>& r) {
     for (Stepper s : baselines::all_steppers) {
       r.push_back({.name = baselines::baseline_name(c, s),
                    .order = baselines::stepper_order(s),
-                   .family = "baseline (Boost.Odeint)",
+                   .family = std::string("baseline ") + baselines::coordinates_name(c),  // one family per chart
                    .properties = {.adaptive = baselines::stepper_is_adaptive(s),
                                   .dense_output = baselines::stepper_has_dense_output(s),
                                   .baseline = true,

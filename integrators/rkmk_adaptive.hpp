@@ -60,7 +60,7 @@ using RkmkCayleyDop853 = RkmkPair<tableaus::dop853, dop853_control, CayleyChart>
 using RkmkCayleyVerner87 = RkmkPair<tableaus::verner87, dop853_control, CayleyChart>;
 using RkmkCayleyVerner98 = RkmkPair<tableaus::verner98, verner98_control, CayleyChart>;
 
-/// Every adaptive RKMK scheme, for the generic tests (tests/test_scheme_order.cpp
+/// Every adaptive RKMK scheme, for the generic tests (tests/test_stated_orders.cpp
 /// checks that the registry has no other).
 using RkmkPairs = std::tuple<RkmkDp54, RkmkVerner65, RkmkDop853, RkmkVerner87, RkmkVerner98, RkmkCayleyDp54,
                              RkmkCayleyVerner65, RkmkCayleyDop853, RkmkCayleyVerner87, RkmkCayleyVerner98>;

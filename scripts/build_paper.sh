@@ -293,15 +293,16 @@ wait_plots() {
   pids=()
 }
 cd "$plots"
+# Line styles (baselines dashed, compositions dash-dot) come from the schemes' facts in schemes.json.
 plot dzhanibekov.py "$data"/traj/book_axis*.h5
 plot ellipsoids.py "$data"/traj/book_axis*_"$lie_scheme".h5
 plot heavy_top.py "$data"/traj/top_*.h5 ${singularity_sweep[@]+"${singularity_sweep[@]}"}
 if [ "$mode" = quick ]; then frames=40; else frames=140; fi
 plot animate.py --frames "$frames" "$data/traj/book_axis2_$lie_scheme.h5" "$data/traj/prism_$lie_scheme.h5"
-[ ${#wp_files[@]} -gt 0 ] && plot work_precision.py "${wp_files[@]}"
-[ ${#lt_files[@]} -gt 0 ] && plot long_time.py "${lt_files[@]}"
+[ ${#wp_files[@]} -gt 0 ] && plot work_precision.py --schemes-json "$gen/schemes.json" "${wp_files[@]}"
+[ ${#lt_files[@]} -gt 0 ] && plot long_time.py --schemes-json "$gen/schemes.json" "${lt_files[@]}"
 [ -n "$roundoff_file" ] && plot round_off.py "$roundoff_file"
-[ -n "$singularity_file" ] && plot singularity.py "$singularity_file"
+[ -n "$singularity_file" ] && plot singularity.py --schemes-json "$gen/schemes.json" "$singularity_file"
 wait_plots
 
 # ── the global dynamics of tops (paper/sections/tops.tex) ────────────────────

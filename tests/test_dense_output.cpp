@@ -75,7 +75,7 @@ TEMPLATE_LIST_TEST_CASE("the dense output of every RKMK pair has its stated orde
       INFO(what << ": local slope " << fit.slope << ", expected " << q + 1);
       CHECK(fit.points >= 4);
       // In Cayley coordinates the chart's curvature adds terms of other orders
-      // (test_scheme_order.cpp, upper_band): DOP853's order-7 interpolant
+      // (test_stated_orders.cpp, upper_band): DOP853's order-7 interpolant
       // approaches 8 from below on the driven top, its slopes between
       // successive steps 7.46, 7.65, 7.78, 7.87, 7.90, 7.94 down to 4e-15 (fit
       // above the floor 7.70), and the 8(7) pair's order-8 interpolant fits

@@ -127,7 +127,7 @@ TEST_CASE("implicit schemes converge at their nominal order on the Kovalevskaya 
 
 TEST_CASE("implicit schemes converge at their nominal order with a time-dependent torque", "[implicit][order]") {
   // Richter's general top (χ off every axis) with a harmonic body-fixed
-  // drive, as in test_scheme_order.cpp: the stage times c_i h matter.
+  // drive, as in test_stated_orders.cpp: the stage times c_i h matter.
   system::Scene sc = testing::shipped_scene("general_top_richter");
   sc.declared<system::HarmonicDriveTerm>() = system::HarmonicDriveTerm::Parameters{Vec3(0.3, -0.2, 0.1), 2.0, 0.3};
   const system::AnyModel model = system::make_model(sc);

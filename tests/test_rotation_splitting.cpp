@@ -12,7 +12,7 @@
 //  - the compositions merge their outer rotations (the same result as
 //    composing whole steps).
 // Order, symmetry, the conservation claims, the Kovalevskaya integral and
-// allocations are the generic suites' (test_scheme_order, test_stated_orders,
+// allocations are the generic suites' (test_stated_orders,
 // test_composition, test_scheme_properties, test_allocations).
 #include <catch2/catch.hpp>
 #include <cmath>

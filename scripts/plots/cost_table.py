@@ -39,13 +39,14 @@ def cpu_at_error(errs, cpus, target):
 
 
 def family_of(name, info):
-    """The family a scheme counts in: its registry family; a composition, its base
-    method's; a baseline, its chart ("baseline quat")."""
-    if "/" in name:
-        return "baseline " + name.split("/", 1)[0]
-    base = name.split("@", 1)[0]
-    fam = {s["name"]: s.get("family", "") for s in info}
-    return fam.get(base) or fam.get(name) or "other"
+    """The family a scheme counts in, from its `lgi schemes --json` facts (`info`),
+    never its name: its registry family; a composition ("kind" "composition"),
+    its "base" scheme's; a baseline's family names its chart ("baseline quat")."""
+    facts = {s["name"]: s for s in info}
+    s = facts.get(name, {})
+    if s.get("kind") == "composition" and s.get("base") in facts:
+        s = facts[s["base"]]
+    return s.get("family") or "other"
 
 
 def is_heavy_top(path):
@@ -58,22 +59,26 @@ def cost_rows(load, files, info, cpu_column="cpu_seconds_min"):
     """Rows of the cost table (scene, family, then per target "scheme ms"), from the
     heavy-top files among `files`; `load` is make_tables.load_work_precision."""
     rows = []
+    kinds = {s["name"]: s.get("kind") for s in info}
     for p in files:
         if not is_heavy_top(p):
             continue
         tab, scene, ok = load(p)
         cpu = tab[cpu_column] if cpu_column in tab else tab["cpu_seconds_median"]
         best = {}  # family -> [(seconds, scheme) per target]
+        baseline_families = set()
         for name in dict.fromkeys(tab["scheme"]):
             sel = np.array([x == name for x in tab["scheme"]]) & ok
             fam = family_of(name, info)
+            if kinds.get(name) == "baseline":
+                baseline_families.add(fam)
             cells = best.setdefault(fam, [None] * len(COST_TARGETS))
             for k, target in enumerate(COST_TARGETS):
                 v = cpu_at_error(tab["error"][sel], cpu[sel], target)
                 if v is not None and (cells[k] is None or v < cells[k][0]):
                     cells[k] = (v, name)
         first = True
-        for fam in sorted(best, key=lambda f: (f.startswith("baseline"), f)):
+        for fam in sorted(best, key=lambda f: (f in baseline_families, f)):
             cells = ["--" if cell is None else f"\\texttt{{{breakable(cell[1])}}} {cell[0] * 1e3:.3g}" for cell in best[fam]]
             label = f"\\texttt{{{scene.replace('_', ' ')}}}" if first else ""
             rows.append(f"{label} & {fam} & " + " & ".join(cells) + " \\\\")

@@ -4,13 +4,15 @@ python3-matplotlib, python3-h5py, python3-numpy; no network, no other package).
 Readers for the files lgi writes (experiments/OUTPUT.md: H5MD trajectories;
 experiments/RESULTS.md: result tables), the attitude helpers of
 docs/conventions.md (quaternion (w, x, y, z), body -> space; Euler ZXZ),
-one colour and marker per scheme across every figure, and save() that writes
+one colour and marker per scheme across every figure (the line style from the
+scheme's facts, never its name: use_scheme_facts), and save() that writes
 PDF and PNG side by side. Every script takes --out DIR (created when missing:
 out_dir), never writes one file twice in a run (claim, unique_names), and gets
 at least three labelled ticks on each log axis (fix_log_ticks, called by save).
 """
 import argparse
 import hashlib
+import json
 import os
 import sys
 import tomllib
@@ -67,13 +69,37 @@ def scheme_style(name):
         i = _stable_index(name, len(_PALETTE))
         color = _PALETTE[i]
         marker = _MARKERS[_stable_index(name + "m", len(_MARKERS))]
-    if "/" in name:            # Boost.Odeint baselines: dashed
-        ls = "--"
-    elif "@" in name:          # compositions: dash-dot
-        ls = "-."
-    else:
-        ls = "-"
+    kind = scheme_fact(name, "kind")
+    ls = {"baseline": "--", "composition": "-."}.get(kind, "-")  # Boost.Odeint baselines dashed, compositions dash-dot
     return {"color": color, "marker": marker, "linestyle": ls}
+
+
+# ── scheme facts: read from `lgi schemes --json`, never parsed from a name ───
+# The result files store scheme names only (experiments/RESULTS.md); what a
+# scheme is ("kind": lie-group, composition, baseline, exact; "base": a
+# composition's base scheme; "family") comes from the registry's records, as
+# `lgi schemes --json` writes them (scripts/build_paper.sh: generated/schemes.json).
+_FACTS = {}
+
+
+def use_scheme_facts(records):
+    """Make these `lgi schemes --json` records (a list of dicts, or the path of
+    such a file) the facts scheme_style and scheme_fact read; returns them by name."""
+    if isinstance(records, (str, os.PathLike)):
+        try:
+            with open(records) as f:
+                records = json.load(f)
+        except (OSError, ValueError) as e:
+            raise argparse.ArgumentTypeError(f"cannot read scheme facts from {records}: {e}")
+    _FACTS.clear()
+    _FACTS.update({r["name"]: r for r in records})
+    return dict(_FACTS)
+
+
+def scheme_fact(name, key, default=None):
+    """One fact of a scheme ("kind", "base", "family", ...); `default` for a
+    scheme without facts (no --schemes-json given, or a name lgi does not know)."""
+    return _FACTS.get(name, {}).get(key, default)
 
 
 # ── output folder, file names, log-axis ticks ────────────────────────────────
@@ -200,6 +226,9 @@ def parser(description):
     p.add_argument("files", nargs="*", help="HDF5 files written by lgi")
     p.add_argument("--out", required=True, type=out_dir,
                    help="output folder for the PDF and PNG files (created with its parents if missing)")
+    p.add_argument("--schemes-json", type=use_scheme_facts, metavar="FILE",
+                   help="the output of `lgi schemes --json`: baselines are drawn dashed and compositions "
+                        "dash-dot from its facts (without it every line is solid)")
     return p
 
 

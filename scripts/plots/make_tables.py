@@ -154,15 +154,17 @@ def schemes_table(path):
     rows, done = [], set()
     compositions = {}
     baselines = {}
+    # Grouped by the registry's facts, never by parsing a name: a composition
+    # by its "base", a baseline by its "family" (one per chart, "baseline quat").
     for s in data:
         n = s["name"]
-        if "@" in n:
-            base, comp = n.split("@", 1)
-            compositions.setdefault(base, []).append((comp, s))
+        if s.get("kind") == "composition" and s.get("base"):
+            # shown as what the name adds to its base's name ("@yoshida4"), else whole
+            shown = n[len(s["base"]):] if n.startswith(s["base"]) and n != s["base"] else n
+            compositions.setdefault(s["base"], []).append((shown, s))
             continue
-        if s.get("baseline") or "/" in n:
-            coords, stepper = n.split("/", 1) if "/" in n else (n, "")
-            baselines.setdefault(coords, []).append((stepper, s))
+        if s.get("kind") == "baseline":
+            baselines.setdefault(s.get("family", "baseline"), []).append((n, s))
             continue
         rows.append(s)
     out = []
@@ -181,10 +183,10 @@ def schemes_table(path):
         props = "".join(letter for key, letter in PROPS if comps[0][1].get(key))
         out.append(f"{tt(base + '@…')} & {orders} & composition & {props or '--'} & "
                    f"{names} (HLW §V.3) \\\\")
-    for coords, steps in baselines.items():
-        names = ", ".join(esc(sn) for sn, _ in steps)
+    for family, steps in baselines.items():
+        names = ", ".join(tt(sn) for sn, _ in steps)
         ref = steps[0][1].get("reference", "")
-        out.append(f"{tt(coords + '/…')} & -- & baseline & -- & steppers: {names}. {esc(ref)} \\\\")
+        out.append(f"{esc(family)} & -- & baseline & -- & {names}. {esc(ref)} \\\\")
     legend = ("\\par\\noindent{\\footnotesize Properties: S symplectic, R symmetric (reversible), E energy, "
               "N $|\\Pi|$, M spatial momentum $R\\Pi$ (free body), V vertical momentum $\\Pi\\cdot\\Gamma$ "
               "conserved to round-off; I implicit; A adaptive. Order in brackets: with a torque. "
@@ -255,7 +257,7 @@ def table1(files, ref_files):
     out = [f"\\begin{{tabular}}{{{colspec}}}", "\\toprule", head1, cmid, head2, "\\midrule"]
     last_group = None
     for s in schemes:
-        group = s.split("/")[0] if "/" in s else "Lie group"
+        group = c.scheme_fact(s, "family", "baseline") if is_baseline(s) else "Lie group"  # a baseline: its chart
         if last_group is not None and group != last_group:
             out.append("\\midrule")
         last_group = group
@@ -335,7 +337,7 @@ def wp_sentences(files, scheme_info):
             t = (f"error below {num(target, 1)}: cheapest {tt(win)} ({sec(cpu[best[win]])}")
             if len(ranked) > 1:
                 t += f"; next {tt(ranked[1])}, {sec(cpu[best[ranked[1]]])}"
-            bl = [s for s in ranked if "/" in s]
+            bl = [s for s in ranked if is_baseline(s)]
             if bl and bl[0] != win:
                 t += f"; best baseline {tt(bl[0])}, {sec(cpu[best[bl[0]]])}"
             parts.append(t + ")")
@@ -581,7 +583,8 @@ def singularity_table(path):
 
 # ── discussion: comparisons drawn from the data ─────────────────────────────
 def is_baseline(name):
-    return "/" in name
+    """From the scheme's facts (`lgi schemes --json` "kind"), never its name; False without --schemes-json."""
+    return c.scheme_fact(name, "kind") == "baseline"
 
 
 def discussion(wp_files, lt_files, t1_files):
@@ -722,7 +725,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", required=True, type=c.out_dir,
                     help="output folder for the .tex fragments (created with its parents if missing)")
-    ap.add_argument("--schemes-json")
+    ap.add_argument("--schemes-json", help="the output of `lgi schemes --json`: the schemes table, and the facts "
+                    "(kind, base, family) that tell compositions and baselines apart; the result files store names only")
     ap.add_argument("--scenes-dir")
     ap.add_argument("--table1", nargs="*", default=[])
     ap.add_argument("--table1-reference", nargs="*", default=[])
@@ -735,6 +739,7 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     body, info = schemes_table(a.schemes_json)
+    c.use_scheme_facts(info)  # what is a baseline or a composition: the registry's facts, not the names
     write(a.out, "schemes.tex", body)
     write(a.out, "scenes.tex", scenes_table(a.scenes_dir))
     t1, t1_sent = table1(a.table1, a.table1_reference)

@@ -196,6 +196,7 @@ def fake_bench(tmp_path):
     fake.write_text(f"""#!{PY}
 import json, sys
 names = {names!r}
+per_step = {{"free_body_hlw/quat/rk4": 150.0, "free_body_hlw/rkmk4": 300.0}}  # the scheme benchmarks' names
 args = dict(a.split("=", 1) for a in sys.argv[1:] if "=" in a)
 if args.get("--benchmark_list_tests") == "true":
     print("\\n".join(names)); sys.exit(0)
@@ -203,8 +204,8 @@ bench = []
 for n in names:
     print(f"{{n:<40}} 100 ns 100 ns 1000", flush=True)
     b = {{"name": n, "cpu_time": 30.0, "time_unit": "ns"}}
-    if "/" in n:
-        b["ns_per_step"] = 150.0 if n.endswith("quat/rk4") else 300.0
+    if n in per_step:
+        b["ns_per_step"] = per_step[n]
     bench.append(b)
 open(args["--benchmark_out"], "w").write(json.dumps({{"context": {{"num_cpus": 2}}, "benchmarks": bench}}))
 """)
@@ -346,3 +347,44 @@ def test_readme_gif_names_are_the_written_ones():
         assert f"paper/build/figures/{scene}.gif" in readme
     for media in re.findall(r"docs/media/[\w.]+\.gif", readme):
         assert (ROOT / media).is_file(), media
+
+
+# ── (g) what a scheme is comes from its facts, never its name ────────────────
+FACTS = [
+    {"name": "lgvi", "kind": "lie-group", "base": None, "family": "Moser-Veselov", "order": 2},
+    {"name": "lgvi@yoshida4", "kind": "composition", "base": "lgvi", "family": "composition of lgvi", "order": 4},
+    {"name": "quat/rk4", "kind": "baseline", "base": None, "family": "baseline quat", "order": 4, "baseline": True},
+    # names without '@' or '/': only the facts say composition and baseline
+    {"name": "plain-comp", "kind": "composition", "base": "lgvi", "family": "composition of lgvi", "order": 4},
+    {"name": "odd-baseline", "kind": "baseline", "base": None, "family": "baseline odd", "order": 4},
+]
+
+
+def test_styles_and_families_read_the_facts_not_the_names(tmp_path):
+    import cost_table
+    import make_tables
+    c.use_scheme_facts(FACTS)
+    try:
+        assert c.scheme_style("plain-comp")["linestyle"] == "-."
+        assert c.scheme_style("odd-baseline")["linestyle"] == "--"
+        assert c.scheme_style("lgvi")["linestyle"] == "-"
+        assert c.scheme_style("unknown@x")["linestyle"] == "-"  # no facts: solid, whatever the name
+        assert make_tables.is_baseline("odd-baseline") and not make_tables.is_baseline("a/b")
+    finally:
+        c.use_scheme_facts([])
+    assert cost_table.family_of("plain-comp", FACTS) == "Moser-Veselov"
+    assert cost_table.family_of("odd-baseline", FACTS) == "baseline odd"
+    assert cost_table.family_of("not-registered", FACTS) == "other"
+    path = tmp_path / "schemes.json"
+    path.write_text(json.dumps(FACTS))
+    body, data = make_tables.schemes_table(str(path))
+    row = next(line for line in body.splitlines() if "& composition &" in line)
+    assert "@yoshida4" in row and "plain-comp" in row  # both compositions in their base's row
+    assert "baseline odd &" in body and "baseline quat &" in body  # one row per baseline family
+
+
+def test_plot_script_refuses_an_unreadable_schemes_json(tmp_path, data):
+    p = subprocess.run([PY, PLOTS / "work_precision.py", "--out", tmp_path, "--schemes-json", tmp_path / "none.json",
+                        data["wp"]], capture_output=True, text=True, env=ENV, timeout=120)
+    assert p.returncode == 2
+    assert "--schemes-json" in p.stderr and "none.json" in p.stderr

@@ -31,7 +31,7 @@ VALGRIND = ["valgrind", "--tool=memcheck", "--error-exitcode=99", "--leak-check=
 
 
 def schemes_by_family(lgi):
-    """The first scheme of each family, with the scene it runs on."""
+    """The first scheme of each family, with the scene it runs on (from the facts of `lgi schemes --json`)."""
     out = {}
     for scene in (FREE, TOP):
         listed = json.loads(subprocess.run([lgi, "schemes", "--json", "--scene", scene], capture_output=True,
@@ -39,9 +39,10 @@ def schemes_by_family(lgi):
         for s in listed:
             # The free body starts at the identity, on the Euler-angle chart's singular set (theta = 0),
             # where euler-zxz/* refuse to start: the charts run on the heavy top, which starts off it.
-            if scene == FREE and s["name"].startswith("euler-zxz/"):
+            if scene == FREE and s["family"] == "baseline euler-zxz":
                 continue
-            out.setdefault(s["family"], (s, scene))
+            # One baseline in all (their families are one per chart), one scheme of every other family.
+            out.setdefault("baseline" if s["kind"] == "baseline" else s["family"], (s, scene))
     return out
 
 
