@@ -74,7 +74,7 @@ TEST_CASE("lgi poincare --seeds: orbits from section points and states, and the 
   const auto ok = testing::run_lgi(base + "--seeds " + dir + "/points.csv --out " + dir + "/p.h5");
   INFO(ok.err);
   REQUIRE(ok.status == 0);
-  CHECK_THAT(ok.out, Contains("poincare: 2 orbits") && Contains("at l = 1, h = 2,"));
+  CHECK_THAT(ok.out, Contains("poincare: 2 orbits") && Contains("at l = 1, h = 2 ("));
   // A state on the level: Gamma = e3, Pi = (Pi1, 0, 1) with H = Pi1^2/4 + 1/2 = 2 (J = (2, 2, 1), chi = e1).
   write(dir + "/states.csv", "gamma_1,gamma_2,gamma_3,angular_momentum_1,angular_momentum_2,angular_momentum_3\n"
                              "0,0,1,2.4494897427831781,0,1\n");

@@ -95,7 +95,7 @@ TEST_CASE("a scheme applied to a scene it cannot handle exits 1 without a file",
   const std::string out = dir + "/a.h5";
   const auto r = run_lgi("simulate --scene " + top1 + " --scheme exact --dt 1e-3 --out " + out);
   INFO(r.err);
-  CHECK(r.status == 1);
+  CHECK(r.status == 2);  // a scheme that does not apply to the scene: bad input (README)
   CHECK(line_count(r.err) == 1);
   CHECK(r.err.find("free body") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
