@@ -307,20 +307,27 @@ NumericalTorus failed(NumericalTorus r, TorusFailure reason, const std::string& 
   return r;
 }
 
+/// The run of an orbit of the torus: to max_time at step dt, with the recorder's events, until
+/// the recorder stops it.
+template <class Recorder>
+integrators::RunConfig orbit_config(const NumericalTorusOptions& options, Recorder& recorder) {
+  integrators::RunConfig cfg;
+  cfg.t_end = options.max_time;
+  cfg.dt = options.dt;
+  cfg.events = &recorder.events();
+  cfg.stop = recorder.stop_flag();
+  cfg.cpu_clock = false;
+  return cfg;
+}
+
 /// The section from a pilot run of the same orbit: every step's (Π, Γ) until `pilot_turns`
 /// turning points of Γ3 (docs/actions.md §3, step 1). Not tied to the crossings asked for: a
 /// different section may cut other cycles, and runs with other --crossings must agree.
 SectionChoice pilot_section(const integrators::SchemeInfo& info, const system::AnyModel& model,
                             const system::State& x0, const NumericalTorusOptions& options) {
   PilotRecorder pilot(options.pilot_turns, 200000);
-  integrators::RunConfig cfg;
-  cfg.t_end = options.max_time;
-  cfg.dt = options.dt;
-  cfg.events = &pilot.events();
-  cfg.stop = pilot.stop_flag();
-  cfg.cpu_clock = false;
   system::State x = x0;
-  info.run(model, x, cfg, pilot);
+  info.run(model, x, orbit_config(options, pilot), pilot);
   return choose_section(pilot.samples, options.min_section_window);
 }
 
@@ -340,12 +347,7 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
     return failed(r, TorusFailure::no_section,
                   "no transverse section: every coordinate of (Pi, Gamma) has turning values across its range");
   TorusRecorder recorder(J_inv, r.section, options.crossings);
-  integrators::RunConfig cfg;
-  cfg.t_end = options.max_time;
-  cfg.dt = options.dt;
-  cfg.events = &recorder.events();
-  cfg.stop = recorder.stop_flag();
-  cfg.cpu_clock = false;
+  integrators::RunConfig cfg = orbit_config(options, recorder);
   system::State x = x0;
   std::vector<SectionPoint4> pts;
   CircleFit c;
