@@ -13,6 +13,7 @@
 #include <set>
 
 #include "experiments/analysis/accessible_region.hpp"
+#include "experiments/analysis/kovalevskaya_critical.hpp"
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "integrators/system/invariants.hpp"
@@ -135,4 +136,29 @@ TEST_CASE("the sampled Appelrot curves satisfy their equations", "[kovalevskaya]
     }
     CHECK(families.size() == (ls == 0.0 ? 4u : 3u));
   }
+}
+
+TEST_CASE("the critical-point solver realises the known Appelrot arcs at l = 0", "[kovalevskaya]") {
+  // At l = 0 (Bolsinov, Richter & Fomenko, Sb. Math. 191 (2000) 151; Kharlamov 1983) the least
+  // energy is h = -1; k = 0 is a critical value for h > 0, k = h^2 bounds the range for -1 < h < 0.
+  const HeavyTopBody scaled = experiments::scaled_kovalevskaya(
+      experiments::heavy_top_of(testing::shipped_scene("kovalevskaya"), "bifurcation"));
+  std::vector<double> hs;
+  for (int i = 0; i <= 40; ++i) hs.push_back(-1.5 + 0.1 * i);
+  const auto critical = experiments::kovalevskaya_critical_values(scaled, 0.0, hs, 24);
+  std::size_t found = 0;
+  for (const auto& at : critical)
+    for (const auto& v : at) {
+      ++found;
+      CHECK(v.rank_gap < 1e-10);
+      CHECK(v.family >= 0);
+    }
+  CHECK(found > 40);
+  const std::vector<experiments::AppelrotPoint> probe = {{0, 0, -1.25, -1.25, 0.0}, {0, 0, 1.05, 1.05, 0.0},
+                                                          {1, 0, -0.55, -0.55, 0.3025}, {0, 0, -0.55, -0.55, 0.0}};
+  const auto realised = experiments::appelrot_realised(probe, 0.0, hs, critical);
+  CHECK(realised[0] == 0);  // below the least energy: no state at all
+  CHECK(realised[1] == 1);  // k = 0 at h > 0
+  CHECK(realised[2] == 1);  // k = h^2, the lower edge of the range for -1 < h < 0
+  CHECK(realised[3] == 0);  // k = 0 is not reached for h < 0 at l = 0
 }

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "experiments/analysis/accessible_region.hpp"
+#include "experiments/analysis/kovalevskaya_critical.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/io/number_format.hpp"
 
@@ -194,16 +195,16 @@ std::vector<AppelrotPoint> appelrot_curves(double l_scaled, double h_lo, double 
 AppelrotDistance appelrot_distance(double l_scaled, double h, double k) {
   const double G = 0.5 * l_scaled * l_scaled;
   AppelrotDistance d;
-  auto consider = [&](int family, double value) {
-    if (std::abs(k - value) < d.distance) d.distance = std::abs(k - value), d.family = family;
+  auto consider = [&](int family, double value, double s) {
+    if (std::abs(k - value) < d.distance) d.distance = std::abs(k - value), d.family = family, d.s = s;
   };
-  consider(0, 0.0);
-  consider(1, (h - G) * (h - G));
+  consider(0, 0.0, h);
+  consider(1, (h - G) * (h - G), h);
   if (G == 0.0) {
-    consider(2, 1.0);
-    if (h > 0.0) consider(3, 1.0 + h * h);
+    consider(2, 1.0, h);
+    if (h > 0.0) consider(3, 1.0 + h * h, h);
   } else {
-    for (const double s : family2_parameters(h, G)) consider(2, family2_k(s, G));
+    for (const double s : family2_parameters(h, G)) consider(2, family2_k(s, G), s);
   }
   return d;
 }
@@ -245,18 +246,38 @@ std::vector<KRange> kovalevskaya_k_range(const HeavyTopBody& body, const Kovalev
 
 std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const KovalevskayaScale& scale,
                                         const std::vector<double>& ls, const std::vector<double>& hs) {
-  TableGroup curves{"appelrot"}, equilibria{"appelrot_equilibria"}, range{"appelrot_range"};
-  std::vector<TableColumn> c = {{"l"}, {"l_scaled"}, {"family", 1, true}, {"branch", 1, true}, {"s"}, {"h_scaled"}, {"k"}};
+  TableGroup curves{"appelrot"}, equilibria{"appelrot_equilibria"}, range{"appelrot_range"},
+      criticals{"appelrot_critical"};
+  std::vector<TableColumn> c = {{"l"}, {"l_scaled"}, {"family", 1, true}, {"branch", 1, true},
+                                {"s"}, {"h_scaled"}, {"k"},         {"realised", 1, true}};
   std::vector<TableColumn> e = {{"l"},     {"l_scaled"},     {"h"},     {"h_scaled"},  {"k"},
                                 {"omega"}, {"gamma", 3},     {"angular_momentum", 3}, {"family", 1, true},
                                 {"distance"}, {"stability", 1, true}};
   std::vector<TableColumn> r = {{"l"}, {"l_scaled"}, {"h"}, {"h_scaled"}, {"component", 1, true}, {"k_min"}, {"k_max"}};
+  std::vector<TableColumn> v = {{"l"},        {"l_scaled"},         {"h_scaled"},     {"k"},
+                                {"family", 1, true}, {"piece", 1, true}, {"distance"}, {"rank_gap"},
+                                {"gamma", 3}, {"angular_momentum_scaled", 3}};
+  const HeavyTopBody scaled = scaled_kovalevskaya(body);
+  std::vector<double> hs_scaled;
+  for (const double h : hs) hs_scaled.push_back(scale.h(h));
   for (const double l : ls) {
     const double l_scaled = scale.l(l);
-    for (const auto& p : appelrot_curves(l_scaled, scale.h(hs.front()), scale.h(hs.back()), 400)) {
+    const auto critical = kovalevskaya_critical_values(scaled, l_scaled, hs_scaled, 48);
+    const auto curve = appelrot_curves(l_scaled, hs_scaled.front(), hs_scaled.back(), 400);
+    const std::vector<int> realised = appelrot_realised(curve, l_scaled, hs_scaled, critical);
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      const AppelrotPoint& p = curve[i];
       c[0].real.push_back(l), c[1].real.push_back(l_scaled), c[2].whole.push_back(p.family), c[3].whole.push_back(p.branch);
-      c[4].real.push_back(p.s), c[5].real.push_back(p.h), c[6].real.push_back(p.k);
+      c[4].real.push_back(p.s), c[5].real.push_back(p.h), c[6].real.push_back(p.k), c[7].whole.push_back(realised[i]);
     }
+    for (const auto& at_h : critical)
+      for (const CriticalValue& q : at_h) {
+        v[0].real.push_back(l), v[1].real.push_back(l_scaled), v[2].real.push_back(q.h), v[3].real.push_back(q.k);
+        v[4].whole.push_back(q.family), v[5].whole.push_back(q.piece), v[6].real.push_back(q.distance);
+        v[7].real.push_back(q.rank_gap);
+        v[8].real.insert(v[8].real.end(), q.gamma.data(), q.gamma.data() + 3);
+        v[9].real.insert(v[9].real.end(), q.Pi.data(), q.Pi.data() + 3);
+      }
     for (const auto& q : equilibria_at(body, l).rows) {
       const double k = kovalevskaya_k(body, scale, q.gamma, q.angular_momentum);
       const AppelrotDistance d = appelrot_distance(l_scaled, scale.h(q.h), k);
@@ -277,13 +298,16 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
     }
   }
   const std::string scaling = "h_scaled = H/(J3 c), l_scaled = l/(J3 sqrt(c)), k = K/c^2 (docs/atlas.md section 9)";
-  curves.columns = c, equilibria.columns = e, range.columns = r;
-  for (TableGroup* g : {&curves, &equilibria, &range}) {
-    g->attributes["scaling"] = scaling;
-    g->attributes["J3"] = format_general(scale.J3, 17);
-    g->attributes["c"] = format_general(scale.c, 17);
+  curves.columns = c, equilibria.columns = e, range.columns = r, criticals.columns = v;
+  curves.attributes["realised"] =
+      "1 where the critical values of (H, K) on the leaf found at the grid energies h_scaled bracketing the point lie on "
+      "its family and arc (experiments/analysis/kovalevskaya_critical.hpp; docs/atlas.md section 9)";
+  for (TableGroup* t : {&curves, &equilibria, &range, &criticals}) {
+    t->attributes["scaling"] = scaling;
+    t->attributes["J3"] = format_general(scale.J3, 17);
+    t->attributes["c"] = format_general(scale.c, 17);
   }
-  return {curves, equilibria, range};
+  return {curves, equilibria, range, criticals};
 }
 
 }  // namespace lgi::experiments

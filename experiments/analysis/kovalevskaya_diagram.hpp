@@ -46,10 +46,11 @@ struct AppelrotPoint {
 /// The families at scaled ℓ̃, for h̃ in [h_lo, h_hi], `samples` points per family and branch.
 std::vector<AppelrotPoint> appelrot_curves(double l_scaled, double h_lo, double h_hi, int samples);
 
-/// The family nearest to (h̃, k) at scaled ℓ̃, and |k − k_family(h̃)|.
+/// The family nearest to (h̃, k) at scaled ℓ̃, |k − k_family(h̃)|, and the
+/// parameter s of that point (the root of family 2; h̃ for the others).
 struct AppelrotDistance {
   int family = -1;
-  double distance = INFINITY;
+  double distance = INFINITY, s = 0.0;
 };
 AppelrotDistance appelrot_distance(double l_scaled, double h, double k);
 

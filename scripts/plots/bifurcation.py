@@ -18,14 +18,18 @@ Lagrange top's carrousels and sleeping top (docs/atlas.md §5).
 A file of `lgi bifurcation --appelrot L,...` (a Kovalevskaya top) also gives
 DIR/appelrot_<file stem>.{pdf,png}: the (h, k) diagram at each l, in the scaled
 values h/(J3 c) and k = K/c² (docs/atlas.md §9): the range of k on the energy
-surfaces found by lgi (grey, "motion"; white, "no motion"), the arcs of the
+surfaces found by lgi (grey; white above it, "no motion"), the arcs of the
 Appelrot families (k = 0, k = (h − l²/2)², the parametric family, and at l = 0
-the line k = 1 + h²) that lie in that attained range (solid where they bound
-it, dotted inside it; the parts outside, which are no critical values of the
-motion, are not drawn) and the relative equilibria (black dots). --l-range
-and --l-nonneg choose the panels (values of l), --h-range and --k-range the
-window (default: from the least energy to 1.5 above the highest relative
-equilibrium, where the critical arcs are, and the attained k there).
+the line k = 1 + h²) that are realised as critical values of (H, K) on the
+leaf (column /appelrot realised, found by lgi's critical-point solver; the rest
+of the algebraic families is not drawn), the relative equilibria (black dots)
+and, in each region between the arcs, the number of Liouville tori over a
+regular value there (/appelrot_regions, counted by lgi). A file written before
+the realised column existed gets the older drawing: the arcs inside the
+attained range (solid where they bound it, dotted inside). --l-range and
+--l-nonneg choose the panels (values of l), --h-range and --k-range the window
+(default: from the least energy to 1.5 above the highest relative equilibrium,
+and the realised arcs' k there).
 """
 import os
 import tomllib
@@ -157,9 +161,27 @@ def attained(h, k, rng_h, rng_lo, rng_hi, comps):
     return out
 
 
-def label_regions(ax, rng, r, hlim, klim):
+def label_tori(ax, regions, l, hlim, klim):
+    """The number of Liouville tori over a regular value in each region between the realised arcs:
+    one label per sample point of /appelrot_regions in view, skipping a sample with the same count
+    as a label already placed within a fifth of the window (one label per region, roughly)."""
+    sel = (regions["l"] == l) & (regions["tori"] > 0)
+    placed = []
+    for h, k, n in zip(regions["h_scaled"][sel], regions["k"][sel], regions["tori"][sel]):
+        x, y = (h - hlim[0]) / (hlim[1] - hlim[0]), (k - klim[0]) / (klim[1] - klim[0])
+        if not (0.03 < x < 0.97 and 0.03 < y < 0.97):
+            continue
+        if any(m == n and abs(x - px) + abs(y - py) < 0.2 for px, py, m in placed):
+            continue
+        placed.append((x, y, n))
+        ax.text(h, k, str(int(n)), fontsize=6.5, ha="center", va="center", color="0.15", zorder=5,
+                bbox=dict(boxstyle="circle,pad=0.15", fc="white", ec="0.5", lw=0.5))
+
+
+def label_regions(ax, rng, r, hlim, klim, tori=False):
     """Name the two kinds of region of the (h, k) plane at a column in view: "motion" inside the
-    attained range (its widest point), "no motion" above it."""
+    attained range (its widest point; not where the regions carry their numbers of tori),
+    "no motion" above it."""
     hs = rng["h_scaled"][r]
     inview = r & (rng["h_scaled"] > hlim[0]) & (rng["h_scaled"] < hlim[1])
     if not np.any(inview):
@@ -168,20 +190,22 @@ def label_regions(ax, rng, r, hlim, klim):
     k = int(np.argmin(np.where(inview, np.abs(rng["h_scaled"] - target), np.inf)))
     h, lo, hi = rng["h_scaled"][k], rng["k_min"][k], rng["k_max"][k]
     box = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.7)
-    ax.text(h, 0.5 * (lo + hi), "motion", fontsize=6.5, ha="center", va="center", color="0.25", bbox=box)
+    if not tori:
+        ax.text(h, 0.5 * (lo + hi), "motion", fontsize=6.5, ha="center", va="center", color="0.25", bbox=box)
     top = hs.max() if len(hs) else hlim[1]
     above = hi + 0.12 * (klim[1] - klim[0])
     if above < klim[1] and h < top:
         ax.text(h, above, "no motion", fontsize=6.5, ha="center", va="bottom", color="0.45")
 
 
-def appelrot_panel(ax, l, cur, eq, rng, args):
+def appelrot_panel(ax, l, cur, eq, rng, regions, args):
     r = rng["l"] == l
     for comp in np.unique(rng["component"][r]):
         sel = r & (rng["component"] == comp)
         ax.fill_between(rng["h_scaled"][sel], rng["k_min"][sel], rng["k_max"][sel], color="0.85", lw=0,
                         label="attained $(h, k)$" if comp == 0 else None)
     kmax = rng["k_max"][r].max() if np.any(r) else 4.0
+    drawn_k = []  # k of the arcs drawn: the window frames them
     for fam, (label, colour) in FAMILIES.items():
         for branch in (-1, 0, 1):
             sel = (cur["l"] == l) & (cur["family"] == fam) & (cur["branch"] == branch)
@@ -189,8 +213,14 @@ def appelrot_panel(ax, l, cur, eq, rng, args):
                 continue
             order = np.argsort(cur["s"][sel])
             h, k = cur["h_scaled"][sel][order], cur["k"][sel][order]
-            where = attained(h, k, rng["h_scaled"][r], rng["k_min"][r], rng["k_max"][r], rng["component"][r])
             first = branch != 1 or fam != 2
+            if "realised" in cur:  # only the critical values lgi found (docs/atlas.md §9)
+                real = cur["realised"][sel][order] == 1
+                if np.any(real):
+                    ax.plot(h, np.where(real, k, np.nan), color=colour, lw=1.3, label=label if first else None)
+                    drawn_k.append((h[real], k[real]))
+                continue
+            where = attained(h, k, rng["h_scaled"][r], rng["k_min"][r], rng["k_max"][r], rng["component"][r])
             ax.plot(h, np.where(where == 2, k, np.nan), color=colour, lw=1.3, label=label if first else None)
             ax.plot(h, np.where(where == 1, k, np.nan), color=colour, lw=0.9, ls=":")
     e = eq["l"] == l
@@ -207,10 +237,16 @@ def appelrot_panel(ax, l, cur, eq, rng, args):
     else:
         view = r & (rng["h_scaled"] <= h1)
         kmax = rng["k_max"][view].max() if np.any(view) else kmax
-        k0, k1 = -0.05 * kmax, 1.1 * kmax
+        ks = [k[(h >= h0) & (h <= h1)] for h, k in drawn_k]
+        ks = np.concatenate(ks) if ks else np.array([])
+        if len(ks) and ks.max() > 0:  # frame the realised arcs
+            kmax = ks.max()
+        k0, k1 = -0.05 * kmax, 1.12 * kmax
     ax.set_xlim(h0, h1)
     ax.set_ylim(k0, k1)
-    label_regions(ax, rng, r, (h0, h1), (k0, k1))
+    label_regions(ax, rng, r, (h0, h1), (k0, k1), tori=regions is not None)
+    if regions is not None:
+        label_tori(ax, regions, l, (h0, h1), (k0, k1))
     ax.set_xlabel("$h / (J_3 c)$")
     ax.set_ylabel("$k = K / c^2$")
     ax.set_title(f"$\\ell$ = {c.num(l)} (scaled {c.num(cur['l_scaled'][cur['l'] == l][0])})", fontsize=8)
@@ -221,6 +257,8 @@ def appelrot_figure(f, stem, out, args):
     cur = {k: np.asarray(f["appelrot"][k][()]) for k in f["appelrot"]}
     eq = {k: np.asarray(f["appelrot_equilibria"][k][()]) for k in f["appelrot_equilibria"]}
     rng = {k: np.asarray(f["appelrot_range"][k][()]) for k in f["appelrot_range"]}
+    regions = ({k: np.asarray(f["appelrot_regions"][k][()]) for k in f["appelrot_regions"]}
+               if "appelrot_regions" in f else None)
     ls = np.unique(cur["l"])
     if args.l_nonneg:
         ls = ls[ls >= 0]
@@ -232,12 +270,16 @@ def appelrot_figure(f, stem, out, args):
     rows = (len(ls) + cols - 1) // cols
     fig, axes = c.plt.subplots(rows, cols, figsize=(3.2 * cols, 2.9 * rows), squeeze=False)
     for ax, l in zip(axes.ravel(), ls):
-        appelrot_panel(ax, l, cur, eq, rng, args)
+        appelrot_panel(ax, l, cur, eq, rng, regions, args)
     for ax in axes.ravel()[len(ls):]:
         ax.axis("off")
     handles, labels = axes.ravel()[0].get_legend_handles_labels()
-    handles.append(c.plt.Line2D([], [], color="0.3", ls=":"))
-    labels.append("arc inside the attained range")
+    if "realised" not in cur:
+        handles.append(c.plt.Line2D([], [], color="0.3", ls=":"))
+        labels.append("arc inside the attained range")
+    if regions is not None:
+        handles.append(c.plt.Line2D([], [], ls="none", marker="o", mfc="white", mec="0.5", ms=7))
+        labels.append("n: Liouville tori over a regular value")
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, -0.02))
     fig.tight_layout(rect=(0, 0.1 if rows == 1 else 0.06, 1, 1))
     c.save(fig, out, f"appelrot_{stem}")
