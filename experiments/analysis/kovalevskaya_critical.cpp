@@ -4,9 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
-#include "experiments/analysis/accessible_region.hpp"
 
 namespace lgi::experiments {
 
@@ -84,9 +82,11 @@ bool solve_critical(const HeavyTopBody& b, double l, double h, Vec6& x) {
       x = z.head<6>();
       return true;
     }
-    Eigen::JacobiSVD<Mat9> svd(lagrange_jacobian(b, z), Eigen::ComputeFullU | Eigen::ComputeFullV);
-    svd.setThreshold(1e-9);
-    Vec9 d = svd.solve(-F);
+    // The complete orthogonal decomposition gives the minimum-norm least-squares step.
+    Eigen::CompleteOrthogonalDecomposition<Mat9> cod;
+    cod.setThreshold(1e-9);
+    cod.compute(lagrange_jacobian(b, z));
+    Vec9 d = cod.solve(-F);
     const double n = d.norm();
     if (!std::isfinite(n)) return false;
     if (n > 0.5) d *= 0.5 / n;  // a damped step far from a solution
@@ -97,25 +97,13 @@ bool solve_critical(const HeavyTopBody& b, double l, double h, Vec6& x) {
 
 }  // namespace
 
-// Fibonacci directions, each with two directions of the kinetic part perpendicular to the mean.
-std::vector<Vec6> energy_surface_lattice(const HeavyTopBody& b, double l, double h, int seeds) {
-  std::vector<Vec6> out;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < seeds; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / seeds, r = std::sqrt(1.0 - z * z);
-    const Vec3 g(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    const double excess = h - amended_potential(b, l, g);
-    if (!(excess >= 0.0)) continue;
-    const Vec3 ea = g.unitOrthogonal(), eb = g.cross(ea);
-    for (const double a : {0.37 * i, 0.37 * i + 0.5 * std::numbers::pi}) {
-      Vec3 d = std::cos(a) * ea + std::sin(a) * eb;
-      d *= std::sqrt(2.0 * excess / d.dot(b.J.inverse() * d));
-      Vec6 x;
-      x << g, (l / g.dot(b.J * g)) * (b.J * g) + d;
-      out.push_back(x);
-    }
-  }
-  return out;
+SecondIntegral kovalevskaya_integral(const HeavyTopBody& scaled) {
+  return [scaled](const StateVec6& x) {
+    IntegralValue q;
+    q.value = kovalevskaya_k(scaled, KovalevskayaScale{1.0, 1.0}, x.head<3>(), x.tail<3>());
+    q.gradient = gradients(scaled, x).k;
+    return q;
+  };
 }
 
 HeavyTopBody scaled_kovalevskaya(const HeavyTopBody& body) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
+#include "experiments/analysis/level_set_components.hpp"
 
 namespace lgi::experiments {
 
@@ -30,9 +31,8 @@ struct CriticalValue {
   double distance = INFINITY, rank_gap = 1.0;
 };
 
-/// A lattice of states (Γ, Π) on {H = h̃, C = ℓ̃, |Γ| = 1} of the scaled top: Fibonacci
-/// directions Γ where the energy allows, two kinetic directions each.
-std::vector<Eigen::Matrix<double, 6, 1>> energy_surface_lattice(const HeavyTopBody& scaled, double l, double h, int seeds);
+/// k of the scaled top with its gradient in (Γ, Π), for level_set_components.
+SecondIntegral kovalevskaya_integral(const HeavyTopBody& scaled);
 
 /// The scaled Kovalevskaya top (J3 = 1, c = 1) with the sign of m g χ1 of `body`.
 HeavyTopBody scaled_kovalevskaya(const HeavyTopBody& body);

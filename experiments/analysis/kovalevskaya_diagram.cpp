@@ -10,6 +10,7 @@
 
 #include "experiments/analysis/accessible_region.hpp"
 #include "experiments/analysis/kovalevskaya_critical.hpp"
+#include "experiments/analysis/kovalevskaya_regions.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/io/number_format.hpp"
 
@@ -247,7 +248,7 @@ std::vector<KRange> kovalevskaya_k_range(const HeavyTopBody& body, const Kovalev
 std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const KovalevskayaScale& scale,
                                         const std::vector<double>& ls, const std::vector<double>& hs) {
   TableGroup curves{"appelrot"}, equilibria{"appelrot_equilibria"}, range{"appelrot_range"},
-      criticals{"appelrot_critical"};
+      criticals{"appelrot_critical"}, regions{"appelrot_regions"};
   std::vector<TableColumn> c = {{"l"}, {"l_scaled"}, {"family", 1, true}, {"branch", 1, true},
                                 {"s"}, {"h_scaled"}, {"k"},         {"realised", 1, true}};
   std::vector<TableColumn> e = {{"l"},     {"l_scaled"},     {"h"},     {"h_scaled"},  {"k"},
@@ -257,6 +258,7 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
   std::vector<TableColumn> v = {{"l"},        {"l_scaled"},         {"h_scaled"},     {"k"},
                                 {"family", 1, true}, {"piece", 1, true}, {"distance"}, {"rank_gap"},
                                 {"gamma", 3}, {"angular_momentum_scaled", 3}};
+  std::vector<TableColumn> t = {{"l"}, {"l_scaled"}, {"h_scaled"}, {"k"}, {"tori", 1, true}, {"points", 1, true}};
   const HeavyTopBody scaled = scaled_kovalevskaya(body);
   std::vector<double> hs_scaled;
   for (const double h : hs) hs_scaled.push_back(scale.h(h));
@@ -289,25 +291,36 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
       e[10].whole.push_back(static_cast<std::int64_t>(q.stability));
     }
     const double lowest = minimum_energy(body, l);
+    std::vector<RangeAtEnergy> ranges;
     for (const double h : hs) {
       if (!(h > lowest)) continue;
-      for (const auto& k : kovalevskaya_k_range(body, scale, l, h)) {
+      ranges.push_back({scale.h(h), kovalevskaya_k_range(body, scale, l, h)});
+      for (const auto& k : ranges.back().components) {
         r[0].real.push_back(l), r[1].real.push_back(l_scaled), r[2].real.push_back(h), r[3].real.push_back(scale.h(h));
         r[4].whole.push_back(k.component), r[5].real.push_back(k.k_min), r[6].real.push_back(k.k_max);
       }
     }
+    for (const RegionSample& q : kovalevskaya_region_samples(scaled, l_scaled, ranges, 3, 500)) {
+      t[0].real.push_back(l), t[1].real.push_back(l_scaled), t[2].real.push_back(q.h), t[3].real.push_back(q.k);
+      t[4].whole.push_back(q.tori), t[5].whole.push_back(q.points);
+    }
   }
   const std::string scaling = "h_scaled = H/(J3 c), l_scaled = l/(J3 sqrt(c)), k = K/c^2 (docs/atlas.md section 9)";
   curves.columns = c, equilibria.columns = e, range.columns = r, criticals.columns = v;
+  regions.columns = t;
+  regions.attributes["tori"] =
+      "the number of connected components of the level set {H = h, K = k, C = l, |Gamma| = 1} (Liouville tori), counted "
+      "from lattice states moved onto it; -1 where the linking radii r and 2r disagree "
+      "(experiments/analysis/level_set_components.hpp)";
   curves.attributes["realised"] =
       "1 where the critical values of (H, K) on the leaf found at the grid energies h_scaled bracketing the point lie on "
       "its family and arc (experiments/analysis/kovalevskaya_critical.hpp; docs/atlas.md section 9)";
-  for (TableGroup* t : {&curves, &equilibria, &range, &criticals}) {
-    t->attributes["scaling"] = scaling;
-    t->attributes["J3"] = format_general(scale.J3, 17);
-    t->attributes["c"] = format_general(scale.c, 17);
+  for (TableGroup* g : {&curves, &equilibria, &range, &criticals, &regions}) {
+    g->attributes["scaling"] = scaling;
+    g->attributes["J3"] = format_general(scale.J3, 17);
+    g->attributes["c"] = format_general(scale.c, 17);
   }
-  return {curves, equilibria, range, criticals};
+  return {curves, equilibria, range, criticals, regions};
 }
 
 }  // namespace lgi::experiments

@@ -161,21 +161,64 @@ def attained(h, k, rng_h, rng_lo, rng_hi, comps):
     return out
 
 
-def label_tori(ax, regions, l, hlim, klim):
-    """The number of Liouville tori over a regular value in each region between the realised arcs:
-    one label per sample point of /appelrot_regions in view, skipping a sample with the same count
-    as a label already placed within a fifth of the window (one label per region, roughly)."""
-    sel = (regions["l"] == l) & (regions["tori"] > 0)
-    placed = []
-    for h, k, n in zip(regions["h_scaled"][sel], regions["k"][sel], regions["tori"][sel]):
-        x, y = (h - hlim[0]) / (hlim[1] - hlim[0]), (k - klim[0]) / (klim[1] - klim[0])
-        if not (0.03 < x < 0.97 and 0.03 < y < 0.97):
+def chamber_map(walls, rng, r, hlim, klim, size=240):
+    """The chambers of the (h, k) window: the connected parts of the attained range that the
+    realised arcs (walls) cut apart, on a size × size raster. Returns (labels, count, hs, ks)."""
+    from scipy import ndimage
+    hs = np.linspace(hlim[0], hlim[1], size)
+    ks = np.linspace(klim[0], klim[1], size)
+    H, K = np.meshgrid(hs, ks)
+    inside = np.zeros(H.shape, dtype=bool)
+    for comp in np.unique(rng["component"][r]):
+        sel = r & (rng["component"] == comp)
+        order = np.argsort(rng["h_scaled"][sel])
+        h, lo, hi = rng["h_scaled"][sel][order], rng["k_min"][sel][order], rng["k_max"][sel][order]
+        if len(h) > 1:
+            inside |= (H >= h[0]) & (H <= h[-1]) & (K > np.interp(H, h, lo)) & (K < np.interp(H, h, hi))
+    wall = np.zeros(H.shape, dtype=bool)
+    for h, k in walls:  # rasterise each arc, densified so that it leaves no holes
+        ok = np.isfinite(k)
+        for i in range(len(h) - 1):
+            if not (ok[i] and ok[i + 1]):
+                continue
+            t = np.linspace(0.0, 1.0, 8)
+            x = (h[i] + t * (h[i + 1] - h[i]) - hlim[0]) / (hlim[1] - hlim[0]) * (size - 1)
+            y = (k[i] + t * (k[i + 1] - k[i]) - klim[0]) / (klim[1] - klim[0]) * (size - 1)
+            sel = (x >= 0) & (x <= size - 1) & (y >= 0) & (y <= size - 1)
+            wall[np.rint(y[sel]).astype(int), np.rint(x[sel]).astype(int)] = True
+    wall = ndimage.binary_dilation(wall, iterations=2)
+    labels, count = ndimage.label(inside & ~wall)
+    return labels, count, hs, ks
+
+
+def label_chambers(ax, walls, rng, r, regions, l, hlim, klim):
+    """Letter each chamber between the realised arcs (A, B, ... in order of least h) at its
+    point farthest from the walls, and add its number of Liouville tori when lgi's counts
+    (/appelrot_regions) in it are resolved and agree ("A: 2"); chambers under 0.5 % of the
+    window are left unlabelled."""
+    from scipy import ndimage
+    labels, count, hs, ks = chamber_map(walls, rng, r, hlim, klim)
+    found = []
+    for i in range(1, count + 1):
+        cell = labels == i
+        if cell.mean() < 0.005:
             continue
-        if any(m == n and abs(x - px) + abs(y - py) < 0.2 for px, py, m in placed):
-            continue
-        placed.append((x, y, n))
-        ax.text(h, k, str(int(n)), fontsize=6.5, ha="center", va="center", color="0.15", zorder=5,
-                bbox=dict(boxstyle="circle,pad=0.15", fc="white", ec="0.5", lw=0.5))
+        depth = ndimage.distance_transform_edt(np.pad(cell, 1))[1:-1, 1:-1]  # the frame counts as a wall
+        y, x = np.unravel_index(np.argmax(depth), depth.shape)
+        found.append((hs[x], ks[y], i))
+    found.sort()
+    for letter, (h, k, i) in zip("ABCDEFGHIJKLMNOPQRSTUVWXYZ", found):
+        text = letter
+        if regions is not None:
+            sel = (regions["l"] == l)
+            px = np.rint((regions["h_scaled"][sel] - hlim[0]) / (hlim[1] - hlim[0]) * (len(hs) - 1)).astype(int)
+            py = np.rint((regions["k"][sel] - klim[0]) / (klim[1] - klim[0]) * (len(ks) - 1)).astype(int)
+            view = (px >= 0) & (px < len(hs)) & (py >= 0) & (py < len(ks))
+            tori = regions["tori"][sel][view][labels[py[view], px[view]] == i]
+            if len(tori) and np.all(tori > 0) and np.all(tori == tori[0]):
+                text = f"{letter}: {int(tori[0])}"
+        ax.text(h, k, text, fontsize=6.5, ha="center", va="center", color="0.15", zorder=5,
+                bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.5", lw=0.5))
 
 
 def label_regions(ax, rng, r, hlim, klim, tori=False):
@@ -206,6 +249,7 @@ def appelrot_panel(ax, l, cur, eq, rng, regions, args):
                         label="attained $(h, k)$" if comp == 0 else None)
     kmax = rng["k_max"][r].max() if np.any(r) else 4.0
     drawn_k = []  # k of the arcs drawn: the window frames them
+    walls = []  # the realised arcs, NaN where not realised: they bound the chambers
     for fam, (label, colour) in FAMILIES.items():
         for branch in (-1, 0, 1):
             sel = (cur["l"] == l) & (cur["family"] == fam) & (cur["branch"] == branch)
@@ -219,6 +263,7 @@ def appelrot_panel(ax, l, cur, eq, rng, regions, args):
                 if np.any(real):
                     ax.plot(h, np.where(real, k, np.nan), color=colour, lw=1.3, label=label if first else None)
                     drawn_k.append((h[real], k[real]))
+                    walls.append((h, np.where(real, k, np.nan)))
                 continue
             where = attained(h, k, rng["h_scaled"][r], rng["k_min"][r], rng["k_max"][r], rng["component"][r])
             ax.plot(h, np.where(where == 2, k, np.nan), color=colour, lw=1.3, label=label if first else None)
@@ -244,9 +289,9 @@ def appelrot_panel(ax, l, cur, eq, rng, regions, args):
         k0, k1 = -0.05 * kmax, 1.12 * kmax
     ax.set_xlim(h0, h1)
     ax.set_ylim(k0, k1)
-    label_regions(ax, rng, r, (h0, h1), (k0, k1), tori=regions is not None)
-    if regions is not None:
-        label_tori(ax, regions, l, (h0, h1), (k0, k1))
+    label_regions(ax, rng, r, (h0, h1), (k0, k1), tori="realised" in cur)
+    if "realised" in cur:
+        label_chambers(ax, walls, rng, r, regions, l, (h0, h1), (k0, k1))
     ax.set_xlabel("$h / (J_3 c)$")
     ax.set_ylabel("$k = K / c^2$")
     ax.set_title(f"$\\ell$ = {c.num(l)} (scaled {c.num(cur['l_scaled'][cur['l'] == l][0])})", fontsize=8)
@@ -277,9 +322,9 @@ def appelrot_figure(f, stem, out, args):
     if "realised" not in cur:
         handles.append(c.plt.Line2D([], [], color="0.3", ls=":"))
         labels.append("arc inside the attained range")
-    if regions is not None:
-        handles.append(c.plt.Line2D([], [], ls="none", marker="o", mfc="white", mec="0.5", ms=7))
-        labels.append("n: Liouville tori over a regular value")
+    if "realised" in cur:
+        handles.append(c.plt.Line2D([], [], ls="none", marker="s", mfc="white", mec="0.5", ms=7))
+        labels.append("A, B, ...: chambers between the realised arcs; A: n, n Liouville tori over each value")
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, -0.02))
     fig.tight_layout(rect=(0, 0.1 if rows == 1 else 0.06, 1, 1))
     c.save(fig, out, f"appelrot_{stem}")

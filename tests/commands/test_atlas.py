@@ -113,7 +113,7 @@ def appelrot_curves_k(l_scaled, h):
 
 def test_appelrot_diagram(tmp_path):
     out = str(tmp_path / "k.h5")
-    lgi("bifurcation", "--scene", KOVALEVSKAYA, "--appelrot", "0,1,2", "--appelrot-h", "-1:4:11", "--out", out,
+    lgi("bifurcation", "--scene", KOVALEVSKAYA, "--appelrot", "0,1,2", "--appelrot-h", "-1:4:51", "--out", out,
         "--quiet")
     eq, _ = group(out, "appelrot_equilibria")
     assert len(eq["k"]) >= 8
@@ -127,6 +127,19 @@ def test_appelrot_diagram(tmp_path):
         assert np.min(np.abs(fam - hi)) < 1e-6 * (1 + hi), (l, h, hi)
     cur, _ = group(out, "appelrot")
     assert set(np.unique(cur["family"])) == {0, 1, 2, 3}
+    # Realised arcs at l = 0 (docs/atlas.md section 9): k = 0 only for h > 0; k = h^2 for -1 < h < 0.
+    at0 = cur["l"] == 0
+    k0 = at0 & (cur["family"] == 0)
+    assert np.all(cur["realised"][k0 & (cur["h_scaled"] > 0.2)] == 1)
+    assert np.all(cur["realised"][k0 & (cur["h_scaled"] < -0.2)] == 0)
+    k1 = at0 & (cur["family"] == 1) & (cur["h_scaled"] > -0.8) & (cur["h_scaled"] < -0.2)
+    assert k1.any() and np.all(cur["realised"][k1] == 1)
+    crit, _ = group(out, "appelrot_critical")  # every critical value found lies on a family, at rank < 4
+    assert len(crit["k"]) > 50 and np.all(crit["family"] >= 0) and np.all(crit["rank_gap"] < 1e-7)
+    for l, h, k in zip(crit["l_scaled"], crit["h_scaled"], crit["k"]):
+        assert np.min(np.abs(appelrot_curves_k(l, h) - k)) < 1e-6 * (1 + k), (l, h, k)
+    regions, _ = group(out, "appelrot_regions")
+    assert len(regions["tori"]) > 20 and set(np.unique(regions["tori"])) <= {-1, 1, 2, 3, 4}
     main, _ = group(out, "equilibria")  # the (l, h) branches are still there
     assert len(main["l"]) > 100
     r = lgi("bifurcation", "--scene", GENERAL, "--appelrot", "1", "--out", str(tmp_path / "g.h5"), check=False)

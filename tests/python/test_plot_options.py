@@ -79,6 +79,22 @@ def test_appelrot_arcs_only_where_attained(tmp_path):
     assert "no value of l" in r.stderr
 
 
+def test_appelrot_chambers():
+    # A range 0 < k < 4 for h in [0, 4], cut by a realised wall k = 2 on h in [0, 4] with a hole
+    # (not realised) for h in [1.5, 2.5]: one chamber; with the hole filled: two.
+    rng = {"l": np.zeros(9), "h_scaled": np.linspace(0, 4, 9), "k_min": np.zeros(9), "k_max": np.full(9, 4.0),
+           "component": np.zeros(9, dtype=int)}
+    r = rng["l"] == 0
+    h = np.linspace(0, 4, 81)
+    k = np.full(81, 2.0)
+    hole = np.where((h > 1.5) & (h < 2.5), np.nan, k)
+    _, count, _, _ = bifurcation.chamber_map([(h, hole)], rng, r, (0, 4), (0, 4))
+    assert count == 1
+    labels, count, hs, ks = bifurcation.chamber_map([(h, k)], rng, r, (0, 4), (0, 4))
+    assert count == 2
+    assert labels[np.searchsorted(ks, 1.0), 120] != labels[np.searchsorted(ks, 3.0), 120]
+
+
 def test_region_cells_window(tmp_path):
     cells = tmp_path / "cells.h5"
     lgi("region", "--scene", SCENES / "lagrange_top_oblate.toml", "--cells", "--l-range", "-1:3:9", "--h-range",
