@@ -260,14 +260,43 @@ struct CircleFit {
   int k = 1;
   double rho = 0.0;
   CurveFit fit;
+  bool one_circle = false;  // k > 1 fitted, but the other returns lie on the same circle
 };
+
+/// The median distance of the points (Π relative to pi_scale, Γ) to the fitted curve,
+/// sampled at 8192 values of α.
+double median_distance_to_curve(const CurveFit& f, const std::vector<SectionPoint4>& pts, double pi_scale) {
+  constexpr int q = 8192;
+  std::vector<Point6> curve(q);
+  for (int j = 0; j < q; ++j) {
+    const double a = static_cast<double>(j) / q;
+    Point6 x = f.coef.row(0).transpose();
+    for (int m = 1; m <= f.M; ++m)
+      x += std::cos(2.0 * pi * m * a) * f.coef.row(2 * m - 1).transpose() +
+           std::sin(2.0 * pi * m * a) * f.coef.row(2 * m).transpose();
+    x.head<3>() /= pi_scale;
+    curve[static_cast<std::size_t>(j)] = x;
+  }
+  std::vector<double> d;
+  for (const auto& p : pts) {
+    const Point6 y = (Point6() << p.Pi / pi_scale, p.Gamma).finished();
+    double least = std::numeric_limits<double>::infinity();
+    for (const Point6& x : curve) least = std::min(least, (x - y).squaredNorm());
+    d.push_back(std::sqrt(least));
+  }
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
+/// The most circles a section may cut from a torus.
+constexpr int max_circles = 6;
 
 CircleFit fit_section_circles(const std::vector<SectionPoint4>& pts, const NumericalTorusOptions& options) {
   CircleFit best;
   best.fit.residual = std::numeric_limits<double>::infinity();
   double pi_scale = 0.0;
   for (const auto& p : pts) pi_scale = std::max(pi_scale, p.Pi.norm());
-  for (int k = 1; k <= 3; ++k) {
+  for (int k = 1; k <= max_circles; ++k) {
     std::vector<SectionPoint4> circle;
     std::vector<Point6> y;
     for (std::size_t j = 0; j < pts.size(); j += static_cast<std::size_t>(k)) {
@@ -294,6 +323,12 @@ CircleFit fit_section_circles(const std::vector<SectionPoint4>& pts, const Numer
       CircleFit one{1, rho, fit_section_curve(pts, rho, options.harmonics, pi_scale)};
       if (one.fit.residual < options.max_fit_residual) return one;
     }
+    // No single ρ fits, yet if the next returns lie on the same circle the section is one circle
+    // and cycle b = k returns is not a basis cycle: the actions would be wrong, so it is refused.
+    std::vector<SectionPoint4> next;
+    for (std::size_t j = 1; j < pts.size() && next.size() < 256; j += static_cast<std::size_t>(best.k))
+      next.push_back(pts[j]);
+    best.one_circle = median_distance_to_curve(best.fit, next, pi_scale) < 5e-3;
   }
   return best;
 }
@@ -384,8 +419,12 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
     return failed(r, TorusFailure::resonance,
                   "the section points leave gaps in the angle k rho after " + std::to_string(r.crossings) +
                       " crossings (near a resonance)");
+  if (c.one_circle)
+    return failed(r, TorusFailure::fit,
+                  "the section is one circle met every " + std::to_string(c.k) +
+                      "th return, but no single rotation number fits it (raise the crossings or lower --dt)");
   if (!(r.fit_residual < options.max_fit_residual))
-    return failed(r, TorusFailure::fit, "the section is not k <= 3 smooth circles (fit residual " +
+    return failed(r, TorusFailure::fit, "the section is not k <= " + std::to_string(max_circles) + " smooth circles (fit residual " +
                                             std::to_string(r.fit_residual) + " after " + std::to_string(r.crossings) +
                                             " crossings)");
   double least_sin2 = 0.0;

@@ -1,5 +1,5 @@
 // lgi actions --scene FILE --out FILE.h5 [--h H [--grid N] [--l L1,L2,.. --tori N]]
-//             [--scheme S] [--dt DT] [--crossings N] [--force] [--quiet]
+//             [--scheme S] [--dt DT] [--crossings N] [--harmonics M] [--force] [--quiet]
 // The action variables of the tori of an integrable top (analysis/actions.hpp;
 // formulas: docs/actions.md; layout: experiments/ACTIONS.md). Without --h:
 // the torus of the scene's initial state, in closed form (Lagrange, Euler)
@@ -30,10 +30,10 @@ namespace lgi::experiments {
 namespace {
 
 struct ActionsOptions {
-  std::string scene, out, scheme = "rkmk4";
+  std::string scene, out, scheme = experiments::NumericalTorusOptions::default_scheme;
   std::optional<double> h, dt;
   std::vector<double> l;
-  int grid = 61, tori = 12, crossings = 400;
+  int grid = 61, tori = 12, crossings = 400, harmonics = NumericalTorusOptions{}.harmonics;
   bool force = false, quiet = false;
   std::string command_line;
 };
@@ -77,6 +77,7 @@ Row numerical_row(const system::Scene& scene, const system::State& x, const Acti
   opt.scheme = o.scheme;
   opt.dt = o.dt.value_or(scene.dt.value_or(1e-2));
   opt.crossings = o.crossings;
+  opt.harmonics = o.harmonics;
   const NumericalTorus t = numerical_torus(scene, x, opt);
   Row r;
   r.method = numerical;
@@ -173,8 +174,14 @@ void check_flags(const ActionsOptions& o) {
   if (o.grid < 2 || o.grid > 2000) throw UsageError("--grid: must be between 2 and 2000");
   if (o.tori < 1) throw UsageError("--tori: must be at least 1");
   if (o.crossings < 16) throw UsageError("--crossings: must be at least 16");
+  if (o.harmonics < 8 || o.harmonics > 512) throw UsageError("--harmonics: must be between 8 and 512");
   if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
-  if (integrators::find_scheme(o.scheme) == nullptr) throw UsageError("--scheme: unknown scheme " + o.scheme);
+  const integrators::SchemeInfo* info = integrators::find_scheme(o.scheme);
+  if (info == nullptr) throw UsageError("--scheme: unknown scheme " + o.scheme);
+  // The tori need every step on a fixed grid and their section crossings located (actions_torus.cpp).
+  if (info->properties.adaptive || !info->locates_events)
+    throw UsageError("--scheme: " + o.scheme + " is " + (info->properties.adaptive ? "adaptive" : "not event-locating") +
+                     "; the numerical tori need a fixed-step scheme that locates events");
 }
 
 int run_actions(const ActionsOptions& o) {
@@ -187,6 +194,7 @@ int run_actions(const ActionsOptions& o) {
       {"subcommand", "actions"},      {"command_line", o.command_line},  {"scene_file", scene.file},
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
       {"cxx_flags", build_info::cxx_flags}, {"scheme", o.scheme},          {"crossings", std::to_string(o.crossings)},
+      {"harmonics", std::to_string(o.harmonics)},
       {"methods", "0: Lagrange closed form (l, L3, I_theta); 1: Euler closed form (l, G, I_l); "
                   "2: numerical (l, I_a, I_b)"}};
   if (o.h) parameters["h"] = format_general(*o.h, 17);
@@ -228,6 +236,8 @@ Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context) 
   sub->add_option("--scheme", o->scheme, "Scheme of the numerical tori")->capture_default_str();
   sub->add_option("--dt", o->dt, "Step of the numerical tori. Default: the scene's [run] dt, else 0.01");
   sub->add_option("--crossings", o->crossings, "Section crossings per numerical torus")->capture_default_str();
+  sub->add_option("--harmonics", o->harmonics, "Most Fourier modes of a numerical torus's section curve")
+      ->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
   return {sub,
