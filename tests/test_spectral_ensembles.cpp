@@ -147,7 +147,7 @@ TEST_CASE("two GOE spectra merged look intermediate; split by class they are GOE
   INFO("mixed beta " << mixed.brody.beta << " +- " << mixed.brody.standard_error);
   CHECK(mixed.brody.beta > 0.1);
   CHECK(mixed.brody.beta < 0.6);
-  // P(0) of two independent equal components is 1/2 (Haake §4.14): the first bin is far from 0.
+  // P(0) of two independent equal components is 1/2 (Haake ch. 4): the first bin is far from 0.
   CHECK(mixed.histogram.density[0] > 0.3);
 
   const std::vector<ClassStatistics> split = statistics_by_class(

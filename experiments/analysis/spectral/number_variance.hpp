@@ -1,8 +1,8 @@
 #pragma once
 // The number variance Σ²(L): the variance of the number n(x, L) of unfolded
 // levels in a window [x, x + L] over the window starts x (Haake, Quantum
-// Signatures of Chaos, 4th ed. 2018, §4.12; M. L. Mehta, Random Matrices,
-// 3rd ed. 2004, §16.1; docs/spectral_statistics.md §4). Σ²(L) = L for
+// Signatures of Chaos, 4th ed. 2018, ch. 4; M. L. Mehta, Random Matrices,
+// 3rd ed. 2004, ch. 16; docs/spectral_statistics.md §4). Σ²(L) = L for
 // Poisson levels, ~ (2/π²) ln L for the GOE, 0 at integer L for a picket fence.
 #include <span>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Nearest-neighbour spacings of an unfolded spectrum and their histogram
-// (Haake, Quantum Signatures of Chaos, 4th ed. 2018, §4.1, §4.12;
+// (Haake, Quantum Signatures of Chaos, 4th ed. 2018, ch. 4;
 // docs/spectral_statistics.md §2).
 #include <cstddef>
 #include <span>

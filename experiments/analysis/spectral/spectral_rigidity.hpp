@@ -5,7 +5,7 @@
 //   Δ₃(x, L) = min_{A,B} (1/L) ∫_x^{x+L} [N(ξ) − Aξ − B]² dξ,
 // averaged over the window starts x (O. Bohigas and M.-J. Giannoni, Lecture
 // Notes in Physics 209 (1984) 1; Haake, Quantum Signatures of Chaos, 4th ed.
-// 2018, §4.12; docs/spectral_statistics.md §4). L/15 for Poisson levels,
+// 2018, ch. 4; docs/spectral_statistics.md §4). L/15 for Poisson levels,
 // ~ (1/π²) ln L for the GOE, 1/12 − 1/(60 L²) at integer L for a picket fence.
 #include <span>
 

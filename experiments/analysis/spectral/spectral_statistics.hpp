@@ -4,7 +4,7 @@
 // the same per symmetry class (docs/spectral_statistics.md §7). Levels of
 // different symmetry classes are independent of one another, and a
 // superposition of independent spectra looks more Poissonian than each of
-// them (Haake, Quantum Signatures of Chaos, 4th ed. 2018, §4.14; for m
+// them (Haake, Quantum Signatures of Chaos, 4th ed. 2018, ch. 4; for m
 // classes of fractions f_i, Σ²(L) = Σ_i Σ²_i(f_i L)): split first.
 #include <cstddef>
 #include <functional>

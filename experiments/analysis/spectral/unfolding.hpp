@@ -3,7 +3,7 @@
 // function, x_i = N_smooth(E_i), so that the unfolded levels have mean
 // spacing 1 everywhere and fluctuation statistics of different parts of a
 // spectrum (and of different spectra) can be compared (Haake, Quantum
-// Signatures of Chaos, 4th ed. 2018, §4.12; docs/spectral_statistics.md §1).
+// Signatures of Chaos, 4th ed. 2018, ch. 4; docs/spectral_statistics.md §1).
 // N_smooth should be Weyl's law, the phase-space volume below E over
 // (2πħ)^d, whenever the caller has it; the polynomial fit of the staircase
 // here is the fallback for when it does not.
