@@ -215,6 +215,8 @@ TEST_CASE("unfolding: the staircase fit, a counting function, and bad input", "[
   CHECK_THROWS_AS(spacing_histogram(std::vector<double>{1, 2}, 0.0, 4.0), InputError);
   const std::vector<int> labels{0, 1};
   CHECK_THROWS_AS(statistics_by_class(std::vector<double>{1, 2, 3}, labels), InputError);
+  const std::vector<int> three{0, 0, 0};
+  CHECK_THROWS_AS(statistics_by_class(std::vector<double>{1, NAN, 3}, three), InputError);
   // A class with too few levels is kept, marked, with nothing computed.
   const std::vector<double> few{0.1, 0.5, 0.2, 0.9, 1.3, 1.7, 2.0, 2.2, 2.9, 3.3};
   const std::vector<int> few_labels{0, 0, 0, 0, 0, 0, 0, 0, 0, 1};

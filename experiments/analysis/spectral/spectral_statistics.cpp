@@ -2,6 +2,7 @@
 #include "experiments/analysis/spectral/spectral_statistics.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -30,7 +31,12 @@ std::vector<ClassStatistics> statistics_by_class(std::span<const double> levels,
     throw InputError("spectral statistics: " + std::to_string(levels.size()) + " levels but " +
                      std::to_string(classes.size()) + " class labels");
   std::map<int, std::vector<double>> by_class;
-  for (std::size_t i = 0; i < levels.size(); ++i) by_class[classes[i]].push_back(levels[i]);
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    // Checked before sorting: a NaN breaks std::sort's ordering.
+    if (!std::isfinite(levels[i]))
+      throw InputError("spectral statistics: level " + std::to_string(i) + " is not a finite number");
+    by_class[classes[i]].push_back(levels[i]);
+  }
   std::vector<ClassStatistics> out;
   const std::size_t needed =
       n_smooth ? 3 : std::max<std::size_t>(3, static_cast<std::size_t>(std::max(options.fit_degree, 1)) + 2);
