@@ -165,8 +165,8 @@ TEST_CASE("the ML Brody estimate on 1000 Poisson and GOE levels over seeds", "[.
     double sum = 0, sum2 = 0, se = 0;
     const int seeds = 8;
     for (int seed = 1; seed <= seeds; ++seed) {
-      const std::vector<double> x =
-          kind == 0 ? poisson_levels(1000, static_cast<std::uint64_t>(seed)) : goe_unfolded(1118, static_cast<std::uint64_t>(seed));
+      const auto u = static_cast<std::uint64_t>(seed);
+      const std::vector<double> x = kind == 0 ? poisson_levels(1000, u) : goe_unfolded(1118, u);
       const BrodyFit f = fit_brody(nearest_spacings(x));
       std::printf("%s seed %d: %zu levels, beta = %.4f +- %.4f (bound %d)\n", kind ? "GOE" : "Poisson", seed, x.size(),
                   f.beta, f.standard_error, f.bound);

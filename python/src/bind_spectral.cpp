@@ -56,7 +56,10 @@ py::dict statistics_dict(const sp::SpectralStatistics& st, const sp::StatisticsO
   d["rigidity"] = numpy(values_of(st.rigidity, &sp::WindowStatistic::value));
   d["rigidity_error"] = numpy(values_of(st.rigidity, &sp::WindowStatistic::standard_error));
   std::vector<double> p_s, w_s, p_n, g_n, p_d, g_d;
-  for (double s : st.histogram.centres) p_s.push_back(sp::poisson_spacing_density(s)), w_s.push_back(sp::wigner_spacing_density(s));
+  for (double s : st.histogram.centres) {
+    p_s.push_back(sp::poisson_spacing_density(s));
+    w_s.push_back(sp::wigner_spacing_density(s));
+  }
   for (double l : o.lengths) {
     p_n.push_back(sp::poisson_number_variance(l)), g_n.push_back(sp::goe_number_variance(l));
     p_d.push_back(sp::poisson_rigidity(l)), g_d.push_back(sp::goe_rigidity(l));
