@@ -5,6 +5,7 @@
 //  - the spectrum of a 400 × 400 GOE matrix, unfolded by the semicircle law:
 //    β̂ ≈ 1 (a little below: Brody's law only approximates the GOE's), Σ² and
 //    Δ₃ on the GOE curves;
+//  - the staircase fit (degree 5) unfolds that spectrum about as the semicircle does;
 //  - two independent GOE spectra merged: Σ²(L) = 2 Σ²_GOE(L/2),
 //    Δ₃(L) = 2 Δ₃_GOE(L/2), β̂ in between, while statistics_by_class, given the
 //    labels, finds GOE in each class (mixing classes fakes Poisson).
@@ -117,6 +118,24 @@ TEST_CASE("a GOE spectrum: beta near 1, Sigma2 and Delta3 on the GOE curves", "[
   check_curve(st.rigidity, goe_rigidity, "Delta3");
   // Far from Poisson at L = 10: Δ₃ about 0.24 against 0.67.
   CHECK(st.rigidity.back().value < 0.4);
+}
+
+TEST_CASE("the staircase fit unfolds a GOE spectrum about as well as the semicircle", "[spectral]") {
+  // The fallback unfolding (degree 5) against the exact smooth counting function,
+  // on the same bulk levels: β̂ and Δ₃ up to L = 10 barely move.
+  const int n = 400;
+  std::vector<double> bulk;
+  for (double e : goe_levels(n, 2026))
+    if (std::fabs(e) < 1.6) bulk.push_back(e);
+  const StatisticsOptions options = window_lengths({1, 2, 5, 10});
+  const SpectralStatistics exact = spectral_statistics(unfold(bulk, [n](double e) { return semicircle_count(n, e); }),
+                                                       options);
+  const SpectralStatistics fitted = spectral_statistics(unfold(bulk, fit_staircase(bulk)), options);
+  CHECK(std::fabs(fitted.brody.beta - exact.brody.beta) < 0.02);
+  for (std::size_t k = 0; k < options.lengths.size(); ++k) {
+    INFO("L = " << options.lengths[k] << ": " << fitted.rigidity[k].value << " vs " << exact.rigidity[k].value);
+    CHECK(std::fabs(fitted.rigidity[k].value - exact.rigidity[k].value) < 0.02 * exact.rigidity[k].value);
+  }
 }
 
 namespace {
