@@ -228,4 +228,8 @@ TEST_CASE("unfolding: the staircase fit, a counting function, and bad input", "[
   CHECK(classes[0].statistics.levels == 9);
   CHECK(classes[1].too_few);
   CHECK(classes[1].statistics.spacings.empty());
+  // A fit that fails names the class.
+  const std::vector<double> nine(few.begin(), few.end() - 1);  // degree 5 wiggles through these
+  CHECK_THROWS_WITH(statistics_by_class(nine, std::vector<int>(nine.size(), 4)),
+                    Catch::Contains("class 4: staircase fit: the polynomial of degree 5 decreases"));
 }

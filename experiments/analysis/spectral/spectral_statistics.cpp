@@ -56,7 +56,13 @@ std::vector<ClassStatistics> statistics_by_class(std::span<const double> levels,
       const int l = label;
       x = unfold(energies, [&n_smooth, l](double e) { return n_smooth(l, e); }, what);
     } else {
-      x = unfold(energies, fit_staircase(energies, options.fit_degree), what);
+      StaircaseFit fit;
+      try {
+        fit = fit_staircase(energies, options.fit_degree);
+      } catch (const InputError& e) {
+        throw InputError(what + ": " + e.what());
+      }
+      x = unfold(energies, fit, what);
     }
     c.statistics = spectral_statistics(x, options);
     out.push_back(std::move(c));
