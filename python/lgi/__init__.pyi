@@ -218,3 +218,18 @@ def tangent_flow(
 ) -> dict[str, Any]:
     """`steps` RKMK4 steps of the state with tangent vector(s) v ((6,) or (6, k), k <= 6; not
     renormalised): {'R', 'Pi', 'v', 't'}. state as Stepper.state (Pi with R or gamma)."""
+
+def spectral_statistics(
+    levels: FloatArray,
+    classes: Optional[Sequence[int]] = None,
+    unfolded: bool = False,
+    lengths: Optional[Sequence[float]] = None,
+    bin_width: float = 0.1,
+    s_max: float = 4.0,
+    degree: int = 5,
+) -> dict[Any, Any]:
+    """Spectral statistics of levels (docs/spectral_statistics.md): spacings (mean 1), histogram,
+    brody {beta, standard_error, log_likelihood, bound}, lengths, number_variance(_error),
+    rigidity(_error) (Dyson-Mehta Delta3) and the poisson and goe references; with classes, a dict
+    {label: that dict} (too_few=True and only levels for a class too small). unfolded=True: the
+    levels are already unfolded (Weyl's law, preferred); else a polynomial staircase fit of degree."""
