@@ -11,13 +11,14 @@ command line `lgi` (python/README.md):
     run.t, run.R, run.q, run.Pi, run.errors["energy"], run.diagnostics["cpu_seconds"]
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
-sweep(), indicators(), tangent_flow(), and the atlas of heavy tops (docs/atlas.md): equilibria(),
+sweep(), indicators(), tangent_flow(), quantum_spectrum(), and the atlas of heavy tops (docs/atlas.md): equilibria(),
 bifurcation(), region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
 """
 
 from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_dir, schemes, sweep, tangent_flow
+from ._lgi import quantum_spectrum
 from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
@@ -30,6 +31,7 @@ __all__ = [
     "exact_free_flow",
     "indicators",
     "poincare",
+    "quantum_spectrum",
     "region",
     "region_cells",
     "scenes",

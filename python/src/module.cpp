@@ -53,4 +53,5 @@ PYBIND11_MODULE(_lgi, m) {
   lp::bind_sweep(m);
   lp::bind_atlas(m);
   lp::bind_indicators(m);
+  lp::bind_quantum(m);
 }
