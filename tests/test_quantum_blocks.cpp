@@ -6,6 +6,7 @@
 // dense solver; the scene's terms that are not potentials of Γ are refused.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <set>
 
 #include "experiments/analysis/quantum/lowest_levels.hpp"
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
@@ -17,9 +18,9 @@ using namespace lgi::experiments::quantum;
 
 namespace {
 
-std::vector<double> energies(const QuantumTop& top, int m, int levels) {
+std::vector<double> energies(const QuantumTop& top, int m, int levels, bool use_symmetry = true) {
   QuantumSettings s;
-  s.hbar = 0.15, s.m = m, s.jmax = 14, s.levels = levels;
+  s.hbar = 0.15, s.m = m, s.jmax = 14, s.levels = levels, s.use_symmetry = use_symmetry;
   std::vector<double> e;
   for (const auto& l : quantum_spectrum(top, s).levels) e.push_back(l.energy);
   return e;
@@ -35,20 +36,28 @@ double max_difference(const std::vector<double>& a, const std::vector<double>& b
 }  // namespace
 
 TEST_CASE("quantum: levels per block equal the levels of the whole matrix", "[quantum]") {
-  for (const int m : {0, 2}) {
-    QuantumTop lagrange = quantum_top(Eigen::Vector3d(1.0, 1.0, 0.4), Eigen::Vector3d(0.0, 0.0, 0.7));
-    REQUIRE(lagrange.symmetry == TopSymmetry::symmetric_heavy);
-    const std::vector<double> per_k = energies(lagrange, m, 25);
-    lagrange.symmetry = TopSymmetry::general;
-    CHECK(max_difference(per_k, energies(lagrange, m, 25)) < 1e-11);
-
-    QuantumTop axial = quantum_top(Eigen::Vector3d(1.0, 1.5, 2.0), Eigen::Vector3d(0.8, 0.0, 0.0));
-    REQUIRE(axial.symmetry == TopSymmetry::axial_heavy);
-    CHECK(axial.weight.isApprox(Eigen::Vector3d(0.0, 0.0, 0.8)));  // c made the third axis
-    const std::vector<double> per_class = energies(axial, m, 25);
-    axial.symmetry = TopSymmetry::general;
-    CHECK(max_difference(per_class, energies(axial, m, 25)) < 1e-11);
-  }
+  // Per k (Lagrange), per parity of k (c on an axis; at m = 0 also per reflection
+  // class), per reflection class (c in the 1–3 plane, m = 0): the same levels as one block.
+  const QuantumTop lagrange = quantum_top(Eigen::Vector3d(1.0, 1.0, 0.4), Eigen::Vector3d(0.0, 0.0, 0.7));
+  const QuantumTop axial = quantum_top(Eigen::Vector3d(1.0, 1.5, 2.0), Eigen::Vector3d(0.8, 0.0, 0.0));
+  const QuantumTop planar = quantum_top(Eigen::Vector3d(1.0, 1.5, 2.0), Eigen::Vector3d(0.8, 0.0, 0.3));
+  REQUIRE(lagrange.symmetry == TopSymmetry::symmetric_heavy);
+  REQUIRE(axial.symmetry == TopSymmetry::axial_heavy);
+  CHECK(axial.weight.isApprox(Eigen::Vector3d(0.0, 0.0, 0.8)));  // c made the third axis
+  REQUIRE((planar.symmetry == TopSymmetry::general && planar.is_real()));
+  for (const int m : {0, 2})
+    for (const QuantumTop* top : {&lagrange, &axial, &planar}) {
+      INFO("m = " << m << ", " << symmetry_name(top->symmetry));
+      CHECK(max_difference(energies(*top, m, 25), energies(*top, m, 25, false)) < 1e-11);
+    }
+  QuantumSettings s;
+  s.hbar = 0.15, s.m = 0, s.jmax = 14, s.levels = 40;
+  std::set<int> classes;
+  for (const auto& l : quantum_spectrum(axial, s).levels) classes.insert(l.parity);
+  CHECK(classes == std::set<int>{0, 1, 2, 3});
+  classes.clear();
+  for (const auto& l : quantum_spectrum(planar, s).levels) classes.insert(l.parity);
+  CHECK(classes == std::set<int>{0, 1});
 }
 
 TEST_CASE("quantum: Spectra's Lanczos equals the dense solver, real and complex", "[quantum]") {

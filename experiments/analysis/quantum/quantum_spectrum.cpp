@@ -20,6 +20,12 @@ constexpr const char* d2_classes =
     "C2(1) |j,k> = (-1)^j |j,-k>)";
 constexpr const char* c2_classes =
     "c on principal axis 3 of the frame: parity = 0 where C2(3) = +1 (even k), 1 where C2(3) = -1 (odd k)";
+constexpr const char* c2_reflection_classes =
+    "c on principal axis 3 of the frame, m = 0: parity = 2 [C2(3) = -1] + [U = -1], C2(3) = (-1)^k, U the "
+    "reflection in the 1-3 plane, U |j,k,0> = (-1)^k |j,-k,0>";
+constexpr const char* reflection_classes =
+    "c in the 1-3 plane of the frame, m = 0: parity = 0 where U = +1, 1 where U = -1, U the reflection in the "
+    "1-3 plane, U |j,k,0> = (-1)^k |j,-k,0>";
 
 /// The free body's j block, split by D₂ class: rows of Wang's combinations
 /// (|k⟩ + s|−k⟩)/√2, s = cx (−1)^j, k ≥ 0 of parity (1 − cz)/2 (k = 0 alone where cx = (−1)^j).
@@ -70,53 +76,73 @@ void free_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectru
   out.parity_classes = symmetric ? "none (k is conserved)" : d2_classes;
 }
 
-/// The rows and columns of `idx` (ascending) of h.
-ComplexSparse restrict_to(const ComplexSparse& h, const std::vector<Index>& idx) {
-  std::vector<Index> map(static_cast<std::size_t>(h.rows()), -1);
-  for (std::size_t i = 0; i < idx.size(); ++i) map[static_cast<std::size_t>(idx[i])] = static_cast<Index>(i);
-  std::vector<Eigen::Triplet<Complex>> t;
-  for (Index c = 0; c < h.outerSize(); ++c) {
-    const Index cc = map[static_cast<std::size_t>(c)];
-    if (cc < 0) continue;
-    for (ComplexSparse::InnerIterator it(h, c); it; ++it) {
-      const Index rr = map[static_cast<std::size_t>(it.row())];
-      if (rr >= 0) t.emplace_back(rr, cc, it.value());
-    }
-  }
-  ComplexSparse out(static_cast<Index>(idx.size()), static_cast<Index>(idx.size()));
-  out.setFromTriplets(t.begin(), t.end());
-  out.makeCompressed();
-  return out;
-}
-
-/// A block of the heavy top: its basis positions (in the basis up to jmax + Δ,
-/// whose leading part is the basis up to jmax) and its labels.
+/// A block of the heavy top: its basis vectors as the columns of a real
+/// sparse matrix over the basis up to jmax + Δ, ordered by j, so that the
+/// first `cols_cut` columns (those with j ≤ jmax) span the block cut at jmax.
 struct Block {
-  std::vector<Index> idx, idx_cut;  // cut: the positions with j ≤ jmax
+  std::vector<Eigen::Triplet<Complex>> entries;
+  Index cols = 0, cols_cut = 0;
   int k = -1, parity = -1;
 };
 
-std::vector<Block> heavy_blocks(const QuantumTop& top, const WignerBasis& big, int jmax) {
-  std::vector<Block> blocks;
-  const auto add = [&](auto&& member, int k, int parity) {
-    Block bl{{}, {}, k, parity};
-    for (int j = big.jlo; j <= big.jhi; ++j)
-      for (int kk = -j; kk <= j; ++kk)
-        if (member(kk)) {
-          bl.idx.push_back(big.index(j, kk));
-          if (j <= jmax) bl.idx_cut.push_back(big.index(j, kk));
-        }
-    if (!bl.idx_cut.empty()) blocks.push_back(std::move(bl));
-  };
-  if (top.symmetry == TopSymmetry::symmetric_heavy) {
-    for (int k = -big.jhi; k <= big.jhi; ++k) add([k](int kk) { return kk == k; }, k, -1);
-  } else if (top.symmetry == TopSymmetry::axial_heavy) {
-    add([](int kk) { return kk % 2 == 0; }, -1, 0);
-    add([](int kk) { return kk % 2 != 0; }, -1, 1);
-  } else {
-    add([](int) { return true; }, -1, -1);
+/// A class of basis vectors: plain |j,k⟩ (of one k, or one parity of k, or
+/// all), or the reflection's combinations; labelled (k, parity) in the output.
+struct ClassSpec {
+  int k = -1, parity = -1;
+  int k_parity = -1;  // 0 / 1: only k of this parity; −1: any
+  int k_only = 0;     // with exact_k: only this k
+  bool exact_k = false;
+  int reflection = 0;  // ±1: Wang-type vectors (|k⟩ + ε(−1)^k|−k⟩)/√2 of the m = 0 reflection; 0: plain |k⟩
+};
+
+Block make_block(const ClassSpec& c, const WignerBasis& big, int jmax) {
+  Block bl{{}, 0, 0, c.k, c.parity};
+  const double r = std::sqrt(0.5);
+  for (int j = big.jlo; j <= big.jhi; ++j) {
+    for (int k = (c.reflection != 0 ? 0 : -j); k <= j; ++k) {
+      if (c.exact_k && k != c.k_only) continue;
+      if (c.k_parity >= 0 && std::abs(k) % 2 != c.k_parity) continue;
+      if (c.reflection == 0 || k == 0) {
+        if (c.reflection == -1) continue;  // |j, 0⟩ is even under the reflection
+        bl.entries.emplace_back(big.index(j, k), bl.cols, 1.0);
+      } else {
+        bl.entries.emplace_back(big.index(j, k), bl.cols, r);
+        bl.entries.emplace_back(big.index(j, -k), bl.cols, c.reflection * (k % 2 ? -r : r));
+      }
+      ++bl.cols;
+      if (j <= jmax) ++bl.cols_cut;
+    }
   }
-  return blocks;
+  return bl;
+}
+
+/// The classes of a heavy top (docs/quantum.md §4). At m = 0 with c₂ = 0 the
+/// reflection of the body in its 1–3 plane keeps the block: U|j,k,0⟩ = (−1)^k |j,−k,0⟩.
+std::vector<ClassSpec> heavy_classes(const QuantumTop& top, const QuantumSettings& s, int kmax) {
+  std::vector<ClassSpec> classes;
+  const bool reflection = s.use_symmetry && s.m == 0 && top.is_real();
+  if (s.use_symmetry && top.symmetry == TopSymmetry::symmetric_heavy) {
+    for (int k = -kmax; k <= kmax; ++k) classes.push_back({k, -1, -1, k, true, 0});
+  } else if (s.use_symmetry && top.symmetry == TopSymmetry::axial_heavy) {
+    for (const int p : {0, 1}) {
+      if (!reflection) classes.push_back({-1, p, p, 0, false, 0});
+      else
+        for (const int e : {1, -1}) classes.push_back({-1, 2 * p + (e == -1 ? 1 : 0), p, 0, false, e});
+    }
+  } else if (reflection) {
+    for (const int e : {1, -1}) classes.push_back({-1, e == -1 ? 1 : 0, -1, 0, false, e});
+  } else {
+    classes.push_back({-1, -1, -1, 0, false, 0});
+  }
+  return classes;
+}
+
+std::string parity_classes_of(const QuantumTop& top, const QuantumSettings& s) {
+  const bool reflection = s.use_symmetry && s.m == 0 && top.is_real();
+  if (s.use_symmetry && top.symmetry == TopSymmetry::axial_heavy)
+    return reflection ? c2_reflection_classes : c2_classes;
+  if (s.use_symmetry && top.symmetry == TopSymmetry::symmetric_heavy) return "none (k is conserved)";
+  return reflection ? reflection_classes : "none (-1)";
 }
 
 void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectrum& out) {
@@ -124,12 +150,17 @@ void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectr
   const RotorOperators ops = rotor_operators(big, s.hbar);
   const ComplexSparse h = kinetic_energy(ops, top.moments) + potential_energy(ops, top.weight);
   const double lower = -top.weight.norm();  // T ≥ 0 and c·Γ̂ ≥ −|c| on any cut
-  const bool k_conserved = top.symmetry == TopSymmetry::symmetric_heavy;
+  const bool k_conserved = s.use_symmetry && top.symmetry == TopSymmetry::symmetric_heavy;
   std::set<std::string> methods;
   std::vector<QuantumLevel> all;
-  for (const Block& bl : heavy_blocks(top, big, s.jmax)) {
-    const LowestLevels cut = lowest_levels(restrict_to(h, bl.idx_cut), s.levels, lower);
-    const LowestLevels check = lowest_levels(restrict_to(h, bl.idx), s.levels, lower);
+  for (const ClassSpec& c : heavy_classes(top, s, big.jhi)) {
+    const Block bl = make_block(c, big, s.jmax);
+    if (bl.cols_cut == 0) continue;
+    ComplexSparse w(h.rows(), bl.cols);
+    w.setFromTriplets(bl.entries.begin(), bl.entries.end());
+    const ComplexSparse hb = ComplexSparse(w.adjoint() * h * w);
+    const LowestLevels cut = lowest_levels(ComplexSparse(hb.topLeftCorner(bl.cols_cut, bl.cols_cut)), s.levels, lower);
+    const LowestLevels check = lowest_levels(hb, s.levels, lower);
     methods.insert(cut.method), methods.insert(check.method);
     for (std::size_t i = 0; i < cut.values.size(); ++i) {
       QuantumLevel l{cut.values[i], -1, k_conserved ? bl.k : -1, k_conserved, bl.parity, false, 0.0};
@@ -137,14 +168,14 @@ void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectr
       l.converged = std::abs(l.change_with_jmax) <= s.tol * std::max(std::abs(l.energy), out.energy_unit);
       all.push_back(l);
     }
-    out.dimension += static_cast<Index>(bl.idx_cut.size());
-    out.dimension_check += static_cast<Index>(bl.idx.size());
+    out.dimension += bl.cols_cut;
+    out.dimension_check += bl.cols;
   }
   std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.energy < b.energy; });
   if (all.size() > static_cast<std::size_t>(s.levels)) all.resize(static_cast<std::size_t>(s.levels));
   out.levels = std::move(all);
   for (const std::string& m : methods) out.method += (out.method.empty() ? "" : "; ") + m;
-  out.parity_classes = top.symmetry == TopSymmetry::axial_heavy ? c2_classes : "none (-1)";
+  out.parity_classes = parity_classes_of(top, s);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ struct QuantumSettings {
   int levels = 20;     // heavy tops: how many of the lowest levels
   int jmax_step = 4;   // Δ of the convergence check
   double tol = 1e-8;   // of the convergence check, relative (above)
+  bool use_symmetry = true;  // false: one block for a heavy top (a check of the blocks)
 };
 
 struct QuantumLevel {
