@@ -106,7 +106,7 @@ LowestLevels lowest_levels(const ComplexSparse& h, Eigen::Index n, double lower_
   n = std::min(n, size);
   LowestLevels out;
   if (n <= 0) return out;
-  if (size <= dense_limit || 2 * n + 3 >= size) {
+  if (size <= dense_limit || 8 * n >= size) {  // many levels: the dense solver is faster than Lanczos
     out.values = all_levels(h);
     out.values.resize(static_cast<std::size_t>(n));
     out.method = "dense";
