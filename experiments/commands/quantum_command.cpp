@@ -40,10 +40,10 @@ std::string number(double x) { return format_general(x, 17); }
 
 void check_flags(const QuantumOptions& o) {
   if (!(o.hbar > 0.0) || !std::isfinite(o.hbar)) throw UsageError("--hbar: must be a positive number");
-  if (o.jmax < std::abs(o.m)) throw UsageError("--jmax: must be at least |m| (j runs from |m| to jmax)");
   if (o.jmax > 400) throw UsageError("--jmax: at most 400 (the basis has (jmax+1)^2 - m^2 states)");
+  if (o.m < -o.jmax || o.m > o.jmax) throw UsageError("--jmax: must be at least |m| (j runs from |m| to jmax)");
   if (o.levels < 1) throw UsageError("--levels: must be at least 1");
-  if (o.jmax_step < 1) throw UsageError("--jmax-step: must be at least 1");
+  if (o.jmax_step < 1 || o.jmax_step > 100) throw UsageError("--jmax-step: must be in 1..100");
   if (!(o.tol > 0.0) || !std::isfinite(o.tol)) throw UsageError("--tol: must be a positive number");
 }
 

@@ -182,9 +182,10 @@ void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectr
 
 QuantumSpectrum quantum_spectrum(const QuantumTop& top, const QuantumSettings& s) {
   if (!(s.hbar > 0.0) || !std::isfinite(s.hbar)) throw std::invalid_argument("hbar: must be a positive number");
-  if (s.jmax < std::abs(s.m)) throw std::invalid_argument("jmax: must be at least |m|");
+  if (s.jmax > 400) throw std::invalid_argument("jmax: at most 400");
+  if (s.m < -s.jmax || s.m > s.jmax) throw std::invalid_argument("jmax: must be at least |m|");
   if (s.levels < 1) throw std::invalid_argument("levels: must be at least 1");
-  if (s.jmax_step < 1) throw std::invalid_argument("jmax_step: must be at least 1");
+  if (s.jmax_step < 1 || s.jmax_step > 100) throw std::invalid_argument("jmax_step: must be in 1..100");
   if (!(s.tol > 0.0)) throw std::invalid_argument("tol: must be a positive number");
   QuantumSpectrum out;
   out.top = top;
