@@ -67,5 +67,6 @@ Subcommand add_region_subcommand(CLI::App& app, const CommandContext& context); 
 Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context);  // commands/chaos_map_command.cpp
 Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context);  // commands/actions_command.cpp
 Subcommand add_indicators_subcommand(CLI::App& app, const CommandContext& context);  // commands/indicators_command.cpp
+Subcommand add_quantum_subcommand(CLI::App& app, const CommandContext& context);  // commands/quantum_command.cpp
 
 }  // namespace lgi::experiments

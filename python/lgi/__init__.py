@@ -11,7 +11,8 @@ command line `lgi` (python/README.md):
     run.t, run.R, run.q, run.Pi, run.errors["energy"], run.diagnostics["cpu_seconds"]
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
-sweep(), indicators(), tangent_flow(), spectral_statistics() (docs/spectral_statistics.md), and the atlas of heavy tops (docs/atlas.md): equilibria(),
+sweep(), indicators(), tangent_flow(), spectral_statistics() (docs/spectral_statistics.md), quantum_spectrum(),
+and the atlas of heavy tops (docs/atlas.md): equilibria(),
 bifurcation(), region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
@@ -19,6 +20,7 @@ first, body -> space; matrices row-major. Long calls release the GIL.
 
 from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_dir, schemes, sweep, tangent_flow
 from ._lgi import spectral_statistics
+from ._lgi import quantum_spectrum
 from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
@@ -31,6 +33,7 @@ __all__ = [
     "exact_free_flow",
     "indicators",
     "poincare",
+    "quantum_spectrum",
     "region",
     "region_cells",
     "scenes",

@@ -208,6 +208,19 @@ def indicators(
     gamma (n, 3), and spectrum (n, 6) with spectrum=True. states: None (the scene's initial
     state), a state file (HDF5/CSV with angular_momentum and gamma) or a dict of (n, 3) arrays."""
 
+def quantum_spectrum(
+    scene: SceneLike,
+    hbar: float,
+    m: int = 0,
+    jmax: int = 40,
+    levels: int = 20,
+    jmax_step: int = 4,
+    tol: float = 1e-8,
+) -> dict[str, Any]:
+    """The levels of `lgi quantum` (experiments/QUANTUM.md): the /spectrum columns index, energy, j,
+    m, k, parity, converged (int64 0/1), change_with_jmax, k_conserved as arrays, and symmetry,
+    parity_classes, moments, weight (J and c in the frame used), dimension, method."""
+
 def tangent_flow(
     scene: SceneLike,
     state: dict[str, Any],

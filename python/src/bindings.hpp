@@ -24,6 +24,7 @@ void bind_sweep(py::module_& m);       // bind_sweep.cpp: sweep()
 void bind_atlas(py::module_& m);       // bind_atlas.cpp: equilibria(), bifurcation(), region(), region_cells(), poincare()
 void bind_indicators(py::module_& m);  // bind_indicators.cpp: indicators(), tangent_flow()
 void bind_spectral(py::module_& m);    // bind_spectral.cpp: spectral_statistics()
+void bind_quantum(py::module_& m);     // bind_quantum.cpp: quantum_spectrum()
 
 /// lgi.Scene: a scene as read by the command line's scene reader (shared, immutable).
 struct PyScene {

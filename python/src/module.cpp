@@ -54,4 +54,5 @@ PYBIND11_MODULE(_lgi, m) {
   lp::bind_atlas(m);
   lp::bind_indicators(m);
   lp::bind_spectral(m);
+  lp::bind_quantum(m);
 }

@@ -1,0 +1,161 @@
+// lgi quantum --scene FILE --hbar H [--m M] [--jmax J] [--levels N] [--jmax-step D] [--tol T]
+//   --out FILE.h5 [--force] [--quiet]
+// The lowest levels of the quantum top Ĥ = Σ L̂ᵢ²/(2Jᵢ) + c·Γ̂ at vertical
+// angular momentum mħ (experiments/QUANTUM.md, docs/quantum.md), each with
+// its quantum numbers, its class and its convergence in jmax
+// (analysis/quantum/quantum_spectrum.hpp): /spectrum/<column> and a CSV.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "experiments/analysis/quantum/quantum_spectrum.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/run_options.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/hdf5_support.hpp"
+#include "experiments/io/number_format.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/table_file.hpp"
+#include "lgi/build_info.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+struct QuantumOptions {
+  std::string scene, out;
+  double hbar = 0.0;
+  int m = 0, jmax = 40, levels = 20, jmax_step = 4;
+  double tol = 1e-8;
+  bool force = false, quiet = false;
+  std::string command_line;
+};
+
+std::string number(double x) { return format_general(x, 17); }
+
+void check_flags(const QuantumOptions& o) {
+  if (!(o.hbar > 0.0) || !std::isfinite(o.hbar)) throw UsageError("--hbar: must be a positive number");
+  if (o.jmax > 400) throw UsageError("--jmax: at most 400 (the basis has (jmax+1)^2 - m^2 states)");
+  if (o.m < -o.jmax || o.m > o.jmax) throw UsageError("--jmax: must be at least |m| (j runs from |m| to jmax)");
+  if (o.levels < 1) throw UsageError("--levels: must be at least 1");
+  if (o.jmax_step < 1 || o.jmax_step > 100) throw UsageError("--jmax-step: must be in 1..100");
+  if (!(o.tol > 0.0) || !std::isfinite(o.tol)) throw UsageError("--tol: must be a positive number");
+}
+
+std::vector<TableColumn> columns_of(const quantum::QuantumSpectrum& q, int m) {
+  std::vector<TableColumn> c = {{"index", 1, true}, {"energy"}, {"j", 1, true}, {"m", 1, true}, {"k", 1, true},
+                                {"parity", 1, true}, {"converged", 1, true}, {"change_with_jmax"},
+                                {"k_conserved", 1, true}};
+  for (std::size_t i = 0; i < q.levels.size(); ++i) {
+    const quantum::QuantumLevel& l = q.levels[i];
+    c[0].whole.push_back(static_cast<std::int64_t>(i));
+    c[1].real.push_back(l.energy);
+    c[2].whole.push_back(l.j);
+    c[3].whole.push_back(m);
+    c[4].whole.push_back(l.k);
+    c[5].whole.push_back(l.parity);
+    c[6].whole.push_back(l.converged ? 1 : 0);
+    c[7].real.push_back(l.change_with_jmax);
+    c[8].whole.push_back(l.k_conserved ? 1 : 0);
+  }
+  return c;
+}
+
+void print_rows(const quantum::QuantumSpectrum& q) {
+  const std::size_t shown = std::min<std::size_t>(q.levels.size(), 20);
+  std::printf("%6s %22s %4s %5s %6s %9s %12s\n", "index", "energy", "j", "k", "parity", "converged", "change");
+  for (std::size_t i = 0; i < shown; ++i) {
+    const quantum::QuantumLevel& l = q.levels[i];
+    std::printf("%6zu %22.15g %4d %5d %6d %9s %12.3g\n", i, l.energy, l.j, l.k, l.parity,
+                l.converged ? "yes" : "NO", l.change_with_jmax);
+  }
+  if (shown < q.levels.size()) std::printf("... %zu more levels in the file\n", q.levels.size() - shown);
+}
+
+std::string vector_text(const Eigen::Vector3d& v) {
+  return "[" + number(v(0)) + ", " + number(v(1)) + ", " + number(v(2)) + "]";
+}
+
+std::map<std::string, std::string> parameters_of(const QuantumOptions& o, const system::Scene& scene,
+                                                 const quantum::QuantumSpectrum& q, double wall) {
+  const Eigen::Matrix3d& f = q.top.frame;
+  return {{"subcommand", "quantum"}, {"command_line", o.command_line}, {"scene_file", scene.file},
+          {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
+          {"cxx_flags", build_info::cxx_flags}, {"hbar", number(o.hbar)}, {"m", std::to_string(o.m)},
+          {"jmax", std::to_string(o.jmax)}, {"jmax_step", std::to_string(o.jmax_step)},
+          {"levels", std::to_string(o.levels)}, {"tol", number(o.tol)},
+          {"converged_rule", "|change_with_jmax| <= tol * max(|energy|, energy_unit), change_with_jmax = "
+                             "E(jmax + jmax_step) - E(jmax) for the same level (same block, same rank)"},
+          {"energy_unit", number(q.energy_unit)},
+          {"hamiltonian", "sum_i L_i^2/(2 J_i) + c.Gamma in the Wigner basis |j,k,m>, j = |m|..jmax (docs/quantum.md)"},
+          {"potential", q.top.potential}, {"moments", vector_text(q.top.moments)},
+          {"weight", vector_text(q.top.weight)},
+          {"frame", "columns: " + vector_text(f.col(0)) + " " + vector_text(f.col(1)) + " " + vector_text(f.col(2))},
+          {"symmetry", quantum::symmetry_name(q.top.symmetry)}, {"parity_classes", q.parity_classes},
+          {"representation", q.top.is_real() ? "real symmetric" : "complex hermitian"},
+          {"dimension", std::to_string(q.dimension)}, {"dimension_check", std::to_string(q.dimension_check)},
+          {"method", q.method}, {"wall_seconds", format_general(wall, 6)}};
+}
+
+int run_quantum(const QuantumOptions& o) {
+  check_flags(o);
+  const system::Scene scene = read_scene(o.scene);
+  const quantum::QuantumTop top = quantum::quantum_top_of(scene);
+  if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
+  quantum::QuantumSettings s;
+  s.hbar = o.hbar, s.m = o.m, s.jmax = o.jmax, s.levels = o.levels, s.jmax_step = o.jmax_step, s.tol = o.tol;
+  const auto start = std::chrono::steady_clock::now();
+  quantum::QuantumSpectrum q;
+  try {
+    q = quantum::quantum_spectrum(top, s);
+  } catch (const std::runtime_error& e) {
+    throw RunError(e.what());
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_table_file(o.out, o.force, "spectrum", columns_of(q, o.m), parameters_of(o, scene, q, wall));
+  std::size_t unconverged = 0;
+  for (const auto& l : q.levels) unconverged += l.converged ? 0 : 1;
+  if (unconverged > 0)
+    std::cerr << "lgi: note: " << unconverged << " of " << q.levels.size() << " levels moved by more than tol between "
+              << "jmax = " << o.jmax << " and " << o.jmax + o.jmax_step << ": converged = 0 (raise --jmax)\n";
+  if (o.quiet) return exit_ok;
+  print_rows(q);
+  std::cout << q.levels.size() << " levels at m = " << o.m << ", hbar = " << format_general(o.hbar, 10)
+            << " (" << quantum::symmetry_name(top.symmetry) << "); basis " << q.dimension << " states; "
+            << format_general(wall, 3) << " s; wrote " << o.out << '\n';
+  return exit_ok;
+}
+
+}  // namespace
+
+Subcommand add_quantum_subcommand(CLI::App& app, const CommandContext& context) {
+  auto o = std::make_shared<QuantumOptions>();
+  auto* sub = app.add_subcommand(
+      "quantum", "The lowest levels of the quantum top at vertical angular momentum m hbar, each with its quantum "
+                 "numbers and its convergence in jmax (experiments/QUANTUM.md)");
+  sub->add_option("--scene", o->scene, "Scene file (an SO(3) scene: gravity and a vertical magnetic field)")->required();
+  sub->add_option("--hbar", o->hbar, "Planck's constant in the scene's units")->required();
+  sub->add_option("--m", o->m, "Vertical angular momentum quantum number (l = m hbar)")->capture_default_str();
+  sub->add_option("--jmax", o->jmax, "The basis holds j = |m|..jmax")->capture_default_str();
+  sub->add_option("--levels", o->levels, "How many of the lowest levels (a heavy top; a free body writes every "
+                                         "level of every j <= jmax)")->capture_default_str();
+  sub->add_option("--jmax-step", o->jmax_step, "The convergence check solves again at jmax + this")
+      ->capture_default_str();
+  sub->add_option("--tol", o->tol, "converged = 1 where |E(jmax + step) - E(jmax)| <= tol * max(|E|, hbar^2/(2 "
+                                   "J_min))")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
+  add_force_quiet_flags(*sub, *o, "Replace existing output files");
+  return {sub,
+          [o, context] {
+            o->command_line = context.command_line;
+            return run_quantum(*o);
+          },
+          [o] { check_flags(*o); }};
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,68 @@
+// lgi.quantum_spectrum(): the levels of `lgi quantum` (experiments/QUANTUM.md,
+// analysis/quantum/quantum_spectrum.hpp) as NumPy arrays, the same columns as
+// the file's /spectrum group, with the run's facts beside them.
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+
+#include "experiments/analysis/quantum/quantum_spectrum.hpp"
+#include "python/src/bindings.hpp"
+
+namespace lgi::python {
+namespace {
+
+py::dict quantum_spectrum(const py::object& scene_arg, double hbar, int m, int jmax, int levels, int jmax_step,
+                          double tol) {
+  const std::shared_ptr<const system::Scene> scene = scene_argument(scene_arg);
+  const experiments::quantum::QuantumTop top = experiments::quantum::quantum_top_of(*scene);  // ValueError if refused
+  experiments::quantum::QuantumSettings s;
+  s.hbar = hbar, s.m = m, s.jmax = jmax, s.levels = levels, s.jmax_step = jmax_step, s.tol = tol;
+  experiments::quantum::QuantumSpectrum q;
+  try {
+    const py::gil_scoped_release release;
+    q = experiments::quantum::quantum_spectrum(top, s);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+  const std::size_t n = q.levels.size();
+  std::vector<std::int64_t> index(n), j(n), mm(n, m), k(n), parity(n), converged(n), k_conserved(n);
+  std::vector<double> energy(n), change(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& l = q.levels[i];
+    index[i] = static_cast<std::int64_t>(i), energy[i] = l.energy, j[i] = l.j, k[i] = l.k, parity[i] = l.parity;
+    converged[i] = l.converged ? 1 : 0, change[i] = l.change_with_jmax, k_conserved[i] = l.k_conserved ? 1 : 0;
+  }
+  const auto rows = static_cast<py::ssize_t>(n);
+  py::dict d;
+  d["index"] = to_numpy(std::move(index), {rows});
+  d["energy"] = to_numpy(std::move(energy), {rows});
+  d["j"] = to_numpy(std::move(j), {rows});
+  d["m"] = to_numpy(std::move(mm), {rows});
+  d["k"] = to_numpy(std::move(k), {rows});
+  d["parity"] = to_numpy(std::move(parity), {rows});
+  d["converged"] = to_numpy(std::move(converged), {rows});
+  d["change_with_jmax"] = to_numpy(std::move(change), {rows});
+  d["k_conserved"] = to_numpy(std::move(k_conserved), {rows});
+  d["symmetry"] = experiments::quantum::symmetry_name(q.top.symmetry);
+  d["parity_classes"] = q.parity_classes;
+  d["moments"] = to_numpy(std::vector<double>(q.top.moments.data(), q.top.moments.data() + 3), {3});
+  d["weight"] = to_numpy(std::vector<double>(q.top.weight.data(), q.top.weight.data() + 3), {3});
+  d["dimension"] = q.dimension;
+  d["method"] = q.method;
+  return d;
+}
+
+}  // namespace
+
+void bind_quantum(py::module_& m) {
+  m.def("quantum_spectrum", &quantum_spectrum, py::arg("scene"), py::arg("hbar"), py::arg("m") = 0,
+        py::arg("jmax") = 40, py::arg("levels") = 20, py::arg("jmax_step") = 4, py::arg("tol") = 1e-8,
+        "quantum_spectrum(scene, hbar, m=0, jmax=40, levels=20, jmax_step=4, tol=1e-8) -> dict: the levels of\n"
+        "`lgi quantum` (experiments/QUANTUM.md): the /spectrum columns index, energy, j, m, k, parity,\n"
+        "converged, change_with_jmax, k_conserved as arrays, and symmetry, parity_classes, moments and\n"
+        "weight (the frame's J and c), dimension, method. ValueError for a scene term that is not a\n"
+        "potential of Gamma and for settings out of range.");
+}
+
+}  // namespace lgi::python

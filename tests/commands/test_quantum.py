@@ -1,0 +1,106 @@
+"""`lgi quantum` as a user runs it (experiments/QUANTUM.md):
+ - a free asymmetric rotor: every level of every j = |m|..jmax, 2j+1 per j,
+   the contract's /spectrum columns, j per level, the D2 classes, all
+   converged; the CSV beside it holds the same numbers;
+ - the harmonic limit through the command line: Richter's general top at
+   m = 0, (E0 - min U)/hbar against (w_a + w_b)/2 from `lgi equilibria --l 0`
+   (Grammel's g1, g2 of the hanging equilibrium): within 5% at hbar = 0.01,
+   the deviation about halving from hbar = 0.02;
+ - a Lagrange top: k conserved, written per level;
+ - bad input: one line on stderr and exit 2 (a spring, a bad flag)."""
+import csv
+import math
+import os
+import subprocess
+
+import h5py
+import numpy as np
+
+LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "experiments", "scenes")
+COLUMNS = ["index", "energy", "j", "m", "k", "parity", "converged", "change_with_jmax"]
+
+
+def lgi(*args, check=True):
+    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
+    if check:
+        assert r.returncode == 0, r.stderr
+    return r
+
+
+def table(path, name="spectrum"):
+    with h5py.File(path, "r") as f:
+        return {k: f[name][k][()] for k in f[name]}, dict(f["parameters"].attrs)
+
+
+def refused(*args):
+    r = lgi(*args, check=False)
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("lgi: "), r.stderr
+    return lines[0]
+
+
+def test_free_rotor_every_level_of_every_j(tmp_path):
+    out = str(tmp_path / "free.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "1", "--m", "2",
+        "--jmax", "6", "--out", out)
+    t, p = table(out)
+    for c in COLUMNS:
+        assert c in t, c
+    assert len(t["energy"]) == sum(2 * j + 1 for j in range(2, 7))
+    for j in range(2, 7):
+        assert np.count_nonzero(t["j"] == j) == 2 * j + 1
+    assert np.all(t["m"] == 2) and np.all(t["k"] == -1) and np.all(t["converged"] == 1)
+    assert set(t["parity"]) == {0, 1, 2, 3}
+    assert "D2" in p["parity_classes"]
+    # j = 2 of the HLW body (I = 2, 1, 2/3): the three levels of Wang's B blocks are
+    # hbar^2 [j(j+1)/2 (sum of two 1/(2I)) + ...]; check one closed form: 1/(2I1) + 1/(2I2) + 4/(2I3) = 3.75.
+    assert np.isclose(t["energy"][t["j"] == 2], 3.75).any()
+    with open(out[:-3] + ".csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [float(r["energy"]) for r in rows] == list(t["energy"])
+
+
+def test_harmonic_limit_through_the_command_line(tmp_path):
+    scene = os.path.join(SCENES, "general_top_richter.toml")
+    eq = str(tmp_path / "eq.h5")
+    lgi("equilibria", "--scene", scene, "--l", "0", "--out", eq, "--quiet")
+    e, _ = table(eq, "equilibria")
+    i = int(np.argmin(e["h"]))
+    target = 0.5 * math.sqrt(e["g1"][i] + 2 * math.sqrt(e["g2"][i]))
+    u_min = e["h"][i]
+    dev = {}
+    for hbar, jmax in ((0.02, 40), (0.01, 60)):
+        out = str(tmp_path / f"q{hbar}.h5")
+        lgi("quantum", "--scene", scene, "--hbar", str(hbar), "--jmax", str(jmax), "--levels", "2",
+            "--out", out, "--quiet")
+        t, p = table(out)
+        assert t["converged"][0] == 1 and p["representation"] == "complex hermitian"
+        dev[hbar] = (t["energy"][0] - u_min) / hbar / target - 1
+    assert abs(dev[0.01]) <= 0.05
+    assert abs(dev[0.01] / dev[0.02] - 0.5) <= 0.05, dev
+
+
+def test_lagrange_top_writes_k(tmp_path):
+    out = str(tmp_path / "lagrange.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "lagrange_top_cigar.toml"), "--hbar", "0.1", "--m", "1",
+        "--jmax", "16", "--levels", "12", "--out", out)
+    t, p = table(out)
+    assert len(t["energy"]) == 12 and np.all(np.diff(t["energy"]) >= 0)
+    assert np.all(t["k_conserved"] == 1) and np.all(t["j"] == -1)
+    assert len(set(t["k"])) > 1
+    assert np.all(t["change_with_jmax"] <= 1e-12)  # the cut is variational
+
+
+def test_bad_input_is_refused(tmp_path):
+    out = str(tmp_path / "x.h5")
+    line = refused("quantum", "--scene", os.path.join(SCENES, "stiff_damped_spring.toml"), "--hbar", "1",
+                   "--out", out)
+    assert "[spring]" in line
+    free = os.path.join(SCENES, "free_body_hlw.toml")
+    assert "--hbar" in refused("quantum", "--scene", free, "--hbar", "0", "--out", out)
+    assert "--jmax" in refused("quantum", "--scene", free, "--hbar", "1", "--m", "5", "--jmax", "3", "--out", out)
+    assert "--levels" in refused("quantum", "--scene", free, "--hbar", "1", "--levels", "0", "--out", out)
+    assert not os.path.exists(out)
