@@ -308,11 +308,11 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
   const std::string scaling = "h_scaled = H/(J3 c), l_scaled = l/(J3 sqrt(c)), k = K/c^2 (docs/atlas.md section 9)";
   curves.columns = c, equilibria.columns = e, range.columns = r, criticals.columns = v;
   regions.columns = t;
-  regions.attributes["tori"] =
+  regions.attributes["tori_definition"] =
       "the number of connected components of the level set {H = h, K = k, C = l, |Gamma| = 1} (Liouville tori), counted "
       "from lattice states moved onto it; -1 where the linking radii r and 2r disagree "
       "(experiments/analysis/level_set_components.hpp)";
-  curves.attributes["realised"] =
+  curves.attributes["realised_definition"] =
       "1 where the critical values of (H, K) on the leaf found at the grid energies h_scaled bracketing the point lie on "
       "its family and arc (experiments/analysis/kovalevskaya_critical.hpp; docs/atlas.md section 9)";
   for (TableGroup* g : {&curves, &equilibria, &range, &criticals, &regions}) {

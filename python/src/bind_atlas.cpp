@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
@@ -58,9 +59,12 @@ void add_columns(py::dict& d, std::vector<ex::TableColumn> columns) {
 py::dict table_group_dict(ex::TableGroup g) {
   py::dict d;
   add_columns(d, std::move(g.columns));
-  for (const auto& [key, value] : g.attributes)
+  for (const auto& [key, value] : g.attributes) {
+    if (d.contains(py::str(key)))  // an attribute must not hide a column of the same name
+      throw std::logic_error("table group " + g.name + ": attribute " + key + " has the name of a column");
     d[py::str(key)] = key == "topology" || key == "topology_names" ? py::object(py::cast(lines_of(value)))
                                                                    : py::object(py::str(value));
+  }
   return d;
 }
 

@@ -75,7 +75,7 @@ def test_bifurcation_appelrot_matches_cli(lgi_exe, tmp_path):
             "--appelrot-h", "0:2:3", "--out", path)
     got = lgi.bifurcation(KOVALEVSKAYA, samples=20, appelrot=[1.0], appelrot_h="0:2:3")
     with h5py.File(path, "r") as f:
-        for name in ("appelrot", "appelrot_equilibria", "appelrot_range"):
+        for name in ("appelrot", "appelrot_equilibria", "appelrot_range", "appelrot_critical", "appelrot_regions"):
             assert_same_columns(got[name], group(f, "/" + name))
             for key, value in f["/" + name].attrs.items():
                 assert got[name][key] == text(value), (name, key)
