@@ -49,7 +49,7 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
     throw UsageError("--resume: there is no " + partial + " to resume" +
                      (hdf5::path_exists(out) ? " (" + out + " is complete)" : ""));
   for (const std::string& p : {out, csv})
-    if (!force && hdf5::path_exists(p)) throw UsageError("--out: " + p + " exists (--force replaces it)");
+    hdf5::check_output_target(p, force);
   ResumedResults r;
   if (const std::string why = hdf5::inspect_in_child(partial); !why.empty())
     throw OutputFileError("cannot resume results '" + partial + "': " + why + " (damaged); remove it");
