@@ -360,3 +360,21 @@ def test_force_onto_a_private_device_node_is_refused_and_the_node_unchanged(tmp_
         assert stat.S_ISCHR(after.st_mode) and after.st_rdev == before.st_rdev
         assert after.st_mode == before.st_mode and after.st_ino == before.st_ino
         assert not os.path.exists(node + ".partial")
+
+
+def test_a_sweep_larger_than_the_free_space_is_refused_up_front(tmp_path):
+    """Issue 50, item 2: 10^9 trajectories need at least 2 x 8 x 20 bytes each (the .partial and the
+    final file): past the free space of the output's file system, exit 2 within the timeout and
+    nothing written (before the fix: a 368 GB sparse .partial and a minute to stop)."""
+    free = os.statvfs(str(tmp_path)).f_bavail * os.statvfs(str(tmp_path)).f_frsize
+    if free > 300e9:
+        pytest.skip("this file system has room for the rows")
+    spec = tmp_path / "big.toml"
+    text = open(PLACES["SPEC"]).read().replace("samples = 100000", "samples = 1000000000")
+    spec.write_text(text.replace("../scenes", os.path.join(ROOT, "experiments", "scenes")))
+    out = tmp_path / "big.h5"
+    r = subprocess.run([LGI, "sweep", "--spec", str(spec), "--out", str(out), "--threads", "1", "--quiet"],
+                       capture_output=True, text=True, timeout=TIMEOUT * slowdown(LGI))
+    assert r.returncode == 2, r.stderr
+    assert "--out" in r.stderr and "GB" in r.stderr and "free" in r.stderr and r.stderr.count("\n") == 1
+    assert not os.path.exists(out) and not os.path.exists(str(out) + ".partial")
