@@ -378,3 +378,26 @@ def test_a_sweep_larger_than_the_free_space_is_refused_up_front(tmp_path):
     assert r.returncode == 2, r.stderr
     assert "--out" in r.stderr and "GB" in r.stderr and "free" in r.stderr and r.stderr.count("\n") == 1
     assert not os.path.exists(out) and not os.path.exists(str(out) + ".partial")
+
+
+def test_long_time_resume_onto_another_commands_file_is_refused_and_the_file_kept(tmp_path):
+    """Issue 50's bar: `long-time --resume` whose <out>.partial is a sweep's file (here a finished
+    sweep's, which has the same groups as its .partial: /sweep, no /series, no checkpoint) exits 2
+    and leaves the file byte-identical; it used to start again from step 0 over it."""
+    spec = tmp_path / "s.toml"
+    spec.write_text(f'name = "small"\nscene = "{PLACES["FREE"]}"\nscheme = "rkmk4"\ndt = 0.01\nt_end = 0.1\n'
+                    'seed = 1\nsamples = 4\n[[vary]]\nkey = "initial.angular_momentum"\n'
+                    'uniform = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]\n')
+    sweep_file = str(tmp_path / "s.h5")
+    r = subprocess.run([LGI, "sweep", "--spec", str(spec), "--out", sweep_file, "--threads", "1", "--quiet"],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    out = str(tmp_path / "x.h5")
+    os.rename(sweep_file, out + ".partial")
+    before = open(out + ".partial", "rb").read()
+    argv = [a.format(**PLACES) for a in LT]
+    r = subprocess.run([LGI, *argv, "--resume", "--out", out], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2, r.stderr
+    assert "--resume" in r.stderr and "not a partial lgi long-time file" in r.stderr and r.stderr.count("\n") == 1
+    assert open(out + ".partial", "rb").read() == before
+    assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "x.csv"))
