@@ -9,5 +9,8 @@ int main(int argc, char** argv) {
   // writes is closed (or abandoned) before run_cli returns, so that clean-up has nothing to do:
   // skip it, and a failed write ends with its one-line error and exit 1 instead of a crash.
   H5dont_atexit();
+  // HDF5's automatic error-stack printing off for good: every failure is reported by lgi in one
+  // line naming the file (README.md), never as the library's stack of ~100 lines (issue 50).
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   return lgi::experiments::run_cli(argc, argv);
 }

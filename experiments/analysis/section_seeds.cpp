@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
+#include "experiments/io/input_file.hpp"
 
 namespace lgi::experiments {
 
@@ -74,8 +76,13 @@ bool section_state(const HeavyTopBody& body, const Vec3& e, double l, double h, 
 
 std::vector<SeedState> read_section_seeds(const std::string& path, const HeavyTopBody& body, SectionKind kind,
                                           const Vec3& e, double l, double h) {
-  std::ifstream in(path);
-  if (!in) throw UsageError("--seeds: cannot read " + path);
+  std::string text;
+  try {
+    text = read_text_input(path, "the seed file");
+  } catch (const InputError& error) {
+    throw UsageError(std::string("--seeds: ") + error.what());
+  }
+  std::istringstream in(text);
   std::vector<SeedState> out;
   std::vector<std::string> header;
   std::string line;

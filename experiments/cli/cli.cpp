@@ -3,6 +3,7 @@
 #include <iostream>
 #include <string>
 
+#include "experiments/cli/argument_checks.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/h5md_writer.hpp"
@@ -69,6 +70,10 @@ std::optional<int> CommandLine::parse(std::ostream& out, std::ostream& err) {
   } catch (const CLI::CallForVersion& e) {
     return app_.exit(e, out, err);
   } catch (const CLI::ParseError& e) {
+    if (const std::string unknown = unknown_leading_argument(app_, argc_, argv_); !unknown.empty()) {
+      err << unknown << '\n';
+      return exit_bad_input;
+    }
     err << "lgi: " << one_line(e.what()) << " (see lgi --help)\n";
     return exit_bad_input;
   }
@@ -76,6 +81,7 @@ std::optional<int> CommandLine::parse(std::ostream& out, std::ostream& err) {
     if (sub.app->parsed()) selected_ = &sub;
   if (selected_ == nullptr) return exit_bad_input;  // require_subcommand(1) makes this unreachable
   try {
+    check_argument_values(*selected_->app, argc_, argv_);
     if (selected_->check) selected_->check();
   } catch (const InputError& e) {
     err << "lgi: " << one_line(e.what()) << '\n';

@@ -5,6 +5,7 @@
 // the torus of the scene's initial state, in closed form (Lagrange, Euler)
 // and numerically from the flow. With --h: the energy surface H = h in action
 // space, on a grid (closed forms) or from --tori numerical tori at each --l.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "experiments/analysis/actions.hpp"
+#include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
@@ -173,6 +175,8 @@ void check_flags(const ActionsOptions& o) {
   if (!o.l.empty() && !o.h) throw UsageError("--l: only with --h");
   if (o.grid < 2 || o.grid > 2000) throw UsageError("--grid: must be between 2 and 2000");
   if (o.tori < 1) throw UsageError("--tori: must be at least 1");
+  check_work_limit("--tori", saturating_product(o.tori, std::max<std::int64_t>(1, static_cast<std::int64_t>(o.l.size()))),
+                   max_tori, "tori (--tori x the values of --l)");
   if (o.crossings < 16) throw UsageError("--crossings: must be at least 16");
   if (o.harmonics < 8 || o.harmonics > 512) throw UsageError("--harmonics: must be between 8 and 512");
   if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");

@@ -24,6 +24,8 @@
 #include "experiments/analysis/binomial_interval.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/analysis/sweep_plan.hpp"
+#include "experiments/cli/work_limits.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
@@ -63,9 +65,11 @@ std::string number(double x) {
 }
 
 void check_flags(const ChaosMapOptions& o) {
-  parse_grid_range(o.l_range, "--l-range");
-  parse_grid_range(o.h_range, "--h-range");
+  const auto cells = static_cast<std::int64_t>(parse_grid_range(o.l_range, "--l-range").size() *
+                                               parse_grid_range(o.h_range, "--h-range").size());
+  check_work_limit("--l-range", cells, max_grid_cells, "cells (--l-range x --h-range)");
   if (o.ics < 1 || o.ics > 1000000) throw UsageError("--ics: must be between 1 and 1000000");
+  check_work_limit("--ics", saturating_product(cells, o.ics), max_orbits, "orbits (cells x --ics)");
   if (!(o.t_end > 0.0) || !std::isfinite(o.t_end)) throw UsageError("--t-end: must be a positive number");
   if (o.dt && (!(*o.dt > 0.0) || !std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
   if (!std::isfinite(o.threshold)) throw UsageError("--threshold: must be a finite number");
@@ -239,7 +243,7 @@ int run_chaos_map(const ChaosMapOptions& o) {
   if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
   if (const std::string why = integrators::fixed_step_grid_problem(0.0, o.t_end, dt); !why.empty())
     throw UsageError("--dt: " + why);
-  if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
+  hdf5::check_output_target(o.out, o.force);
   const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
   std::vector<double> h_min;
   const std::vector<Cell> cells = make_cells(o, scene, body, dt, ls, hs, h_min);
@@ -296,7 +300,7 @@ Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context
       ->capture_default_str();
   sub->add_option("--threshold", o->threshold, "An orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
-  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
   sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
   add_force_quiet_flags(*sub, *o, "Replace an existing output file");
   sub->footer(exit_status_help);

@@ -11,6 +11,7 @@
 
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/relative_equilibria.hpp"
+#include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -46,6 +47,7 @@ void print_row(const RelativeEquilibrium& e) {
 void check_flags(const EquilibriaOptions& o) {
   if (o.l && !std::isfinite(*o.l)) throw UsageError("--l: must be a finite number");
   if (o.samples < 3) throw UsageError("--samples: must be at least 3");
+  check_work_limit("--samples", o.samples, max_branch_samples, "points per branch");
   for (const double l : o.appelrot)
     if (!std::isfinite(l)) throw UsageError("--appelrot: the values of l must be finite numbers");
   if (!o.appelrot_h.empty()) {

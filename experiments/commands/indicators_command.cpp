@@ -18,6 +18,7 @@
 #include <string>
 
 #include "experiments/analysis/chaos_indicators.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
@@ -118,7 +119,7 @@ int run_indicators(const IndicatorsOptions& o) {
   s.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(s.dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
   s.seed = o.seed, s.spectrum = o.spectrum, s.rtol = o.rtol;
-  if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
+  hdf5::check_output_target(o.out, o.force);
   std::string source;
   const std::vector<system::State> states = chosen_states(o, scene, source);
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
@@ -172,7 +173,7 @@ Subcommand add_indicators_subcommand(CLI::App& app, const CommandContext& contex
   sub->add_option("--seed", o->seed, "Seed of the tangent vectors (with each state's index)")->capture_default_str();
   sub->add_option("--rtol", o->rtol, "converged = 1 where the exponents over [T/2, T] and [0, T] agree to this, "
                                      "relative")->capture_default_str();
-  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
   return {sub,

@@ -29,6 +29,7 @@
 #include <optional>
 #include <sstream>
 
+#include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/commands/long_time/long_time_resume.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
@@ -277,6 +278,7 @@ ResultAttributes long_time_diagnostics(const integrators::RunStats& stats, doubl
 void check_long_time_flags(const LongTimeOptions& o) {
   (void)scheme_by_name(o.scheme, "--scheme");
   if (o.samples < 1) throw UsageError("--samples: must be >= 1 (samples per decade of steps)");
+  check_work_limit("--samples", o.samples, max_samples_per_decade, "samples per decade");
   if (!(o.flush_seconds > 0.0) || !std::isfinite(o.flush_seconds))
     throw UsageError("--flush-seconds: must be a finite number > 0");
   check_step_flags({o.dt, o.tol, o.t_end}, /*allow_zero_t_end=*/false);

@@ -23,6 +23,8 @@
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/analysis/section_seeds.hpp"
 #include "experiments/analysis/sweep_trajectory.hpp"
+#include "experiments/cli/work_limits.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
@@ -91,6 +93,8 @@ void check_flags(const PoincareOptions& o) {
   if (o.seeds.empty() && o.ics < 1) throw UsageError("--ics: must be at least 1 (or give --seeds)");
   if (!o.seeds.empty() && o.ics != 0) throw UsageError("--ics: not with --seeds (the file gives the orbits)");
   if (o.max_events < 1) throw UsageError("--max-events: must be at least 1");
+  check_work_limit("--ics", o.ics, max_orbits, "orbits");
+  check_work_limit("--max-events", o.max_events, max_section_events, "crossings per orbit");
   if (o.seed > static_cast<std::uint64_t>(INT64_MAX)) throw UsageError("--seed: at most 2^63 - 1 (a TOML integer)");
   if (!o.measure.empty() && !level_measure_from_name(o.measure))
     throw UsageError("--measure: \"" + o.measure + "\": expected liouville or uniform");
@@ -209,7 +213,8 @@ SweepAttributes attributes(const PoincareOptions& o, const SweepSpec& spec, cons
 std::unique_ptr<SweepPartialFile> fresh_partial_file(const PoincareOptions& o, const SweepLayout& layout,
                                                      const std::string& print) {
   const std::string partial = o.out + ".partial";
-  if (!o.force && hdf5::path_exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
+  hdf5::check_output_target(o.out, o.force);
+  hdf5::check_output_target(partial, true);
   if (hdf5::path_exists(partial)) {
     if (!o.force) throw UsageError("--out: " + partial + " exists (an interrupted run; --force replaces it)");
     std::remove(partial.c_str());
@@ -232,7 +237,7 @@ int run_cardan(const PoincareOptions& o, const system::Scene& scene) {
   r.out = o.out, r.command_line = o.command_line;
   r.threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
   r.lyapunov = o.lyapunov, r.megno = o.megno, r.force = o.force, r.quiet = o.quiet;
-  if (!r.force && hdf5::path_exists(r.out)) throw UsageError("--out: " + r.out + " exists (--force replaces it)");
+  hdf5::check_output_target(r.out, r.force);
   return run_cardan_poincare(scene, r);
 }
 
@@ -349,7 +354,7 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
                 "Wilson interval");
   sub->add_option("--threshold", o->threshold, "With --megno: an orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
-  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
   sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
   sub->add_flag("--force", o->force, "Replace an existing output file");
   sub->add_flag("--quiet", o->quiet, "No progress line and no summary");

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "experiments/analysis/accessible_region.hpp"
+#include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -59,12 +60,14 @@ std::map<std::string, std::string> provenance(const RegionOptions& o, const syst
 void check_flags(const RegionOptions& o) {
   if (o.grid < 8 || o.grid > 2000) throw UsageError("--grid: must be between 8 and 2000");
   if (o.samples < 3) throw UsageError("--samples: must be at least 3");
+  check_work_limit("--samples", o.samples, max_branch_samples, "points per branch");
   if (o.cells) {
     if (o.l || o.h) throw UsageError(std::string(o.l ? "--l" : "--h") + ": not with --cells (give --l-range and --h-range)");
     if (o.l_range.empty() || o.h_range.empty())
       throw UsageError(std::string(o.l_range.empty() ? "--l-range" : "--h-range") + ": required with --cells");
-    parse_grid_range(o.l_range, "--l-range");
-    parse_grid_range(o.h_range, "--h-range");
+    const auto cells = static_cast<std::int64_t>(parse_grid_range(o.l_range, "--l-range").size() *
+                                                 parse_grid_range(o.h_range, "--h-range").size());
+    check_work_limit("--cells", cells, max_grid_cells, "cells (--l-range x --h-range)");
     return;
   }
   if (!o.l || !o.h) throw UsageError(std::string(o.l ? "--h" : "--l") + ": required (or --cells with --l-range and --h-range)");

@@ -102,10 +102,7 @@ void check_flags(const SingularityOptions& o) {
 int singularity_command(const SingularityOptions& o) {
   check_flags(o);
   const std::string csv = results_csv_path(o.out);
-  struct stat st {};
-  for (const std::string& path : {o.out, csv})
-    if (!o.force && ::stat(path.c_str(), &st) == 0)
-      throw OutputFileError("output file '" + path + "' exists (use --force to replace it)");
+  for (const std::string& path : {o.out, csv}) hdf5::check_output_target(path, o.force);
 
   const std::string scenes_dir = shipped_scenes_dir(o.scenes_dir);
   const std::vector<SceneCase> cases = {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "experiments/analysis/sweep_trajectory.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
@@ -138,7 +139,8 @@ std::unique_ptr<SweepPartialFile> open_partial_file(const SweepOptions& o, const
   if (o.resume && !hdf5::path_exists(partial))
     throw UsageError("--resume: there is no " + partial + " to resume" +
                      (hdf5::path_exists(o.out) ? " (" + o.out + " is complete)" : ""));
-  if (!o.force && hdf5::path_exists(o.out)) throw UsageError("--out: " + o.out + " exists (--force replaces it)");
+  hdf5::check_output_target(o.out, o.force);
+  hdf5::check_output_target(partial, true);
   if (o.resume) return std::make_unique<SweepPartialFile>(partial, layout, print, true);
   return std::make_unique<SweepPartialFile>(partial, layout, print);
 }
@@ -233,7 +235,7 @@ Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
   sub->add_option("--spec", o->spec, "Sweep spec (TOML; experiments/SWEEPS.md, examples in experiments/sweeps/)")
       ->required();
   sub->add_option("--out", o->out, "Output file (HDF5); <out>.partial while it runs")->required();
-  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
   sub->add_option("--simd", o->simd,
                   "Trajectories in SIMD lanes where the scheme has an ensemble kernel (docs/ensemble.md): auto, off "
                   "(one at a time), sse2, avx2, avx512; the results are the same bit for bit")

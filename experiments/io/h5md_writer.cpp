@@ -164,11 +164,9 @@ void write_parameters_group(hid_t f, const Provenance& provenance, Fail&& fail) 
 
 /// Refuses before touching anything; creates `partial` with plain POSIX (clearest errno).
 void create_partial_file(const std::string& path, const std::string& partial, bool force) {
+  hdf5::check_output_target(path, force);
+  hdf5::check_output_target(partial, true);  // a leftover .partial is replaced; never a FIFO (open would block)
   struct stat st {};
-  if (::lstat(path.c_str(), &st) == 0) {
-    if (!force) throw OutputFileError("output file '" + path + "' exists (use --force to replace it)");
-    if (S_ISDIR(st.st_mode)) throw OutputFileError("cannot write trajectory '" + path + "': it is a directory");
-  }
   const std::string dir = hdf5::parent_directory(path);
   if (::stat(dir.c_str(), &st) != 0)
     throw OutputFileError("cannot write trajectory '" + path + "': directory '" + dir + "': " + errno_text(errno));

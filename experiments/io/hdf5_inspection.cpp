@@ -10,6 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "experiments/io/input_file.hpp"
+
 // Set by a sanitizer runtime when one is linked (then libFuzzer registers its
 // crash report here); absent, and so null, otherwise.
 extern "C" void __sanitizer_set_death_callback(void (*)(void)) __attribute__((weak));
@@ -130,7 +132,10 @@ herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void*)
 }  // namespace
 
 std::string inspect_in_child(const std::string& path, int timeout_seconds) {
-  if (H5Fis_hdf5(path.c_str()) <= 0) return {};  // not HDF5 at all: the reader's own open refuses it
+  // A FIFO or device never reaches HDF5 (input_file.hpp); a regular file without the signature
+  // is refused by the reader's own open, with its own message.
+  if (std::string why = regular_file_problem(path); !why.empty()) return why;
+  if (H5Fis_hdf5(path.c_str()) <= 0) return {};
   const pid_t child = fork();
   if (child < 0) return {};  // no process to spare: the readers' own checks remain
   if (child == 0) inspect_and_exit(path);

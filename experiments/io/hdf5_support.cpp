@@ -13,6 +13,7 @@
 #include <ctime>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError, hdf5_library_version
+#include "experiments/io/input_file.hpp"
 #include "experiments/io/libm_code_path.hpp"
 #include "lgi/build_info.hpp"
 
@@ -201,7 +202,7 @@ std::optional<std::string> read_string_at(const std::string& path, const std::st
                                           bool* readable, bool allow_variable) {
   const QuietHdf5Errors quiet;
   if (readable) *readable = false;
-  if (H5Fis_hdf5(path.c_str()) <= 0) return std::nullopt;
+  if (!hdf5_input_problem(path).empty() || H5Fis_hdf5(path.c_str()) <= 0) return std::nullopt;
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.valid()) return std::nullopt;
   if (readable) *readable = true;
@@ -300,6 +301,30 @@ bool path_exists(const std::string& path) {
   return ::lstat(path.c_str(), &st) == 0;
 }
 
+namespace {
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+}  // namespace
+
+void check_output_target(const std::string& path, bool force) {
+  if (path.empty()) throw OutputFileError("--out: an empty file name");
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return;  // nothing there (or the directory is refused on creation)
+  const bool link = S_ISLNK(st.st_mode);
+  if (link && ::stat(path.c_str(), &st) != 0)
+    throw OutputFileError("--out: '" + path + "' is a symbolic link to nothing; lgi replaces only a regular file");
+  if (!S_ISREG(st.st_mode))
+    throw OutputFileError("--out: '" + path + "' is " + (link ? "a link to " : "") + file_kind(st.st_mode) +
+                          "; lgi replaces only a regular file, even with --force");
+  if (!force) throw OutputFileError("--out: '" + path + "' exists (use --force to replace it)");
+}
+
 void publish(const std::string& from, const std::string& to, bool force, const std::string& contents) {
   const std::string appeared = "output file '" + to + "' appeared during the run; " + contents + " in '" + from + "'";
   if (!force) {
@@ -310,6 +335,7 @@ void publish(const std::string& from, const std::string& to, bool force, const s
       throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + errno_text(err));
     if (path_exists(to)) throw OutputFileError(appeared);  // file system without RENAME_NOREPLACE
   }
+  check_output_target(to, true);  // what appeared at `to` meanwhile is no more replaceable than before
   if (std::rename(from.c_str(), to.c_str()) != 0)
     throw OutputFileError("cannot rename '" + from + "' to '" + to + "': " + errno_text(errno));
 }

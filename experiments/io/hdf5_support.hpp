@@ -147,7 +147,17 @@ std::string csv_text(const std::string& s);
 /// Whether anything (a file, a link, a folder) is at `path`.
 bool path_exists(const std::string& path);
 
-/// Renames `from` to `to`; without force never replaces an existing `to`.
+/// The one rule for every output lgi writes (README.md, "Outputs"), checked
+/// before anything is written and again at publish(): the name is not empty,
+/// and what is at `path` may be replaced only with force and only if it is a
+/// regular file or a symbolic link to one. A directory, device, FIFO or
+/// socket (or a link to one, or a dangling link) is refused even with force,
+/// as SQLite refuses to open a non-regular database file. Throws
+/// OutputFileError naming --out and the path.
+void check_output_target(const std::string& path, bool force);
+
+/// Renames `from` to `to`; without force never replaces an existing `to`;
+/// with force, only a regular file (check_output_target).
 /// `contents` names what `from` holds in the refusal: "the trajectory is".
 void publish(const std::string& from, const std::string& to, bool force, const std::string& contents);
 

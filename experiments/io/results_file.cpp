@@ -42,13 +42,8 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 /// Refuses before touching anything, then creates both .partial files empty.
 void create_partial_files(const std::string& path, const std::string& csv_path, const std::string& partial,
                           const std::string& csv_partial, bool force) {
-  for (const std::string& p : {path, csv_path}) {
-    struct stat st {};
-    if (::lstat(p.c_str(), &st) == 0) {
-      if (!force) throw OutputFileError("output file '" + p + "' exists (use --force to replace it)");
-      if (S_ISDIR(st.st_mode)) throw OutputFileError("cannot write results '" + p + "': it is a directory");
-    }
-  }
+  for (const std::string& p : {path, csv_path}) hdf5::check_output_target(p, force);
+  for (const std::string& p : {partial, csv_partial}) hdf5::check_output_target(p, true);
   const std::string dir = hdf5::parent_directory(path);
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0)

@@ -14,6 +14,7 @@
 
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/results_file_impl.hpp"
+#include "experiments/io/input_file.hpp"
 
 namespace lgi::experiments {
 
@@ -70,6 +71,7 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
   results_detail::index_columns(columns_, options_, index_);
   const hdf5::QuietHdf5Errors quiet;
   try {
+    if (const std::string why = regular_file_problem(partial_path_); !why.empty()) fail(why);
     if (H5Fis_hdf5(partial_path_.c_str()) <= 0) fail("not an HDF5 file, or missing");
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
     if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot open");

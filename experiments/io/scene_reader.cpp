@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "experiments/io/gamma_attitude.hpp"
+#include "experiments/io/input_file.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/scene_term_tables.hpp"
 #include "experiments/io/scene_toml.hpp"
@@ -297,21 +298,7 @@ void refuse_cardan_scene(const Scene& scene, const std::string& command) {
 }
 
 Scene read_scene(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot read scene file: is a directory");
-  errno = 0;
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!f) {
-    throw InputError(path + ": cannot read scene file: " + (errno ? std::strerror(errno) : "cannot open"));
-  }
-  std::string text;
-  std::array<char, 1 << 16> buf{};
-  std::size_t got = 0;
-  while ((got = std::fread(buf.data(), 1, buf.size(), f.get())) > 0) text.append(buf.data(), got);
-  if (std::ferror(f.get())) {
-    throw InputError(path + ": cannot read scene file: " + (errno ? std::strerror(errno) : "read error"));
-  }
-  return parse_scene(text, path);
+  return parse_scene(read_text_input(path, "scene file"), path);
 }
 
 }  // namespace lgi::experiments

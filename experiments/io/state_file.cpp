@@ -6,11 +6,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <sstream>
 
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/gamma_attitude.hpp"
 #include "experiments/io/hdf5_support.hpp"
+#include "experiments/io/input_file.hpp"
 
 namespace lgi::experiments {
 
@@ -98,8 +99,7 @@ double csv_value(const std::string& path, std::size_t line, const std::string& c
 }
 
 StateRows read_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the state file: " + std::strerror(errno));
+  std::istringstream in(read_text_input(path, "the state file"));
   std::string line;
   if (!std::getline(in, line)) throw InputError(path + ": empty state file (expected a header line)");
   const std::vector<std::string> header = csv_fields(line);
@@ -133,12 +133,10 @@ StateRows read_csv(const std::string& path) {
 }  // namespace
 
 StateRows read_state_file(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) throw InputError(path + ": cannot read the state file: " + std::strerror(errno));
-  probe.close();
+  // HDF5 only for a regular file with its signature; anything else is read as CSV text, under the cap.
   const bool is_hdf5 = [&] {
     const hdf5::QuietHdf5Errors quiet;
-    return H5Fis_hdf5(path.c_str()) > 0;
+    return hdf5_input_problem(path).empty() && H5Fis_hdf5(path.c_str()) > 0;
   }();
   StateRows r = is_hdf5 ? read_hdf5(path) : read_csv(path);
   if (r.gamma.empty()) throw InputError(path + ": no states (the table has no rows)");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
@@ -21,6 +22,25 @@ namespace {
 
 constexpr std::int64_t first_block_rows = 4096;  // crossings in /partial/events_0
 
+/// Refuses a sweep whose /sweep rows alone cannot fit (README.md, "Limits"): per row the fixed
+/// columns (status, steps, rejected_steps, event_count, sample_count, cpu_seconds, t_final, Π,
+/// q, Γ: 17 numbers), the inputs and the invariant errors, 8 bytes each, twice (the .partial and
+/// the final file exist together while the final one is written). A lower bound: crossings and
+/// trajectories add to it as they come. Checked against statvfs's space for unprivileged users.
+void refuse_if_it_cannot_fit(const std::string& path, const SweepLayout& layout) {
+  std::uint64_t numbers = 17 + layout.error_names.size();
+  for (const auto& c : layout.inputs) numbers += static_cast<std::uint64_t>(std::max(1, c.width));
+  const long double need = 2.0L * 8.0L * static_cast<long double>(numbers) * static_cast<long double>(layout.count);
+  struct statvfs fs {};
+  if (::statvfs(hdf5::parent_directory(path).c_str(), &fs) != 0) return;  // the create reports what is wrong
+  const long double free_bytes = static_cast<long double>(fs.f_bavail) * static_cast<long double>(fs.f_frsize);
+  if (need <= free_bytes) return;
+  auto gb = [](long double b) { return std::to_string(static_cast<long long>(std::ceil(b / 1e9L))); };
+  throw OutputFileError("--out: " + path + ": " + std::to_string(layout.count) + " trajectories need at least " +
+                        gb(need) + " GB (the .partial and the final file) and the file system has " + gb(free_bytes) +
+                        " GB free");
+}
+
 
 }  // namespace
 
@@ -30,6 +50,7 @@ void SweepPartialFile::fail(const std::string& what) const {
 
 SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& layout, const std::string& fingerprint)
     : path_(path), layout_(layout) {
+  refuse_if_it_cannot_fit(path, layout);
   const hdf5::QuietHdf5Errors quiet;
   auto fail_fn = [this](const std::string& what) { fail(what); };
   file_ = hdf5::create_file(path, fail_fn, 0);  // rows go to the file as they are written

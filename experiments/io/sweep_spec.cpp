@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "experiments/io/input_file.hpp"
 #include "experiments/io/scene_toml.hpp"
 
 namespace lgi::experiments {
@@ -287,11 +288,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& path) {
 }
 
 SweepSpec read_sweep_spec(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read sweep spec: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_sweep_spec(text.str(), path);
+  return parse_sweep_spec(read_text_input(path, "sweep spec"), path);
 }
 
 }  // namespace lgi::experiments

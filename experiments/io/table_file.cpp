@@ -14,8 +14,8 @@ namespace lgi::experiments {
 namespace {
 
 void refuse_existing(const std::string& path, bool force) {
-  if (!force && hdf5::path_exists(path))
-    throw OutputFileError("output file '" + path + "' exists (--force replaces it)");
+  hdf5::check_output_target(path, force);
+  hdf5::check_output_target(path + ".partial", true);
 }
 
 void write_csv(const std::string& path, const std::vector<TableColumn>& columns, std::size_t rows) {

@@ -18,6 +18,7 @@
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/grid_range.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "python/src/bindings.hpp"
@@ -237,7 +238,8 @@ struct PoincareArguments {
 };
 
 py::dict poincare(const py::object& scene_arg, const PoincareArguments& a) {
-  if (a.threads < 1) throw py::value_error("threads: must be >= 1");
+  if (a.threads < 1 || a.threads > ex::max_threads())
+    throw py::value_error("threads: must be from 1 to " + std::to_string(ex::max_threads()) + " (64 per core)");
   const TemporaryFolder folder("lgi-poincare");
   ex::PoincareRequest r;
   r.scene = poincare_scene_file(scene_arg, folder);

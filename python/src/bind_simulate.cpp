@@ -9,6 +9,7 @@
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/simulation.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "python/src/bindings.hpp"
 
 namespace lgi::python {
@@ -122,6 +123,7 @@ py::dict simulate(const py::object& scene_arg, const std::string& scheme_name, s
                   std::optional<std::string> out, bool force, int retry_halving, std::optional<double> output_dt) {
   const std::shared_ptr<const system::Scene> scene = scene_argument(scene_arg);
   const integrators::SchemeInfo& scheme = scheme_argument(scheme_name);
+  if (out && out->empty()) throw experiments::OutputFileError("out: an empty file name");  // as lgi's --out ''
   experiments::SimulationRequest request{dt,    tol,  t_end, save_every, retry_halving, out.value_or(""),
                                          force, true, "",    output_dt};
   if (out) request.command_line = python_call(*scene, scheme.name, request);

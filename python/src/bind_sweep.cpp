@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/hdf5_columns.hpp"
 
@@ -46,7 +47,8 @@ std::string spec_file(const py::object& spec, const TemporaryFolder& folder) {
 }
 
 py::array sweep(const py::object& spec, int threads, const std::optional<std::string>& out, bool force) {
-  if (threads < 1) throw py::value_error("threads: must be >= 1");
+  if (threads < 1 || threads > experiments::max_threads())
+    throw py::value_error("threads: must be from 1 to " + std::to_string(experiments::max_threads()) + " (64 per core)");
   const TemporaryFolder folder("lgi-sweep");
   experiments::SweepRequest request;
   request.spec = spec_file(spec, folder);

@@ -150,7 +150,7 @@ def test_poincare_scene_object_and_out(cli_poincare, tmp_path):
     got = lgi.poincare(scene, megno=True, lyapunov=True, out=out, **POINCARE_FLAGS)
     compare_poincare(got, cli_poincare)
     assert got["out"] == out and os.path.exists(out)
-    with pytest.raises(ValueError, match="exists"):
+    with pytest.raises(OSError, match="exists"):  # python/README.md: an output that exists is an OSError
         lgi.poincare(scene, out=out, **POINCARE_FLAGS)
 
 

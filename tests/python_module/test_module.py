@@ -4,6 +4,7 @@ failed runs, the GIL released during runs, out= writing the CLI's file,
 Stepper equal to one run, the exact flow, the registry and scenes, sweeps."""
 import json
 import os
+import stat
 import subprocess
 import threading
 import time
@@ -111,6 +112,34 @@ def test_out_writes_the_cli_file(cli_book, tmp_path):
     with pytest.raises(OSError, match="exists"):
         lgi.simulate(BOOK, "rkmk4", 0.01, dt=1e-3, out=out)
     lgi.simulate(BOOK, "rkmk4", 0.01, dt=1e-3, out=out, force=True)
+
+
+def test_force_never_replaces_what_is_not_a_regular_file(tmp_path):
+    """README.md, "Limits": out='' is refused, and force=True replaces only a regular file; a
+    FIFO, a directory or (as root, a private one) a device node stays as it was."""
+    with pytest.raises(OSError, match="empty"):
+        lgi.simulate(BOOK, "rkmk4", 0.01, dt=1e-3, out="")
+    fifo = str(tmp_path / "fifo")
+    os.mkfifo(fifo)
+    folder = str(tmp_path / "folder")
+    os.mkdir(folder)
+    targets = [(fifo, "FIFO"), (folder, "directory")]
+    if os.geteuid() == 0:
+        node = str(tmp_path / "node")
+        try:
+            os.mknod(node, 0o600 | stat.S_IFCHR, os.makedev(1, 3))
+            targets.append((node, "device"))
+        except PermissionError:
+            pass
+    for path, word in targets:
+        before = os.lstat(path)
+        with pytest.raises(OSError, match=word):
+            lgi.simulate(BOOK, "rkmk4", 0.01, dt=1e-3, out=path, force=True)
+        after = os.lstat(path)
+        assert (after.st_mode, after.st_ino, after.st_rdev) == (before.st_mode, before.st_ino, before.st_rdev)
+        assert not os.path.exists(path + ".partial")
+    with pytest.raises(ValueError, match="threads"):
+        lgi.sweep({"scene": BOOK}, threads=10**6)
 
 
 def test_no_file_without_out(tmp_path):

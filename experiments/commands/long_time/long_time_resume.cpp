@@ -1,6 +1,8 @@
 // lgi long-time --resume: checkpoints and reopening (long_time_resume.hpp).
 #include "experiments/commands/long_time/long_time_resume.hpp"
 
+#include <hdf5.h>
+
 #include <cstdio>
 
 #include "experiments/errors/exit_status.hpp"
@@ -14,6 +16,13 @@ namespace {
 
 constexpr const char* resume_group = "resume";
 constexpr const char* record_name = "checkpoint";
+
+/// Whether the HDF5 file at `path` (opened read-only, after inspect_in_child) has the object `name`.
+bool has_object(const std::string& path, const char* name) {
+  const hdf5::QuietHdf5Errors quiet;
+  hdf5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  return file.valid() && H5Lexists(file.get(), name, H5P_DEFAULT) > 0;
+}
 
 /// Every bit of x: a hexadecimal float.
 std::string exact(double x) {
@@ -49,7 +58,7 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
     throw UsageError("--resume: there is no " + partial + " to resume" +
                      (hdf5::path_exists(out) ? " (" + out + " is complete)" : ""));
   for (const std::string& p : {out, csv})
-    if (!force && hdf5::path_exists(p)) throw UsageError("--out: " + p + " exists (--force replaces it)");
+    hdf5::check_output_target(p, force);
   ResumedResults r;
   if (const std::string why = hdf5::inspect_in_child(partial); !why.empty())
     throw OutputFileError("cannot resume results '" + partial + "': " + why + " (damaged); remove it");
@@ -58,6 +67,11 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
       hdf5::read_fixed_string_attribute(partial, std::string("/") + resume_group, "fingerprint", &readable);
   if (!readable)
     throw OutputFileError("cannot resume results '" + partial + "': not an HDF5 file (damaged); remove it");
+  // No fingerprint: a long-time run killed as it started (its table is there: start again), or
+  // another command's file (a sweep's .partial), which is refused and left as it is.
+  if (!stored && !has_object(partial, "/series"))
+    throw UsageError("--resume: " + partial + " is not a partial lgi long-time file (no /series table, no "
+                     "checkpoint); it is left as it is: remove it or choose another --out");
   if (!stored) return r;  // nothing to go on from
   if (*stored != fingerprint)
     throw UsageError("--resume: " + partial +
