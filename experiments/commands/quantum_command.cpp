@@ -88,7 +88,7 @@ void print_extra(const std::vector<TableGroup>& extra) {
       double worst = 0.0;
       for (double d : g.columns[5].real) worst = std::max(worst, std::abs(d));
       std::printf("EBK: max |E_ebk - E_exact| = %.3g over %zu levels\n", worst, g.columns[5].real.size());
-    } else {
+    } else if (g.name == "statistics") {
       const auto& levels = g.columns[2].whole;
       for (std::size_t i = 0; i < levels.size() && i < 20; ++i)
         std::printf("statistics: j %3lld parity %2lld: %4lld levels, Brody beta = %.3f +- %.3f\n",
@@ -144,6 +144,7 @@ int run_quantum(const QuantumOptions& o) {
   try {
     if (o.ebk) extra.push_back(ebk_group(q, o.hbar, o.m));
     if (o.statistics) extra.push_back(statistics_group(q, o.hbar, o.m));
+    if (o.statistics) extra.push_back(weyl_group(q, o.hbar, o.m));
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string(e.what()) + " (scene " + scene.file + ")");
   }

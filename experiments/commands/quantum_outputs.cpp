@@ -6,6 +6,7 @@
 
 #include "experiments/analysis/quantum/ebk_lagrange.hpp"
 #include "experiments/analysis/quantum/quantum_statistics.hpp"
+#include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
 #include "experiments/analysis/spectral/reference_curves.hpp"
 
@@ -36,6 +37,21 @@ TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
            whole_column("converged", converged)},
           {{"rule", "I_theta(E; l = m hbar, L3 = k hbar) = hbar (n + 1/2), Maslov index 2 (Keller 1958); n = the "
                     "level's rank in its k block (docs/quantum.md section 7)"}}};
+}
+
+TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+  std::vector<double> count;
+  if (q.top.is_free()) {
+    for (const quantum::QuantumLevel& l : q.levels)
+      count.push_back(quantum::free_rotor_weyl_count(q.top.moments, hbar, l.j, l.energy));
+  } else {
+    const quantum::WeylCounting weyl(q.top, hbar, m);
+    for (const quantum::QuantumLevel& l : q.levels) count.push_back(weyl(l.energy));
+  }
+  return {"weyl",
+          {real_column("weyl_count", count)},
+          {{"meaning", "one row per /spectrum row: the smooth count of levels below its energy at this m, "
+                       "Vol{H <= E}/(2 pi hbar)^2 (a free body: N_j(E) of its j); docs/quantum.md section 8"}}};
 }
 
 TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
