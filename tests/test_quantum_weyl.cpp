@@ -3,7 +3,7 @@
 // j at fixed m, and the staircase of a heavy (Lagrange) top; and the
 // statistics built on it (quantum_statistics.hpp), including the anomalous
 // statistics of the asymmetric rotor at fixed j (Manfredi & Salasnich,
-// Int. J. Mod. Phys. E 11 (2002), nucl-th/0106048).
+// Int. J. Mod. Phys. E (2002), nucl-th/0106048).
 #include <catch2/catch.hpp>
 #include <cmath>
 
