@@ -1,7 +1,8 @@
 // EBK levels of the Lagrange top against lgi quantum's exact levels
 // (docs/quantum.md §7): I_θ = ħ(n + 1/2) at ℓ = mħ, L3 = kħ (Maslov index 2)
 // gives the levels to O(ħ²) at fixed quantum numbers, so the largest
-// difference over the lowest ten levels drops by about 4 when ħ halves.
+// difference over the lowest ten levels drops by about 4 when ħ halves; in
+// the free limit (w → 0) the error is exactly ħ²/(8A).
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -56,4 +57,21 @@ TEST_CASE("EBK of the Lagrange top: the ground level sits above the bottom by th
   QuantumSettings s;
   s.hbar = 0.1, s.jmax = 10, s.levels = 2;
   CHECK_THROWS_AS(ebk_lagrange_table(quantum_spectrum(heavy_asymmetric, s), 0.1, 0), std::invalid_argument);
+}
+
+TEST_CASE("EBK of the Lagrange top in the free limit: the exact level plus hbar^2/(8A)", "[quantum][ebk]") {
+  // docs/quantum.md §7: as w → 0, I_θ = L − max(|ℓ|, |L3|), so the rule gives
+  // ħ²(j + 1/2)²/(2A) + ħ²k²(1/(2C) − 1/(2A)), j = n + max(|m|, |k|).
+  const double A = 1.0, C = 0.5, hbar = 0.1, w = 1e-7;
+  const LagrangeBody body{A, C, w};
+  for (const int m : {0, 2, -3})
+    for (const int k : {0, 1, -2, 4})
+      for (const int n : {0, 3}) {
+        const int j = n + std::max(std::abs(m), std::abs(k));
+        const double exact = hbar * hbar * (j * (j + 1.0) / (2.0 * A) + k * k * (1.0 / (2.0 * C) - 1.0 / (2.0 * A)));
+        const auto e = ebk_lagrange_level(body, hbar, n, m, k);
+        REQUIRE(e);
+        INFO("n " << n << " m " << m << " k " << k);
+        CHECK(*e - exact == Approx(hbar * hbar / (8.0 * A)).margin(1e-5));
+      }
 }
