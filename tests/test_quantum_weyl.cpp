@@ -89,3 +89,15 @@ TEST_CASE("The asymmetric rotor at fixed j: neither Poisson nor GOE (Manfredi & 
       if (d3[i].length == 10.0) CHECK(d3[i].value < 0.1);
   }
 }
+
+TEST_CASE("Weyl's law: the quadrature converges with its nodes", "[quantum][weyl]") {
+  // Richter's general top (c with three components) at m = 2: the default
+  // 400 nodes against 1600, relative to the count, where it exceeds 10 levels.
+  const QuantumTop top = quantum_top(Eigen::Vector3d(1.0, 1.5, 2.0), Eigen::Vector3d(0.8, 0.4, 0.3));
+  const WeylCounting coarse(top, 0.05, 2), fine(top, 0.05, 2, 1600);
+  for (const double e : {-0.5, 0.0, 0.5, 2.0}) {
+    REQUIRE(fine(e) > 10.0);
+    INFO("E = " << e << ": " << coarse(e) << " against " << fine(e));
+    CHECK(std::abs(coarse(e) / fine(e) - 1.0) < 1e-5);
+  }
+}
