@@ -79,15 +79,16 @@ TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int 
       delta3_error.push_back(empty ? kNaN : s.rigidity[i].standard_error);
     }
   }
-  std::vector<double> centres, poisson_p, wigner_p, poisson_s2, goe_s2, poisson_d3, goe_d3;
+  std::vector<double> centres, poisson_p, wigner_p, gue_p, poisson_s2, goe_s2, gue_s2, poisson_d3, goe_d3, gue_d3;
   for (std::size_t b = 0; b < bins; ++b) {
     const double s = (static_cast<double>(b) + 0.5) * options.bin_width;
     centres.push_back(s), poisson_p.push_back(spectral::poisson_spacing_density(s));
-    wigner_p.push_back(spectral::wigner_spacing_density(s));
+    wigner_p.push_back(spectral::wigner_spacing_density(s)), gue_p.push_back(spectral::gue_spacing_density(s));
   }
   for (double L : options.lengths) {
     poisson_s2.push_back(spectral::poisson_number_variance(L)), goe_s2.push_back(spectral::goe_number_variance(L));
     poisson_d3.push_back(spectral::poisson_rigidity(L)), goe_d3.push_back(spectral::goe_rigidity(L));
+    gue_s2.push_back(spectral::gue_number_variance(L)), gue_d3.push_back(spectral::gue_rigidity(L));
   }
   const int wb = static_cast<int>(bins), wl = static_cast<int>(nl);
   return {"statistics",
@@ -97,9 +98,11 @@ TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int 
            real_column("number_variance", sigma2, wl), real_column("number_variance_error", sigma2_error, wl),
            real_column("rigidity", delta3, wl), real_column("rigidity_error", delta3_error, wl),
            real_column("bin_centre", centres), real_column("poisson_density", poisson_p),
-           real_column("wigner_density", wigner_p), real_column("length", options.lengths),
+           real_column("wigner_density", wigner_p), real_column("gue_density", gue_p),
+           real_column("length", options.lengths),
            real_column("poisson_number_variance", poisson_s2), real_column("goe_number_variance", goe_s2),
-           real_column("poisson_rigidity", poisson_d3), real_column("goe_rigidity", goe_d3)},
+           real_column("poisson_rigidity", poisson_d3), real_column("goe_rigidity", goe_d3),
+           real_column("gue_number_variance", gue_s2), real_column("gue_rigidity", gue_d3)},
           {{"unfolding", "Weyl's law (docs/quantum.md section 8): per class N(E)/classes; a free body per j "
                          "and D2 class N_j(E)/4"},
            {"levels_used", "converged levels only; a symmetric heavy top at m = 0: k >= 0 only"}}};

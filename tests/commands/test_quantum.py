@@ -150,6 +150,7 @@ def test_statistics_of_the_free_asymmetric_rotor(tmp_path):
     far = t["length"] >= 3
     assert np.all(t["rigidity"][:, far] < 0.1) and np.all(t["rigidity"][:, far] < t["goe_rigidity"][far])
     assert np.allclose(t["poisson_rigidity"], t["length"] / 15)
+    assert np.all(t["gue_rigidity"][far] < t["goe_rigidity"][far]) and t["gue_density"].shape == (n_bins,)
 
 
 def test_statistics_of_a_heavy_top(tmp_path):
