@@ -233,3 +233,23 @@ TEST_CASE("unfolding: the staircase fit, a counting function, and bad input", "[
   CHECK_THROWS_WITH(statistics_by_class(nine, std::vector<int>(nine.size(), 4)),
                     Catch::Contains("class 4: staircase fit: the polynomial of degree 5 decreases"));
 }
+
+TEST_CASE("reference curves: the GUE", "[spectral]") {
+  // Σ²(L) against the direct integral L − 2∫(L − r) sinc²(r) dr (SciPy quad,
+  // to 1e-13), its large-L asymptote, Δ₃'s asymptote, and the surmise's
+  // normalisation and mean.
+  CHECK_THAT(gue_number_variance(0.5), WithinRel(0.2801579363733302, 1e-12));
+  CHECK_THAT(gue_number_variance(1.0), WithinRel(0.3441625935140381, 1e-12));
+  CHECK_THAT(gue_number_variance(10.0), WithinRel(0.5792963359329928, 1e-11));
+  const double p = std::numbers::pi, gamma = std::numbers::egamma;
+  const double L = 200.0;
+  CHECK(std::abs(gue_number_variance(L) - (std::log(2 * p * L) + gamma + 1.0) / (p * p)) < 1e-3);
+  CHECK(std::abs(gue_rigidity(L) - (std::log(2 * p * L) + gamma - 1.25) / (2 * p * p)) < 1e-3);
+  double norm = 0.0, mean = 0.0;
+  for (int i = 0; i < 100000; ++i) {
+    const double s = (i + 0.5) * 1e-4;
+    norm += 1e-4 * gue_spacing_density(s), mean += 1e-4 * s * gue_spacing_density(s);
+  }
+  CHECK(norm == Approx(1.0).epsilon(1e-9));
+  CHECK(mean == Approx(1.0).epsilon(1e-9));
+}

@@ -1,9 +1,10 @@
 // lgi quantum --scene FILE --hbar H [--m M] [--jmax J] [--levels N] [--jmax-step D] [--tol T]
-//   --out FILE.h5 [--force] [--quiet]
+//   [--ebk] [--statistics] --out FILE.h5 [--force] [--quiet]
 // The lowest levels of the quantum top Ĥ = Σ L̂ᵢ²/(2Jᵢ) + c·Γ̂ at vertical
 // angular momentum mħ (experiments/QUANTUM.md, docs/quantum.md), each with
 // its quantum numbers, its class and its convergence in jmax
 // (analysis/quantum/quantum_spectrum.hpp): /spectrum/<column> and a CSV.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,8 +16,10 @@
 
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/commands/quantum_outputs.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
@@ -32,6 +35,7 @@ struct QuantumOptions {
   double hbar = 0.0;
   int m = 0, jmax = 40, levels = 20, jmax_step = 4;
   double tol = 1e-8;
+  bool ebk = false, statistics = false;
   bool force = false, quiet = false;
   std::string command_line;
 };
@@ -77,6 +81,23 @@ void print_rows(const quantum::QuantumSpectrum& q) {
   if (shown < q.levels.size()) std::printf("... %zu more levels in the file\n", q.levels.size() - shown);
 }
 
+/// One line per /ebk or /statistics summary.
+void print_extra(const std::vector<TableGroup>& extra) {
+  for (const TableGroup& g : extra) {
+    if (g.name == "ebk") {
+      double worst = 0.0;
+      for (double d : g.columns[5].real) worst = std::max(worst, std::abs(d));
+      std::printf("EBK: max |E_ebk - E_exact| = %.3g over %zu levels\n", worst, g.columns[5].real.size());
+    } else if (g.name == "statistics") {
+      const auto& levels = g.columns[2].whole;
+      for (std::size_t i = 0; i < levels.size() && i < 20; ++i)
+        std::printf("statistics: j %3lld parity %2lld: %4lld levels, Brody beta = %.3f +- %.3f\n",
+                    static_cast<long long>(g.columns[0].whole[i]), static_cast<long long>(g.columns[1].whole[i]),
+                    static_cast<long long>(levels[i]), g.columns[3].real[i], g.columns[4].real[i]);
+    }
+  }
+}
+
 std::string vector_text(const Eigen::Vector3d& v) {
   return "[" + number(v(0)) + ", " + number(v(1)) + ", " + number(v(2)) + "]";
 }
@@ -106,6 +127,9 @@ int run_quantum(const QuantumOptions& o) {
   check_flags(o);
   const system::Scene scene = read_scene(o.scene);
   const quantum::QuantumTop top = quantum::quantum_top_of(scene);
+  if (o.ebk && top.symmetry != quantum::TopSymmetry::symmetric_heavy)
+    throw InputError("--ebk: needs a Lagrange top (J1 = J2, centre of mass on the symmetry axis); scene " + scene.file +
+                     " is " + quantum::symmetry_name(top.symmetry));
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   quantum::QuantumSettings s;
   s.hbar = o.hbar, s.m = o.m, s.jmax = o.jmax, s.levels = o.levels, s.jmax_step = o.jmax_step, s.tol = o.tol;
@@ -116,8 +140,16 @@ int run_quantum(const QuantumOptions& o) {
   } catch (const std::runtime_error& e) {
     throw RunError(e.what());
   }
+  std::vector<TableGroup> extra;
+  try {
+    if (o.ebk) extra.push_back(ebk_group(q, o.hbar, o.m));
+    if (o.statistics) extra.push_back(statistics_group(q, o.hbar, o.m));
+    if (o.statistics) extra.push_back(weyl_group(q, o.hbar, o.m));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string(e.what()) + " (scene " + scene.file + ")");
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_table_file(o.out, o.force, "spectrum", columns_of(q, o.m), parameters_of(o, scene, q, wall));
+  write_table_file(o.out, o.force, "spectrum", columns_of(q, o.m), parameters_of(o, scene, q, wall), extra);
   std::size_t unconverged = 0;
   for (const auto& l : q.levels) unconverged += l.converged ? 0 : 1;
   if (unconverged > 0)
@@ -125,6 +157,7 @@ int run_quantum(const QuantumOptions& o) {
               << "jmax = " << o.jmax << " and " << o.jmax + o.jmax_step << ": converged = 0 (raise --jmax)\n";
   if (o.quiet) return exit_ok;
   print_rows(q);
+  print_extra(extra);
   std::cout << q.levels.size() << " levels at m = " << o.m << ", hbar = " << format_general(o.hbar, 10)
             << " (" << quantum::symmetry_name(top.symmetry) << "); basis " << q.dimension << " states; "
             << format_general(wall, 3) << " s; wrote " << o.out << '\n';
@@ -149,6 +182,10 @@ Subcommand add_quantum_subcommand(CLI::App& app, const CommandContext& context) 
   sub->add_option("--tol", o->tol, "converged = 1 where |E(jmax + step) - E(jmax)| <= tol * max(|E|, hbar^2/(2 "
                                    "J_min))")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
+  sub->add_flag("--ebk", o->ebk, "Also write /ebk: the Lagrange top's EBK levels beside the exact ones "
+                                 "(docs/quantum.md section 7)");
+  sub->add_flag("--statistics", o->statistics, "Also write /statistics: spacings, Brody beta, number variance and "
+                                               "rigidity per symmetry class, unfolded with Weyl's law");
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
   return {sub,
           [o, context] {

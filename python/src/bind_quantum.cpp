@@ -6,14 +6,44 @@
 #include <cmath>
 #include <string>
 
+#include "experiments/analysis/quantum/ebk_lagrange.hpp"
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
+#include "experiments/analysis/quantum/weyl_law.hpp"
 #include "python/src/bindings.hpp"
 
 namespace lgi::python {
 namespace {
 
+/// The optional columns: Weyl's smooth count at each level, the EBK levels.
+void add_semiclassics(py::dict& d, const experiments::quantum::QuantumSpectrum& q, double hbar, int m, bool weyl,
+                      bool ebk) {
+  namespace eq = experiments::quantum;
+  const auto rows = static_cast<py::ssize_t>(q.levels.size());
+  if (weyl) {
+    std::vector<double> count;
+    if (q.top.is_free()) {
+      for (const auto& l : q.levels) count.push_back(eq::free_rotor_weyl_count(q.top.moments, hbar, l.j, l.energy));
+    } else {
+      const eq::WeylCounting w(q.top, hbar, m);
+      for (const auto& l : q.levels) count.push_back(w(l.energy));
+    }
+    d["weyl_count"] = to_numpy(std::move(count), {rows});
+  }
+  if (ebk) {
+    std::vector<std::int64_t> n;
+    std::vector<double> energy;
+    try {
+      for (const eq::EbkRow& r : eq::ebk_lagrange_table(q, hbar, m)) n.push_back(r.n), energy.push_back(r.energy_ebk);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(e.what());
+    }
+    d["ebk_n"] = to_numpy(std::move(n), {rows});
+    d["energy_ebk"] = to_numpy(std::move(energy), {rows});
+  }
+}
+
 py::dict quantum_spectrum(const py::object& scene_arg, double hbar, int m, int jmax, int levels, int jmax_step,
-                          double tol) {
+                          double tol, bool weyl, bool ebk) {
   const std::shared_ptr<const system::Scene> scene = scene_argument(scene_arg);
   const experiments::quantum::QuantumTop top = experiments::quantum::quantum_top_of(*scene);  // ValueError if refused
   experiments::quantum::QuantumSettings s;
@@ -50,6 +80,7 @@ py::dict quantum_spectrum(const py::object& scene_arg, double hbar, int m, int j
   d["weight"] = to_numpy(std::vector<double>(q.top.weight.data(), q.top.weight.data() + 3), {3});
   d["dimension"] = q.dimension;
   d["method"] = q.method;
+  add_semiclassics(d, q, hbar, m, weyl, ebk);
   return d;
 }
 
@@ -58,11 +89,15 @@ py::dict quantum_spectrum(const py::object& scene_arg, double hbar, int m, int j
 void bind_quantum(py::module_& m) {
   m.def("quantum_spectrum", &quantum_spectrum, py::arg("scene"), py::arg("hbar"), py::arg("m") = 0,
         py::arg("jmax") = 40, py::arg("levels") = 20, py::arg("jmax_step") = 4, py::arg("tol") = 1e-8,
-        "quantum_spectrum(scene, hbar, m=0, jmax=40, levels=20, jmax_step=4, tol=1e-8) -> dict: the levels of\n"
+        py::arg("weyl") = false, py::arg("ebk") = false,
+        "quantum_spectrum(scene, hbar, m=0, jmax=40, levels=20, jmax_step=4, tol=1e-8, weyl=False, ebk=False)\n"
+        "-> dict: the levels of\n"
         "`lgi quantum` (experiments/QUANTUM.md): the /spectrum columns index, energy, j, m, k, parity,\n"
         "converged, change_with_jmax, k_conserved as arrays, and symmetry, parity_classes, moments and\n"
         "weight (the frame's J and c), dimension, method. ValueError for a scene term that is not a\n"
-        "potential of Gamma and for settings out of range.");
+        "potential of Gamma and for settings out of range. weyl=True adds weyl_count (Weyl's smooth count at\n"
+        "each level, the file's /weyl); ebk=True adds ebk_n and energy_ebk (the file's /ebk; a Lagrange top\n"
+        "only, ValueError otherwise), docs/quantum.md sections 7-8.");
 }
 
 }  // namespace lgi::python

@@ -104,3 +104,67 @@ def test_bad_input_is_refused(tmp_path):
     assert "--jmax" in refused("quantum", "--scene", free, "--hbar", "1", "--m", "5", "--jmax", "3", "--out", out)
     assert "--levels" in refused("quantum", "--scene", free, "--hbar", "1", "--levels", "0", "--out", out)
     assert not os.path.exists(out)
+
+
+def ebk_error(tmp_path, hbar, jmax, m):
+    out = str(tmp_path / f"ebk_{hbar}_{m}.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "lagrange_top_cigar.toml"), "--hbar", str(hbar), "--m", str(m),
+        "--jmax", str(jmax), "--levels", "10", "--ebk", "--out", out)
+    t, _ = table(out, "ebk")
+    s, _ = table(out)
+    assert np.all(t["converged"] == 1) and np.all(t["m"] == m)
+    assert np.array_equal(t["energy_exact"], s["energy"]) and np.array_equal(t["k"], s["k"])
+    assert np.allclose(t["difference"], t["energy_ebk"] - t["energy_exact"], rtol=0, atol=0)
+    for k in set(t["k"]):  # n counts the levels of each k block from 0
+        assert list(t["n"][t["k"] == k]) == list(range(np.count_nonzero(t["k"] == k)))
+    return np.max(np.abs(t["difference"]))
+
+
+def test_ebk_lagrange_is_second_order(tmp_path):
+    # docs/quantum.md section 7: the EBK levels differ from the exact ones by O(hbar^2).
+    for m in (0, 2):
+        ratio = ebk_error(tmp_path, 0.1, 30, m) / ebk_error(tmp_path, 0.05, 40, m)
+        assert 3.6 < ratio < 4.4, ratio
+
+
+def test_ebk_refused_off_lagrange(tmp_path):
+    line = refused("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "1", "--jmax", "4",
+                   "--ebk", "--out", str(tmp_path / "x.h5"))
+    assert "--ebk" in line and "free_body_hlw.toml" in line
+
+
+def test_statistics_of_the_free_asymmetric_rotor(tmp_path):
+    # One j (m = jmax = 80), its four D2 classes: the Manfredi-Salasnich anomaly,
+    # near a picket fence (Brody fit at its bound 1, Delta_3 far below Poisson).
+    out = str(tmp_path / "stat.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "1", "--m", "80", "--jmax", "80",
+        "--statistics", "--out", out)
+    t, _ = table(out, "statistics")
+    assert list(t["j"]) == [80] * 4 and list(t["parity"]) == [0, 1, 2, 3]
+    assert sum(t["levels"]) == 161
+    assert np.all(t["brody_bound"] == 1) and np.all(t["brody_beta"] == 1.0)
+    n_bins, n_lengths = len(t["bin_centre"]), len(t["length"])
+    assert t["spacing_density"].shape == (4, n_bins) and t["rigidity"].shape == (4, n_lengths)
+    # Delta_3 follows Poisson's L/15 at small L and then saturates near the
+    # picket fence's 1/12, below both Poisson and GOE.
+    far = t["length"] >= 3
+    assert np.all(t["rigidity"][:, far] < 0.1) and np.all(t["rigidity"][:, far] < t["goe_rigidity"][far])
+    assert np.allclose(t["poisson_rigidity"], t["length"] / 15)
+    assert np.all(t["gue_rigidity"][far] < t["goe_rigidity"][far]) and t["gue_density"].shape == (n_bins,)
+
+
+def test_statistics_of_a_heavy_top(tmp_path):
+    # Kovalevskaya's top at m = 1: two classes (parity of k), each unfolded by Weyl's law/2.
+    out = str(tmp_path / "kov.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "kovalevskaya.toml"), "--hbar", "0.2", "--m", "1",
+        "--jmax", "20", "--levels", "60", "--statistics", "--out", out)
+    t, _ = table(out, "statistics")
+    s, _ = table(out)
+    assert list(t["parity"]) == [0, 1] and list(t["j"]) == [-1, -1]
+    assert sum(t["levels"]) == np.count_nonzero(s["converged"] == 1)
+    assert np.all((t["brody_beta"] >= 0) & (t["brody_beta"] <= 1)) and np.all(t["brody_error"] > 0)
+    # Weyl's law follows the staircase of all converged levels to a few levels.
+    w, _ = table(out, "weyl")
+    ok = s["converged"] == 1
+    staircase = np.arange(np.count_nonzero(ok)) + 0.5
+    assert np.max(np.abs(w["weyl_count"][ok] - staircase)) < 5

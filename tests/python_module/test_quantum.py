@@ -54,3 +54,21 @@ def test_refusals():
         lgi.quantum_spectrum(os.path.join(SCENES, "stiff_damped_spring.toml"), 1.0)
     with pytest.raises(ValueError, match="hbar"):
         lgi.quantum_spectrum(FREE, -1.0)
+
+
+def test_weyl_and_ebk_match_the_command_line(lgi_exe, tmp_path):
+    # weyl=True and ebk=True give the file's /weyl and /ebk columns bit for bit.
+    scene = os.path.join(SCENES, "lagrange_top_cigar.toml")
+    out = str(tmp_path / "e.h5")
+    r = subprocess.run([lgi_exe, "quantum", "--scene", scene, "--hbar", "0.1", "--m", "1", "--jmax", "20",
+                        "--levels", "12", "--ebk", "--statistics", "--out", out, "--quiet"], capture_output=True,
+                       text=True)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(out, "r") as f:
+        weyl, ebk, n = f["weyl"]["weyl_count"][()], f["ebk"]["energy_ebk"][()], f["ebk"]["n"][()]
+    mine = lgi.quantum_spectrum(scene, 0.1, m=1, jmax=20, levels=12, weyl=True, ebk=True)
+    assert np.array_equal(mine["weyl_count"], weyl)
+    assert np.array_equal(mine["energy_ebk"], ebk) and np.array_equal(mine["ebk_n"], n)
+    assert "weyl_count" not in lgi.quantum_spectrum(scene, 0.1, m=1, jmax=20, levels=2)
+    with pytest.raises(ValueError, match="Lagrange"):
+        lgi.quantum_spectrum(FREE, 1.0, jmax=3, ebk=True)

@@ -1,4 +1,4 @@
-// Poisson and GOE reference statistics (reference_curves.hpp).
+// Poisson, GOE and GUE reference statistics (reference_curves.hpp).
 #include "experiments/analysis/spectral/reference_curves.hpp"
 
 #include <cmath>
@@ -44,5 +44,16 @@ double rigidity_from_number_variance(double length, double (*sigma2)(double)) {
 }
 
 double goe_rigidity(double length) { return rigidity_from_number_variance(length, goe_number_variance); }
+
+double gue_spacing_density(double s) { return s < 0 ? 0.0 : 32.0 / (pi * pi) * s * s * std::exp(-4.0 * s * s / pi); }
+
+double gue_number_variance(double length) {
+  if (!(length > 0)) return length == 0 ? 0.0 : NAN;
+  const double x = 2 * pi * length;
+  return (std::log(x) + std::numbers::egamma + 1.0 - std::cos(x) - cosine_integral(x)) / (pi * pi) +
+         length * (1.0 - 2.0 / pi * sine_integral(x));
+}
+
+double gue_rigidity(double length) { return rigidity_from_number_variance(length, gue_number_variance); }
 
 }  // namespace lgi::experiments::spectral

@@ -28,6 +28,17 @@ double goe_number_variance(double length);
 /// → (1/π²)(ln(2πL) + γ − 5/4 − π²/8) for large L.
 double goe_rigidity(double length);
 
+/// The Gaussian unitary ensemble (chaotic systems without an antiunitary
+/// symmetry, e.g. a general heavy top at m ≠ 0, docs/quantum.md §3; Mehta
+/// ch. 6 and 16): Wigner's surmise P(s) = (32/π²) s² exp(−4s²/π), and
+/// Σ²(L) = L − 2∫₀^L (L − r)(sin πr/(πr))² dr
+///       = (1/π²)[ln(2πL) + γ + 1 − cos(2πL) − Ci(2πL)] + L(1 − (2/π) Si(2πL)),
+/// → (1/π²)(ln(2πL) + γ + 1); Δ₃ by Pandey's relation,
+/// → (1/(2π²))(ln(2πL) + γ − 5/4).
+double gue_spacing_density(double s);
+double gue_number_variance(double length);
+double gue_rigidity(double length);
+
 /// Δ₃(L) from any Σ²(r) by the same relation (panels of width at most 1/8,
 /// 5 Gauss–Legendre points each).
 double rigidity_from_number_variance(double length, double (*sigma2)(double));

@@ -1,0 +1,111 @@
+// The /ebk and /statistics groups of lgi quantum (quantum_outputs.hpp).
+#include "experiments/commands/quantum_outputs.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "experiments/analysis/quantum/ebk_lagrange.hpp"
+#include "experiments/analysis/quantum/quantum_statistics.hpp"
+#include "experiments/analysis/quantum/weyl_law.hpp"
+#include "experiments/analysis/spectral/brody_fit.hpp"
+#include "experiments/analysis/spectral/reference_curves.hpp"
+
+namespace lgi::experiments {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+TableColumn real_column(const std::string& name, std::vector<double> values, int width = 1) {
+  return {name, width, false, std::move(values), {}};
+}
+TableColumn whole_column(const std::string& name, std::vector<std::int64_t> values) {
+  return {name, 1, true, {}, std::move(values)};
+}
+
+}  // namespace
+
+TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+  std::vector<std::int64_t> n, ms, k, converged;
+  std::vector<double> ebk, exact, difference;
+  for (const quantum::EbkRow& r : quantum::ebk_lagrange_table(q, hbar, m)) {
+    n.push_back(r.n), ms.push_back(r.m), k.push_back(r.k), converged.push_back(r.converged ? 1 : 0);
+    ebk.push_back(r.energy_ebk), exact.push_back(r.energy_exact), difference.push_back(r.energy_ebk - r.energy_exact);
+  }
+  return {"ebk",
+          {whole_column("n", n), whole_column("m", ms), whole_column("k", k), real_column("energy_ebk", ebk),
+           real_column("energy_exact", exact), real_column("difference", difference),
+           whole_column("converged", converged)},
+          {{"rule", "I_theta(E; l = m hbar, L3 = k hbar) = hbar (n + 1/2), Maslov index 2 (Keller 1958); n = the "
+                    "level's rank in its k block (docs/quantum.md section 7)"}}};
+}
+
+TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+  std::vector<double> count;
+  if (q.top.is_free()) {
+    for (const quantum::QuantumLevel& l : q.levels)
+      count.push_back(quantum::free_rotor_weyl_count(q.top.moments, hbar, l.j, l.energy));
+  } else {
+    const quantum::WeylCounting weyl(q.top, hbar, m);
+    for (const quantum::QuantumLevel& l : q.levels) count.push_back(weyl(l.energy));
+  }
+  return {"weyl",
+          {real_column("weyl_count", count)},
+          {{"meaning", "one row per /spectrum row: the smooth count of levels below its energy at this m, "
+                       "Vol{H <= E}/(2 pi hbar)^2 (a free body: N_j(E) of its j); docs/quantum.md section 8"}}};
+}
+
+TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+  const spectral::StatisticsOptions options;
+  const auto classes = quantum::quantum_statistics(q, hbar, m, options);
+  const std::size_t bins = static_cast<std::size_t>(std::lround(options.s_max / options.bin_width));
+  const std::size_t nl = options.lengths.size();
+  std::vector<std::int64_t> j, parity, levels, bound;
+  std::vector<double> beta, beta_error, density, density_error, sigma2, sigma2_error, delta3, delta3_error;
+  for (const auto& c : classes) {
+    const spectral::SpectralStatistics& s = c.statistics.statistics;
+    j.push_back(c.j), parity.push_back(c.parity), levels.push_back(static_cast<std::int64_t>(s.levels));
+    const bool empty = c.statistics.too_few;
+    beta.push_back(empty ? kNaN : s.brody.beta), beta_error.push_back(empty ? kNaN : s.brody.standard_error);
+    bound.push_back(empty ? 0 : s.brody.bound);
+    for (std::size_t b = 0; b < bins; ++b) {
+      const bool held = !empty && b < s.histogram.density.size();
+      density.push_back(held ? s.histogram.density[b] : kNaN);
+      density_error.push_back(held ? s.histogram.density_error[b] : kNaN);
+    }
+    for (std::size_t i = 0; i < nl; ++i) {
+      sigma2.push_back(empty ? kNaN : s.number_variance[i].value);
+      sigma2_error.push_back(empty ? kNaN : s.number_variance[i].standard_error);
+      delta3.push_back(empty ? kNaN : s.rigidity[i].value);
+      delta3_error.push_back(empty ? kNaN : s.rigidity[i].standard_error);
+    }
+  }
+  std::vector<double> centres, poisson_p, wigner_p, gue_p, poisson_s2, goe_s2, gue_s2, poisson_d3, goe_d3, gue_d3;
+  for (std::size_t b = 0; b < bins; ++b) {
+    const double s = (static_cast<double>(b) + 0.5) * options.bin_width;
+    centres.push_back(s), poisson_p.push_back(spectral::poisson_spacing_density(s));
+    wigner_p.push_back(spectral::wigner_spacing_density(s)), gue_p.push_back(spectral::gue_spacing_density(s));
+  }
+  for (double L : options.lengths) {
+    poisson_s2.push_back(spectral::poisson_number_variance(L)), goe_s2.push_back(spectral::goe_number_variance(L));
+    poisson_d3.push_back(spectral::poisson_rigidity(L)), goe_d3.push_back(spectral::goe_rigidity(L));
+    gue_s2.push_back(spectral::gue_number_variance(L)), gue_d3.push_back(spectral::gue_rigidity(L));
+  }
+  const int wb = static_cast<int>(bins), wl = static_cast<int>(nl);
+  return {"statistics",
+          {whole_column("j", j), whole_column("parity", parity), whole_column("levels", levels),
+           real_column("brody_beta", beta), real_column("brody_error", beta_error), whole_column("brody_bound", bound),
+           real_column("spacing_density", density, wb), real_column("spacing_density_error", density_error, wb),
+           real_column("number_variance", sigma2, wl), real_column("number_variance_error", sigma2_error, wl),
+           real_column("rigidity", delta3, wl), real_column("rigidity_error", delta3_error, wl),
+           real_column("bin_centre", centres), real_column("poisson_density", poisson_p),
+           real_column("wigner_density", wigner_p), real_column("gue_density", gue_p),
+           real_column("length", options.lengths),
+           real_column("poisson_number_variance", poisson_s2), real_column("goe_number_variance", goe_s2),
+           real_column("poisson_rigidity", poisson_d3), real_column("goe_rigidity", goe_d3),
+           real_column("gue_number_variance", gue_s2), real_column("gue_rigidity", gue_d3)},
+          {{"unfolding", "Weyl's law (docs/quantum.md section 8): per class N(E)/classes; a free body per j "
+                         "and D2 class N_j(E)/4"},
+           {"levels_used", "converged levels only; a symmetric heavy top at m = 0: k >= 0 only"}}};
+}
+
+}  // namespace lgi::experiments

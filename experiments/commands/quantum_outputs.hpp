@@ -1,0 +1,22 @@
+#pragma once
+// The optional groups of lgi quantum (experiments/QUANTUM.md): /ebk (--ebk,
+// the Lagrange top's EBK levels beside the exact ones) and /statistics
+// (--statistics, per symmetry class, unfolded with Weyl's law).
+#include "experiments/analysis/quantum/quantum_spectrum.hpp"
+#include "experiments/io/table_file.hpp"
+
+namespace lgi::experiments {
+
+/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged (one row per level).
+TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+
+/// /weyl: weyl_count, Weyl's smooth count N̄(E) at each /spectrum row's energy
+/// (a free body: N̄_j(E) of the row's j).
+TableGroup weyl_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+
+/// /statistics: per class (j, parity, levels, Brody β ± error, ...), the
+/// spacing histograms (classes × bins), Σ²(L) and Δ₃(L) (classes × lengths)
+/// and the Poisson and GOE references.
+TableGroup statistics_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+
+}  // namespace lgi::experiments
