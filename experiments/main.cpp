@@ -2,6 +2,7 @@
 #include <hdf5.h>
 
 #include "experiments/cli/cli.hpp"
+#include "experiments/commands/all_commands.hpp"
 
 int main(int argc, char** argv) {
   // HDF5 1.10 leaves a file whose H5Fclose failed (a write refused: disk full, the file-size
@@ -12,5 +13,5 @@ int main(int argc, char** argv) {
   // HDF5's automatic error-stack printing off for good: every failure is reported by lgi in one
   // line naming the file (README.md), never as the library's stack of ~100 lines (issue 50).
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  return lgi::experiments::run_cli(argc, argv);
+  return lgi::experiments::run_cli(argc, argv, lgi::experiments::all_commands());
 }

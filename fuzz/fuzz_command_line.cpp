@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "experiments/cli/cli.hpp"
+#include "experiments/commands/all_commands.hpp"
 
 namespace {
 
@@ -41,7 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const auto& a : args) argv.push_back(a.c_str());
   argv.push_back(nullptr);
 
-  lgi::experiments::CommandLine command_line(static_cast<int>(args.size()), argv.data());
+  lgi::experiments::CommandLine command_line(static_cast<int>(args.size()), argv.data(),
+                                            lgi::experiments::all_commands());
   std::ostringstream out, err;
   const std::optional<int> status = command_line.parse(out, err);
   const std::string e = err.str();

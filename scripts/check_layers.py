@@ -24,7 +24,13 @@ violation, "file:line: what", exiting 1 if any:
   - an include of a header in a higher layer;
   - an #include "experiments/..." of a file that does not exist;
   - a C++ file under experiments/ outside the layers (other than main.cpp);
-  - an include cycle among the files under experiments/.
+  - an include cycle among the files under experiments/;
+  - a call from a lower layer of experiments/ to a function declared only in
+    a header of a higher layer;
+  - a function declared in a header of a lower layer but defined in a .cpp of
+    a higher one (e.g. add_sweep_subcommand() declared in cli/ and defined in
+    commands/, which cli/ then calls): a call up the layers that the include
+    check does not see.
 
 Prints "check_layers: N files, M includes of experiments/, layering clean"
 and exits 0 otherwise. Standard library only (Debian's /usr/bin/python3).
@@ -97,6 +103,106 @@ def includes(root, rel):
         if local.startswith("experiments/") and os.path.isfile(os.path.join(root, local)):
             out.append((no, local, name))
     return out
+
+
+DECLARATION = re.compile(r"^[A-Za-z_][\w:<>,&*\s]*?[\s&*]([A-Za-z_]\w*)\s*\(")
+KEYWORDS = {"if", "for", "while", "switch", "return", "sizeof", "static_assert", "decltype", "operator"}
+
+
+def declared_functions(root, files):
+    """{function name: (layer, header)} for the functions declared at the start of a line
+    in the headers of each layer of experiments/."""
+    out = {}
+    for rel in files:
+        layer = layer_of(rel)
+        if not rel.startswith("experiments/") or layer is None or not rel.endswith(".hpp"):
+            continue
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for line in f:
+                m = DECLARATION.match(line)
+                if m and m.group(1) not in KEYWORDS and not line.lstrip().startswith(("//", "#", "return")):
+                    out.setdefault(m.group(1), (layer, rel))
+    return out
+
+
+def upward_calls(root, files):
+    """A problem line per call, in a file of experiments/, of a function that only a header
+    of a higher layer declares."""
+    declared = declared_functions(root, files)
+    names = {n: v for n, v in declared.items() if v[0] > 0}
+    if not names:
+        return []
+    pattern = re.compile(r"\b(" + "|".join(sorted(map(re.escape, names), key=len, reverse=True)) + r")\s*\(")
+    problems = []
+    for rel in files:
+        layer = layer_of(rel)
+        if not rel.startswith("experiments/") or layer is None or layer >= TOP:
+            continue
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for no, line in enumerate(f, 1):
+                code = line.split("//")[0]
+                for m in pattern.finditer(code):
+                    owner, header = names[m.group(1)]
+                    lower_decl = [r for r in files if r.startswith("experiments/") and layer_of(r) is not None
+                                  and layer_of(r) <= layer and r.endswith(".hpp")
+                                  and m.group(1) in declared_in(root, r)]
+                    if owner > layer and not lower_decl:
+                        problems.append(f"{rel}:{no}: {layer_name(layer)} calls {m.group(1)}(), declared in "
+                                        f"{header} of the higher layer {layer_name(owner)}")
+    return problems
+
+
+DEFINITION = re.compile(r"^(?!static\b)[A-Za-z_][\w:<>,&*\s]*?[\s&*]([A-Za-z_]\w*)\s*\([^;]*$")
+
+
+def defined_upward(root, files):
+    """A problem line per function declared in a header of one layer and defined (at the start
+    of a line, not static) in a .cpp of a higher layer."""
+    declared = {}
+    for rel in files:
+        layer = layer_of(rel)
+        if rel.startswith("experiments/") and layer is not None and rel.endswith(".hpp"):
+            for name in declared_in(root, rel):
+                declared.setdefault(name, []).append((layer, rel))
+    problems = []
+    for rel in files:
+        layer = layer_of(rel)
+        if not rel.startswith("experiments/") or layer is None or not rel.endswith(".cpp"):
+            continue
+        depth, anonymous = 0, []  # brace depth; depths at which anonymous namespaces opened
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for no, line in enumerate(f, 1):
+                code = line.split("//")[0]
+                if re.match(r"^\s*namespace\s*\{", code):
+                    anonymous.append(depth)
+                m = DEFINITION.match(line) if not anonymous else None
+                depth += code.count("{") - code.count("}")
+                while anonymous and depth <= anonymous[-1]:
+                    anonymous.pop()
+                if not m or m.group(1) in KEYWORDS:
+                    continue
+                homes = declared.get(m.group(1), [])
+                if homes and all(l < layer for l, _ in homes):
+                    low, header = min(homes)
+                    problems.append(f"{rel}:{no}: {m.group(1)}() is declared in {header} ({layer_name(low)}) "
+                                    f"but defined in the higher layer {layer_name(layer)}")
+    return problems
+
+
+_DECLARED = {}
+
+
+def declared_in(root, rel):
+    """The function names declared at the start of a line in one header (cached)."""
+    if rel not in _DECLARED:
+        names = set()
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for line in f:
+                m = DECLARATION.match(line)
+                if m and m.group(1) not in KEYWORDS:
+                    names.add(m.group(1))
+        _DECLARED[rel] = names
+    return _DECLARED[rel]
 
 
 def find_cycles(graph):
@@ -199,6 +305,8 @@ def main(argv):
                                 f"{layer_name(to)}")
     for cycle in find_cycles(graph):
         problems.append(f"{cycle[0]}:{lines[(cycle[0], cycle[1])]}: include cycle: {' -> '.join(cycle)}")
+    problems += upward_calls(root, files)
+    problems += defined_upward(root, files)
     for p in problems:
         print(p)
     if problems:

@@ -31,32 +31,14 @@ std::string one_line(std::string s) {
 
 }  // namespace
 
-CommandLine::CommandLine(int argc, const char* const* argv)
+CommandLine::CommandLine(int argc, const char* const* argv, const std::vector<CommandFactory>& commands)
     : argc_(argc),
       argv_(argv),
       app_("lgi: geometric (Lie-group) integration of rigid-body dynamics on SO(3) x R^3"),
       context_{join_command_line(argc, argv)} {
   app_.set_version_flag("--version", std::string(build_info::version));
   app_.require_subcommand(1);
-  // One line per subcommand; each is declared in its own commands/<name>_command.cpp.
-  subcommands_ = {
-      add_simulate_subcommand(app_, context_),
-      add_schemes_subcommand(app_),
-      add_scenes_subcommand(app_),
-      add_work_precision_subcommand(app_, context_),
-      add_long_time_subcommand(app_, context_),
-      add_singularity_subcommand(app_, context_),
-      add_stress_subcommand(app_, context_),
-      add_sweep_subcommand(app_, context_),
-      add_equilibria_subcommand(app_, context_),
-      add_bifurcation_subcommand(app_, context_),
-      add_poincare_subcommand(app_, context_),
-      add_region_subcommand(app_, context_),
-      add_chaos_map_subcommand(app_, context_),
-      add_actions_subcommand(app_, context_),
-      add_indicators_subcommand(app_, context_),
-      add_quantum_subcommand(app_, context_),
-  };
+  for (const CommandFactory add : commands) subcommands_.push_back(add(app_, context_));
 }
 
 std::optional<int> CommandLine::parse(std::ostream& out, std::ostream& err) {
@@ -115,8 +97,8 @@ int CommandLine::run(std::ostream& err) const {
   }
 }
 
-int run_cli(int argc, char** argv) {
-  CommandLine command_line(argc, argv);
+int run_cli(int argc, char** argv, const std::vector<CommandFactory>& commands) {
+  CommandLine command_line(argc, argv, commands);
   if (const std::optional<int> status = command_line.parse(std::cout, std::cerr)) return *status;
   return command_line.run(std::cerr);
 }

@@ -19,8 +19,9 @@ namespace lgi::experiments {
 
 class CommandLine {
  public:
-  /// Declares every subcommand; argv[0] is the program. argv is read by parse().
-  CommandLine(int argc, const char* const* argv);
+  /// Declares every subcommand of `commands` (the table main.cpp builds,
+  /// commands/all_commands.hpp); argv[0] is the program. argv is read by parse().
+  CommandLine(int argc, const char* const* argv, const std::vector<CommandFactory>& commands);
   CommandLine(const CommandLine&) = delete;
   CommandLine& operator=(const CommandLine&) = delete;
 
@@ -43,6 +44,6 @@ class CommandLine {
 };
 
 /// parse(), then run() (std::cout, std::cerr): what `lgi` does.
-int run_cli(int argc, char** argv);
+int run_cli(int argc, char** argv, const std::vector<CommandFactory>& commands);
 
 }  // namespace lgi::experiments

@@ -18,7 +18,7 @@
 
 #include "experiments/analysis/actions.hpp"
 #include "experiments/cli/work_limits.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"

@@ -26,7 +26,7 @@
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/thread_count.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"

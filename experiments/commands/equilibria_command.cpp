@@ -12,7 +12,7 @@
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "experiments/cli/work_limits.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"

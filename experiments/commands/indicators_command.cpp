@@ -19,7 +19,7 @@
 
 #include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/cli/thread_count.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError

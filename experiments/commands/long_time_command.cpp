@@ -30,7 +30,7 @@
 #include <sstream>
 
 #include "experiments/cli/work_limits.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/long_time/long_time_resume.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"

@@ -15,7 +15,7 @@
 #include <string>
 
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/quantum_outputs.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"

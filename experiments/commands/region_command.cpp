@@ -17,7 +17,7 @@
 
 #include "experiments/analysis/accessible_region.hpp"
 #include "experiments/cli/work_limits.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"

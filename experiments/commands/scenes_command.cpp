@@ -5,7 +5,7 @@
 #include <iostream>
 #include <vector>
 
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/io/scenes_location.hpp"
 #include <memory>
 #include "experiments/errors/exit_status.hpp"
@@ -41,7 +41,7 @@ int list_scenes(const std::string& directory) {
 
 }  // namespace
 
-Subcommand add_scenes_subcommand(CLI::App& app) {
+Subcommand add_scenes_subcommand(CLI::App& app, const CommandContext& /*context*/) {
   auto directory = std::make_shared<std::string>();
   auto* sub = app.add_subcommand("scenes", "List the scene files in a folder and the invariants that apply");
   sub->add_option("DIR", *directory,

@@ -8,7 +8,7 @@
 #include <optional>
 #include <sstream>
 
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/scheme_record.hpp"
 #include "experiments/errors/exit_status.hpp"
@@ -177,7 +177,7 @@ int list_schemes(const SchemesOptions& o) {
 
 }  // namespace
 
-Subcommand add_schemes_subcommand(CLI::App& app) {
+Subcommand add_schemes_subcommand(CLI::App& app, const CommandContext& /*context*/) {
   auto o = std::make_shared<SchemesOptions>();
   auto* sub = app.add_subcommand("schemes", "List the registered schemes with their order, family and properties");
   sub->add_flag("--json", o->json, "Machine-readable JSON (every field, with \"kind\" and \"base\")");

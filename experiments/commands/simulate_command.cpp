@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "experiments/cli/cardan_simulation.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/scheme_lookup.hpp"

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/step_settings.hpp"
 #include "experiments/commands/singularity/singularity_output.hpp"

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/write_failures.hpp"

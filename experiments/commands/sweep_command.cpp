@@ -15,7 +15,8 @@
 
 #include "experiments/analysis/sweep_trajectory.hpp"
 #include "experiments/cli/thread_count.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
+#include "experiments/commands/sweep_request.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/sweep_progress.hpp"

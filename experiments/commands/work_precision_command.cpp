@@ -23,7 +23,7 @@
 #include <sstream>
 
 #include "experiments/analysis/reference_solution.hpp"
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/run_parameters.hpp"

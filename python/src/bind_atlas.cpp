@@ -16,7 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/poincare_request.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/thread_count.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"

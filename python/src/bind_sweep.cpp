@@ -1,4 +1,4 @@
-// lgi.sweep(): `lgi sweep` run in-process (experiments/cli/commands.hpp,
+// lgi.sweep(): `lgi sweep` run in-process (experiments/commands/sweep_request.hpp,
 // run_sweep_request: the same spec checks, engine, threads and file), its
 // /sweep table read back with the HDF5 C API into a NumPy structured array.
 #include <pybind11/stl.h>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "experiments/cli/commands.hpp"
+#include "experiments/commands/sweep_request.hpp"
 #include "experiments/cli/thread_count.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/hdf5_columns.hpp"
