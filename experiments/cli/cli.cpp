@@ -55,6 +55,7 @@ CommandLine::CommandLine(int argc, const char* const* argv)
       add_actions_subcommand(app_, context_),
       add_indicators_subcommand(app_, context_),
       add_quantum_subcommand(app_, context_),
+      add_periodic_subcommand(app_, context_),
   };
 }
 

@@ -48,6 +48,7 @@ int run_sweep_request(const SweepRequest& request);  // commands/sweep_command.c
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context);  // commands/equilibria_command.cpp
 Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context);  // commands/poincare_command.cpp
+Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context);  // commands/periodic_command.cpp
 /// The flags of `lgi poincare` (experiments/POINCARE.md) as fields; run
 /// without its command line by lgi.poincare (python/): the same checks, run
 /// and file. Returns the exit status; throws as the subcommand does.
