@@ -8,11 +8,13 @@
 //    within 1e-8 of 1 at each family's first orbit (2e-6 further on);
 //  - one orbit re-integrated for one period by rkmk4 on SO(3) × ℝ³ (another
 //    scheme, another state space) returns to its point to 1e-8;
-//  - the general top's orbits are not reported degenerate.
+//  - the general top's orbits are not reported degenerate; on a Lagrange top the
+//    carrousels' families are, with periods integer multiples of T_theta to 1e-9.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 
+#include "experiments/analysis/actions.hpp"
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 #include "experiments/io/gamma_attitude.hpp"
 #include "integrators/registry.hpp"
@@ -102,4 +104,27 @@ TEST_CASE("Lyapunov families of a general top: periods, residuals, multipliers",
       rerun_done = true;
     }
   }
+}
+
+TEST_CASE("Lagrange top: the carrousels' families are degenerate, periods multiples of T_theta", "[periodic]") {
+  const auto scene = testing::shipped_scene("lagrange_top_cigar");
+  const HeavyTopBody body = body_of(scene);
+  const auto lagrange = experiments::lagrange_body(body);
+  REQUIRE(lagrange);
+  experiments::FamilySettings s;
+  s.steps = 1;
+  s.h_step = 0.02;
+  int degenerate = 0;
+  for (const auto& r : experiments::lyapunov_families(body, 3.0, s)) {
+    CHECK(r.orbit.residual <= 1e-10);
+    if (!r.orbit.degenerate) continue;
+    ++degenerate;
+    const auto torus = experiments::lagrange_actions(*lagrange, 3.0, r.orbit.x0(2), r.orbit.h);
+    REQUIRE(torus);
+    const double ratio = r.orbit.period / torus->period;
+    INFO("family " << r.family << " T = " << r.orbit.period << " T_theta = " << torus->period);
+    CHECK(std::abs(ratio - std::round(ratio)) * torus->period <= 1e-9);
+    CHECK(std::round(ratio) >= 1.0);
+  }
+  CHECK(degenerate >= 2);
 }
