@@ -34,7 +34,8 @@ void write_csv(const std::string& path, const std::vector<TableColumn>& columns,
     for (const auto& c : columns)
       for (int k = 0; k < c.width; ++k) {
         const std::size_t i = r * static_cast<std::size_t>(c.width) + static_cast<std::size_t>(k);
-        out << (first ? "" : ",") << (c.integer ? std::to_string(c.whole[i]) : hdf5::csv_number(c.real[i]));
+        out << (first ? "" : ",")
+            << (c.is_text ? c.text[i] : c.integer ? std::to_string(c.whole[i]) : hdf5::csv_number(c.real[i]));
         first = false;
       }
     out << '\n';
@@ -43,8 +44,21 @@ void write_csv(const std::string& path, const std::vector<TableColumn>& columns,
 }
 
 std::size_t rows_of(const TableColumn& c) {
-  const std::size_t n = c.integer ? c.whole.size() : c.real.size();
+  const std::size_t n = c.is_text ? c.text.size() : c.integer ? c.whole.size() : c.real.size();
   return n / static_cast<std::size_t>(std::max(c.width, 1));
+}
+
+/// A 1-D dataset of variable-length UTF-8 strings.
+void write_text(hid_t group, const TableColumn& c, const hdf5::Fail& fail) {
+  hdf5::Handle type = hdf5::vlen_string_type(false, fail);
+  const auto n = static_cast<hsize_t>(c.text.size());
+  hdf5::Handle space(n ? H5Screate_simple(1, &n, nullptr) : H5Screate(H5S_NULL), H5Sclose);
+  hdf5::Handle d(H5Dcreate2(group, c.name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                 H5Dclose);
+  std::vector<const char*> p;
+  for (const auto& t : c.text) p.push_back(t.c_str());
+  if (!d.valid() || (n && H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) < 0))
+    fail("cannot write " + c.name);
 }
 
 /// Every group and /parameters into `partial` (an HDF5 file created here).
@@ -60,7 +74,8 @@ void write_groups(const std::string& partial, const std::vector<TableGroup>& gro
     hdf5::Handle table = hdf5::create_group(file.get(), "/" + g.name, fail);
     for (const auto& c : g.columns) {
       const auto n = static_cast<std::int64_t>(rows_of(c));
-      if (c.integer) h5.write_whole(table.get(), c.name, H5T_STD_I64LE, H5T_NATIVE_INT64, n, c.width, c.whole.data());
+      if (c.is_text) write_text(table.get(), c, fail);
+      else if (c.integer) h5.write_whole(table.get(), c.name, H5T_STD_I64LE, H5T_NATIVE_INT64, n, c.width, c.whole.data());
       else h5.write_whole(table.get(), c.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, c.width, c.real.data());
     }
     for (const auto& [k, v] : g.attributes) hdf5::write_vlen_string(table.get(), k.c_str(), v, false, fail);

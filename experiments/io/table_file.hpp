@@ -1,6 +1,6 @@
 #pragma once
 // A finished table written at once: /<group>/<column> datasets (n, or n×k
-// for vector columns; float64 or int64) with /parameters attributes (and
+// for vector columns; float64 or int64; or text: n variable-length strings) with /parameters attributes (and
 // libm, libm_code_path.hpp, unless the caller gave it), and the
 // same table as CSV beside it (vector columns as <name>_1, <name>_2, ...).
 // For results computed in full before they are written (lgi equilibria,
@@ -21,6 +21,8 @@ struct TableColumn {
   bool integer = false;
   std::vector<double> real{};         // rows × width
   std::vector<std::int64_t> whole{};  // rows × width, for integer columns
+  std::vector<std::string> text{};    // rows, for a text column (width 1; a UTF-8 string dataset)
+  bool is_text = false;
 };
 
 /// A group of columns in a file of several groups: each column has its own

@@ -1,0 +1,46 @@
+#pragma once
+// The Euler–Poisson flow of a heavy top in x = (Π, Γ) ∈ ℝ⁶ and its tangent
+// flow, for the shooting of `lgi periodic` (experiments/PERIODIC.md).
+//
+//   Π̇ = Π × Ω + Γ × w,  Γ̇ = Γ × Ω,  Ω = J⁻¹Π,  w = m g χ,
+// with H = ½ Π·J⁻¹Π + w·Γ and the Casimirs C = Π·Γ, |Γ|² (docs/atlas.md §2).
+//
+// Integrator: the implicit midpoint rule composed twice by the triple jump
+// (order 2 → 4 → 6; H. Yoshida, Phys. Lett. A 150 (1990) 262–268), nine
+// midpoint substeps per step. Every substep keeps each quadratic first
+// integral exactly (E. Hairer, C. Lubich, G. Wanner, Geometric Numerical
+// Integration, 2nd ed., Thm. IV.2.1), and H, C, |Γ|² are all quadratic: so
+// the discrete map keeps the level sets of all three, and the trivial Floquet
+// multipliers are not split by integration error. The tangent flow is the
+// exact derivative of the discrete map: X' = (I − h/2 A(m))⁻¹(I + h/2 A(m)) X,
+// A the field's Jacobian at the substep's midpoint m.
+// A shot over [0, T] takes N = ⌈T/dt⌉ equal steps, so it lands exactly on T.
+#include <Eigen/Core>
+
+#include "experiments/analysis/relative_equilibria.hpp"
+
+namespace lgi::experiments {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+Vec6 euler_poisson_field(const HeavyTopBody& body, const Vec6& x);
+Mat6 euler_poisson_jacobian(const HeavyTopBody& body, const Vec6& x);
+
+/// H, C = Π·Γ and |Γ|², and their gradients (the rows of `gradients`).
+struct Invariants {
+  Eigen::Vector3d value;
+  Eigen::Matrix<double, 3, 6> gradients;
+};
+Invariants euler_poisson_invariants(const HeavyTopBody& body, const Vec6& x);
+
+struct Shot {
+  Vec6 end;
+  Mat6 monodromy;  // ∂(end)/∂(start)
+  bool ok = true;  // false: a midpoint solve did not converge or the state is not finite
+};
+
+/// φ_T(x0) and its derivative, with ⌈T/dt⌉ equal sixth-order steps (top of this file).
+Shot shoot(const HeavyTopBody& body, const Vec6& x0, double T, double dt);
+
+}  // namespace lgi::experiments
