@@ -143,9 +143,10 @@ def upward_calls(root, files):
                 code = line.split("//")[0]
                 for m in pattern.finditer(code):
                     owner, header = names[m.group(1)]
-                    lower_decl = [r for r in files if r.startswith("experiments/") and layer_of(r) is not None
-                                  and layer_of(r) <= layer and r.endswith(".hpp")
-                                  and m.group(1) in declared_in(root, r)]
+                    lower_decl = [other_rel for other_rel in files
+                                  if other_rel.startswith("experiments/") and layer_of(other_rel) is not None
+                                  and layer_of(other_rel) <= layer and other_rel.endswith(".hpp")
+                                  and m.group(1) in declared_in(root, other_rel)]
                     if owner > layer and not lower_decl:
                         problems.append(f"{rel}:{no}: {layer_name(layer)} calls {m.group(1)}(), declared in "
                                         f"{header} of the higher layer {layer_name(owner)}")

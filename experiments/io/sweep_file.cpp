@@ -65,6 +65,8 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
                                    bool /*resume*/)
     : path_(path), layout_(layout) {
   const hdf5::QuietHdf5Errors quiet;
+  if (!hdf5::path_exists(path))  // gone between the command's look at it and this open
+    throw OutputFileError(path + ": the partial sweep was removed before it could be opened; run again without --resume");
   if (const std::string why = hdf5::inspect_in_child(path); !why.empty())
     throw OutputFileError(path + ": cannot resume the partial sweep: " + why + " (damaged); remove it");
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
