@@ -40,6 +40,7 @@
 // ⟨Y⟩ → 2 on invariant tori (linear growth of |δ|), → 0 near stable periodic
 // orbits, and grows like λs/2 on chaotic orbits.
 #include <Eigen/Core>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 
@@ -143,16 +144,18 @@ struct ChaosIndicators {
   double megno_y = 0.0;    // Y(t_end)
   double lyapunov_last_half = 0.0;  // λ over [s½, t_end], s½ the first step's end at or after the midpoint
   std::int64_t steps = 0;
-  bool ok = true;          // false: the tangent or the state blew up (the values are NaN)
+  bool ok = true;          // false: the tangent or the state blew up, or `stop` (the values are NaN)
+  bool stopped = false;    // `stop` was set: the loop ended early (a signal, the caller's flag)
 };
 
 /// The indicators' loop for any state: from t0 to t_end with steps dt (the
 /// last one shortened to land on t_end), `step(t, h, v)` advancing the state
 /// and the tangent v, `state_finite()` saying whether the state is still
-/// finite; v is renormalised after every step (top of this file).
+/// finite; v is renormalised after every step (top of this file). A set `stop` flag
+/// (read every 256 steps, so well within a second) ends the loop with NaN values.
 template <class Step, class StateFinite, class Tangent>
 ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_finite, Tangent& v, double t0,
-                                            double t_end, double dt) {
+                                            double t_end, double dt, const std::atomic<bool>* stop = nullptr) {
   ChaosIndicators out;
   ChaosAccumulator acc;
   if (!fixed_step_grid_problem(t0, t_end, dt).empty()) {  // t + dt == t would never end the loop
@@ -176,6 +179,12 @@ ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_fin
     v /= n;
     acc.add(t - t0, h, n);
     ++out.steps;
+    if (stop != nullptr && out.steps % 256 == 0 && stop->load(std::memory_order_relaxed)) {
+      out.ok = false;
+      out.stopped = true;
+      out.lyapunov = out.megno = out.megno_y = out.lyapunov_last_half = std::nan("");
+      return out;
+    }
     if (!marked && t - t0 >= 0.5 * (t_end - t0)) {
       acc.mark();
       marked = true;
@@ -191,9 +200,10 @@ ChaosIndicators accumulate_chaos_indicators(Step&& step, StateFinite&& state_fin
 /// Integrates (x, v) from t0 to t_end with steps dt and returns the
 /// indicators; x and v end at t_end.
 template <class Model>
-ChaosIndicators chaos_indicators(const Model& model, system::State& x, Vec6 v, double t0, double t_end, double dt) {
+ChaosIndicators chaos_indicators(const Model& model, system::State& x, Vec6 v, double t0, double t_end, double dt,
+                                 const std::atomic<bool>* stop = nullptr) {
   return accumulate_chaos_indicators([&](double t, double h, Vec6& w) { tangent_step(model, x, w, t, h); },
-                                     [&] { return x.Pi.allFinite(); }, v, t0, t_end, dt);
+                                     [&] { return x.Pi.allFinite(); }, v, t0, t_end, dt, stop);
 }
 
 }  // namespace lgi::integrators

@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "experiments/analysis/seeded_random.hpp"
+#include "experiments/io/trajectory_observer.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::experiments {
@@ -29,7 +30,12 @@ std::array<double, 6> spectrum_of(const Model& model, system::State x, double t_
   integrators::Mat6 V = integrators::Mat6::Identity();
   std::array<double, 6> sums{};
   double t = 0.0;
+  std::int64_t steps = 0;
   while (t < t_end) {  // the time grid of integrators::accumulate_chaos_indicators
+    if (++steps % 256 == 0 && interrupt_requested.load(std::memory_order_relaxed)) {  // Ctrl-C
+      sums.fill(std::nan(""));
+      return sums;
+    }
     const double h = (t_end - t) < 1.0000001 * dt ? t_end - t : dt;
     integrators::tangent_step(model, x, V, t, h);
     t = (t_end - t) < 1.0000001 * dt ? t_end : t + h;
@@ -68,7 +74,8 @@ StateIndicators state_indicators(const system::Scene& scene, const system::State
   const integrators::ChaosIndicators r = std::visit(
       [&](const auto& m) {
         system::State x = x0;
-        return integrators::chaos_indicators(m, x, initial_tangent(s.seed, index), 0.0, s.t_end, s.dt);
+        return integrators::chaos_indicators(m, x, initial_tangent(s.seed, index), 0.0, s.t_end, s.dt,
+                                             &interrupt_requested);
       },
       model);
   out.ok = r.ok;

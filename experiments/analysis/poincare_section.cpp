@@ -8,6 +8,7 @@
 
 #include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/trajectory_observer.hpp"
 #include "integrators/system/model.hpp"
 #include "integrators/tangent_flow.hpp"
 
@@ -100,7 +101,8 @@ OrbitIndicators orbit_indicators(const system::Scene& scene, const system::State
   return std::visit(
       [&](const auto& m) {
         system::State x = x0;
-        const auto r = integrators::chaos_indicators(m, x, v, 0.0, t_end, dt);
+        // interrupt_requested (io/trajectory_observer.hpp): Ctrl-C ends a long orbit too
+        const auto r = integrators::chaos_indicators(m, x, v, 0.0, t_end, dt, &interrupt_requested);
         return OrbitIndicators{r.lyapunov, r.megno};
       },
       model);

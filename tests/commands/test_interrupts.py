@@ -98,3 +98,28 @@ def test_singularity_stops_after_the_run_in_progress(tmp_path):
     with h5py.File(out + ".partial", "r") as f:
         assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
         assert len(f["results/method"]) > 0
+
+
+@pytest.mark.parametrize("command", ["chaos-map", "indicators"])
+def test_signal_inside_one_long_orbit(tmp_path, command):
+    # One orbit far longer than the wait: the tangent-flow loop itself must read the flag
+    # (integrators/tangent_flow.hpp, every 256 steps), not only the loop over orbits.
+    richter = os.path.join(SCENES, "general_top_richter.toml")
+    out = str(tmp_path / "o.h5")
+    args = {"chaos-map": ["chaos-map", "--scene", richter, "--l-range", "2.2:2.2:1", "--h-range", "2:2:1", "--ics",
+                          "2", "--t-end", "1e7", "--threads", "1", "--out", out],
+            "indicators": ["indicators", "--scene", richter, "--t-end", "1e7", "--out", out]}[command]
+    start = time.monotonic()
+    p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5 * slowdown(LGI))
+    assert p.poll() is None, "the command ended before it could be interrupted"
+    p.send_signal(signal.SIGINT)
+    sent = time.monotonic()
+    _, err = p.communicate(timeout=60)
+    assert time.monotonic() - sent < 5.0 * slowdown(LGI), "the signal was not read within the orbit"
+    assert time.monotonic() - start < 60
+    if command == "chaos-map":
+        assert p.returncode == 130, err
+        assert os.path.exists(out + ".partial") and not os.path.exists(out)
+    else:  # lgi indicators: ends at once, with the signal's status or the default action's
+        assert p.returncode in (130, -signal.SIGINT), err
