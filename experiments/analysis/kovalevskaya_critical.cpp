@@ -30,18 +30,13 @@ Gradients gradients(const HeavyTopBody& b, const Vec6& x) {
   return g;
 }
 
-double energy(const HeavyTopBody& b, const Vec6& x) {
-  const Vec3 Pi = x.tail<3>();
-  return 0.5 * Pi.dot(b.J.inverse() * Pi) + b.weight.dot(x.head<3>());
-}
-
 /// The Lagrange system F(x, α, β, γ) = (∇k − α∇H − β∇C − γ∇|Γ|², H − h, C − ℓ, |Γ|² − 1).
 Vec9 lagrange_residual(const HeavyTopBody& b, const Vec9& z, double l, double h) {
   const Vec6 x = z.head<6>();
   const Gradients g = gradients(b, x);
   Vec9 F;
   F.head<6>() = g.k - z(6) * g.H - z(7) * g.C - z(8) * g.G;
-  F(6) = energy(b, x) - h, F(7) = x.tail<3>().dot(x.head<3>()) - l, F(8) = x.head<3>().squaredNorm() - 1.0;
+  F(6) = heavy_top_energy(b, x) - h, F(7) = x.tail<3>().dot(x.head<3>()) - l, F(8) = x.head<3>().squaredNorm() - 1.0;
   return F;
 }
 

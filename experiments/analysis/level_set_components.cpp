@@ -15,11 +15,6 @@ namespace {
 
 using Mat46 = Eigen::Matrix<double, 4, 6>;
 
-double energy(const HeavyTopBody& b, const StateVec6& x) {
-  const Vec3 Pi = x.tail<3>();
-  return 0.5 * Pi.dot(b.J.inverse() * Pi) + b.weight.dot(x.head<3>());
-}
-
 /// Moves x onto {H = h, C = ℓ, |Γ|² = 1, K = k} by minimum-norm Gauss–Newton steps
 /// (the level set is a surface, so the step J⁺F is the least move); false when the
 /// residual does not fall below 1e-11 in 30 steps.
@@ -27,7 +22,7 @@ bool project(const HeavyTopBody& b, double l, double h, double k, const SecondIn
   const Mat3 Jinv = b.J.inverse();
   for (int it = 0; it < 30; ++it) {
     const IntegralValue q = K(x);
-    Eigen::Vector4d F(energy(b, x) - h, x.tail<3>().dot(x.head<3>()) - l, x.head<3>().squaredNorm() - 1.0,
+    Eigen::Vector4d F(heavy_top_energy(b, x) - h, x.tail<3>().dot(x.head<3>()) - l, x.head<3>().squaredNorm() - 1.0,
                       q.value - k);
     if (F.lpNorm<Eigen::Infinity>() < 1e-11 * (1.0 + std::abs(k))) return true;
     Mat46 D;
@@ -70,6 +65,11 @@ std::vector<double> spanning_tree_edges(const std::vector<StateVec6>& p) {
 }
 
 }  // namespace
+
+double heavy_top_energy(const HeavyTopBody& b, const StateVec6& x) {
+  const Vec3 Pi = x.tail<3>();
+  return 0.5 * Pi.dot(b.J.inverse() * Pi) + b.weight.dot(x.head<3>());
+}
 
 std::vector<StateVec6> energy_surface_lattice(const HeavyTopBody& b, double l, double h, int seeds) {
   std::vector<StateVec6> out;

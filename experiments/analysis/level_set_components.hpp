@@ -23,6 +23,9 @@ struct IntegralValue {
 };
 using SecondIntegral = std::function<IntegralValue(const StateVec6&)>;
 
+/// H = ½ Π·J⁻¹Π + m g χ·Γ at x = (Γ, Π).
+double heavy_top_energy(const HeavyTopBody& body, const StateVec6& x);
+
 /// A lattice of states (Γ, Π) on {H = h, Π·Γ = ℓ, |Γ| = 1}: Fibonacci directions Γ
 /// where the energy allows, two kinetic directions each.
 std::vector<StateVec6> energy_surface_lattice(const HeavyTopBody& body, double l, double h, int seeds);

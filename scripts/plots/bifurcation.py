@@ -23,8 +23,8 @@ Appelrot families (k = 0, k = (h − l²/2)², the parametric family, and at l =
 the line k = 1 + h²) that are realised as critical values of (H, K) on the
 leaf (column /appelrot realised, found by lgi's critical-point solver; the rest
 of the algebraic families is not drawn), the relative equilibria (black dots)
-and, in each region between the arcs, the number of Liouville tori over a
-regular value there (/appelrot_regions, counted by lgi). A file written before
+and the chambers between the arcs lettered A, B, ..., with their number of
+Liouville tori where lgi's counts in them (/appelrot_regions) agree. A file written before
 the realised column existed gets the older drawing: the arcs inside the
 attained range (solid where they bound it, dotted inside). --l-range and
 --l-nonneg choose the panels (values of l), --h-range and --k-range the window
@@ -221,9 +221,9 @@ def label_chambers(ax, walls, rng, r, regions, l, hlim, klim):
                 bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.5", lw=0.5))
 
 
-def label_regions(ax, rng, r, hlim, klim, tori=False):
+def label_regions(ax, rng, r, hlim, klim, chambers=False):
     """Name the two kinds of region of the (h, k) plane at a column in view: "motion" inside the
-    attained range (its widest point; not where the regions carry their numbers of tori),
+    attained range (its widest point; not where the chambers carry letters),
     "no motion" above it."""
     hs = rng["h_scaled"][r]
     inview = r & (rng["h_scaled"] > hlim[0]) & (rng["h_scaled"] < hlim[1])
@@ -233,7 +233,7 @@ def label_regions(ax, rng, r, hlim, klim, tori=False):
     k = int(np.argmin(np.where(inview, np.abs(rng["h_scaled"] - target), np.inf)))
     h, lo, hi = rng["h_scaled"][k], rng["k_min"][k], rng["k_max"][k]
     box = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.7)
-    if not tori:
+    if not chambers:
         ax.text(h, 0.5 * (lo + hi), "motion", fontsize=6.5, ha="center", va="center", color="0.25", bbox=box)
     top = hs.max() if len(hs) else hlim[1]
     above = hi + 0.12 * (klim[1] - klim[0])
@@ -289,7 +289,7 @@ def appelrot_panel(ax, l, cur, eq, rng, regions, args):
         k0, k1 = -0.05 * kmax, 1.12 * kmax
     ax.set_xlim(h0, h1)
     ax.set_ylim(k0, k1)
-    label_regions(ax, rng, r, (h0, h1), (k0, k1), tori="realised" in cur)
+    label_regions(ax, rng, r, (h0, h1), (k0, k1), chambers="realised" in cur)
     if "realised" in cur:
         label_chambers(ax, walls, rng, r, regions, l, (h0, h1), (k0, k1))
     ax.set_xlabel("$h / (J_3 c)$")

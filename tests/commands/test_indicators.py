@@ -7,35 +7,13 @@
  - the scene's initial state, set with [initial] gamma;
  - bad input: one line on stderr and exit 2."""
 import os
-import subprocess
 
-import h5py
 import numpy as np
+from lgi_cli import lgi, refused, table
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 GENERAL = os.path.join(ROOT, "experiments", "scenes", "general_top_richter.toml")
 COLUMNS = ["index", "lyapunov", "lyapunov_last_half", "megno", "t_end", "converged"]
-
-
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
-
-
-def table(path, name):
-    with h5py.File(path, "r") as f:
-        return {k: f[name][k][()] for k in f[name]}, dict(f["parameters"].attrs)
-
-
-def refused(*args):
-    r = lgi(*args, check=False)
-    assert r.returncode == 2, (r.returncode, r.stderr)
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("lgi: "), r.stderr
-    return lines[0]
 
 
 def test_equilibria_state_file(tmp_path):

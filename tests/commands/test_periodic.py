@@ -7,31 +7,15 @@
  - bad input: one line on stderr naming the flag, exit 2."""
 import math
 import os
-import subprocess
 
 import h5py
 import numpy as np
+from lgi_cli import lgi, refused
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 GENERAL = os.path.join(ROOT, "experiments", "scenes", "general_top_richter.toml")
 COLUMNS = ["family", "index", "l", "h", "period", "angular_momentum", "gamma", "residual", "multipliers",
            "stability", "event", "degenerate"]
-
-
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
-
-
-def refused(*args):
-    r = lgi(*args, check=False)
-    assert r.returncode == 2, (r.returncode, r.stderr)
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("lgi: "), r.stderr
-    return lines[0]
 
 
 def test_families_of_a_general_top(tmp_path):

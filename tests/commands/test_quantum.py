@@ -11,42 +11,20 @@
 import csv
 import math
 import os
-import subprocess
 
-import h5py
 import numpy as np
+from lgi_cli import lgi, refused, table
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = os.path.join(ROOT, "experiments", "scenes")
 COLUMNS = ["index", "energy", "j", "m", "k", "parity", "converged", "change_with_jmax"]
-
-
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
-
-
-def table(path, name="spectrum"):
-    with h5py.File(path, "r") as f:
-        return {k: f[name][k][()] for k in f[name]}, dict(f["parameters"].attrs)
-
-
-def refused(*args):
-    r = lgi(*args, check=False)
-    assert r.returncode == 2, (r.returncode, r.stderr)
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("lgi: "), r.stderr
-    return lines[0]
 
 
 def test_free_rotor_every_level_of_every_j(tmp_path):
     out = str(tmp_path / "free.h5")
     lgi("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "1", "--m", "2",
         "--jmax", "6", "--out", out)
-    t, p = table(out)
+    t, p = table(out, "spectrum")
     for c in COLUMNS:
         assert c in t, c
     assert len(t["energy"]) == sum(2 * j + 1 for j in range(2, 7))
@@ -76,7 +54,7 @@ def test_harmonic_limit_through_the_command_line(tmp_path):
         out = str(tmp_path / f"q{hbar}.h5")
         lgi("quantum", "--scene", scene, "--hbar", str(hbar), "--jmax", str(jmax), "--levels", "2",
             "--out", out, "--quiet")
-        t, p = table(out)
+        t, p = table(out, "spectrum")
         assert t["converged"][0] == 1 and p["representation"] == "complex hermitian"
         dev[hbar] = (t["energy"][0] - u_min) / hbar / target - 1
     assert abs(dev[0.01]) <= 0.05
@@ -87,7 +65,7 @@ def test_lagrange_top_writes_k(tmp_path):
     out = str(tmp_path / "lagrange.h5")
     lgi("quantum", "--scene", os.path.join(SCENES, "lagrange_top_cigar.toml"), "--hbar", "0.1", "--m", "1",
         "--jmax", "16", "--levels", "12", "--out", out)
-    t, p = table(out)
+    t, p = table(out, "spectrum")
     assert len(t["energy"]) == 12 and np.all(np.diff(t["energy"]) >= 0)
     assert np.all(t["k_conserved"] == 1) and np.all(t["j"] == -1)
     assert len(set(t["k"])) > 1
@@ -111,7 +89,7 @@ def ebk_error(tmp_path, hbar, jmax, m):
     lgi("quantum", "--scene", os.path.join(SCENES, "lagrange_top_cigar.toml"), "--hbar", str(hbar), "--m", str(m),
         "--jmax", str(jmax), "--levels", "10", "--ebk", "--out", out)
     t, _ = table(out, "ebk")
-    s, _ = table(out)
+    s, _ = table(out, "spectrum")
     assert np.all(t["converged"] == 1) and np.all(t["m"] == m)
     assert np.array_equal(t["energy_exact"], s["energy"]) and np.array_equal(t["k"], s["k"])
     assert np.allclose(t["difference"], t["energy_ebk"] - t["energy_exact"], rtol=0, atol=0)
@@ -159,7 +137,7 @@ def test_statistics_of_a_heavy_top(tmp_path):
     lgi("quantum", "--scene", os.path.join(SCENES, "kovalevskaya.toml"), "--hbar", "0.2", "--m", "1",
         "--jmax", "20", "--levels", "60", "--statistics", "--out", out)
     t, _ = table(out, "statistics")
-    s, _ = table(out)
+    s, _ = table(out, "spectrum")
     assert list(t["parity"]) == [0, 1] and list(t["j"]) == [-1, -1]
     assert sum(t["levels"]) == np.count_nonzero(s["converged"] == 1)
     assert np.all((t["brody_beta"] >= 0) & (t["brody_beta"] <= 1)) and np.all(t["brody_error"] > 0)
