@@ -5,12 +5,21 @@
 //    linearly stable equilibrium starts with a period within 1e-6 of 2π/ω and
 //    an energy within 1e-6 of the equilibrium's; every orbit has a residual
 //    ≤ 1e-10, a product of multipliers within 1e-8 of 1, and four multipliers
-//    within 1e-8 of 1 at each family's first orbit (2e-6 further on);
+//    within 1e-8 of 1;
+//  - a period doubling on a family at ℓ = 2.2: located to |tr P + 2| ≤ 1e-8,
+//    confirmed by an independent monodromy (Boost.Odeint's Dormand–Prince on
+//    variational equations written out here) with a multiplier within 1e-6 of
+//    −1, and the doubled family branching off it with period ≈ 2T;
+//  - a fold on a family at ℓ = 3: h turns there, |tr P − 2| ≤ 1e-8, and the
+//    independent monodromy's trace is 6 (= 4 trivial + tr P) to 1e-6;
 //  - one orbit re-integrated for one period by rkmk4 on SO(3) × ℝ³ (another
 //    scheme, another state space) returns to its point to 1e-8;
 //  - the general top's orbits are not reported degenerate; on a Lagrange top the
 //    carrousels' families are, with periods integer multiples of T_theta to 1e-9.
+#include <boost/numeric/odeint.hpp>
 #include <catch2/catch.hpp>
+#include <Eigen/Eigenvalues>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -54,6 +63,31 @@ Vec6 rerun(system::Scene scene, const Vec6& x0, double T, double dt) {
   return out;
 }
 
+/// The monodromy of the Euler–Poisson flow over [0, T] from x0 by Dormand–Prince
+/// 5(4) at tolerance 1e-12 on the variational equations, written out here:
+/// δΠ' = δΠ × Ω + Π × J⁻¹δΠ + δΓ × w,  δΓ' = δΓ × Ω + Γ × J⁻¹δΠ.
+experiments::Mat6 independent_monodromy(const HeavyTopBody& b, const Vec6& x0, double T) {
+  using Y = std::array<double, 42>;
+  const Eigen::Matrix3d Jinv = b.J.inverse();
+  const auto rhs = [&](const Y& y, Y& dy, double) {
+    const Eigen::Map<const Eigen::Matrix<double, 6, 7>> Z(y.data());
+    Eigen::Map<Eigen::Matrix<double, 6, 7>> D(dy.data());
+    const lie::Vec3 Pi = Z.col(0).head<3>(), G = Z.col(0).tail<3>(), Om = Jinv * Pi;
+    D.col(0) << Pi.cross(Om) + G.cross(b.weight), G.cross(Om);
+    for (int k = 1; k < 7; ++k) {
+      const lie::Vec3 dP = Z.col(k).head<3>(), dG = Z.col(k).tail<3>(), dOm = Jinv * dP;
+      D.col(k) << dP.cross(Om) + Pi.cross(dOm) + dG.cross(b.weight), dG.cross(Om) + G.cross(dOm);
+    }
+  };
+  Y y{};
+  Eigen::Map<Eigen::Matrix<double, 6, 7>> Z(y.data());
+  Z.col(0) = x0;
+  Z.rightCols<6>().setIdentity();
+  namespace ode = boost::numeric::odeint;
+  ode::integrate_adaptive(ode::make_controlled(1e-12, 1e-12, ode::runge_kutta_dopri5<Y>()), rhs, y, 0.0, T, 1e-3);
+  return Z.rightCols<6>();
+}
+
 }  // namespace
 
 TEST_CASE("the midpoint composition keeps H, C and |Gamma|^2", "[periodic]") {
@@ -86,9 +120,8 @@ TEST_CASE("Lyapunov families of a general top: periods, residuals, multipliers",
     for (const auto& r : rows) {
       INFO("l = " << l << " family " << r.family << " index " << r.index << " T = " << r.orbit.period);
       CHECK(r.orbit.residual <= 1e-10);
-      // The trivial multipliers form Jordan blocks, split by ~√(discretisation
-      // error) off the equilibrium (experiments/PERIODIC.md, "Accuracy").
-      CHECK(r.orbit.trivial_deviation <= (r.index == 0 ? 1e-8 : 2e-6));
+      CHECK(r.orbit.trivial_deviation <= 1e-8);
+      CHECK(r.orbit.invariance_defect <= 1e-8);
       CHECK(r.orbit.product_deviation <= 1e-8);
       CHECK_FALSE(r.orbit.degenerate);
       if (r.index != 0) continue;
@@ -127,4 +160,81 @@ TEST_CASE("Lagrange top: the carrousels' families are degenerate, periods multip
     CHECK(std::round(ratio) >= 1.0);
   }
   CHECK(degenerate >= 2);
+}
+
+TEST_CASE("A period doubling on a family of Richter's top, and the doubled family", "[periodic]") {
+  const HeavyTopBody body = body_of(testing::shipped_scene("general_top_richter"));
+  // A point of the ℓ = 2.2 family of period ≈ 4.06 (the faster mode of the
+  // hanging equilibrium), from `lgi periodic --l 2.2 --from-equilibria`.
+  Vec6 x;
+  x << -0.5440143623441437, -0.6150665918126653, -2.0653514662689068, -0.33283680104325525, -0.37020048866337674,
+      -0.8672780765503418;
+  experiments::FamilySettings s;
+  s.steps = 3;
+  s.h_step = 0.02;
+  s.switch_amplitude = 2e-4;
+  const double h = experiments::euler_poisson_invariants(body, x).value(0);
+  const auto rows = experiments::continue_family(body, x, 4.061522325732049, h, 2.2, 1.0, 0, s);
+  const experiments::FamilyOrbit* pd = nullptr;
+  for (const auto& r : rows) {
+    INFO("family " << r.family << " index " << r.index << " h " << r.orbit.h << " event " << r.event);
+    CHECK(r.orbit.residual <= 1e-10);
+    CHECK(r.orbit.trivial_deviation <= 1e-8);
+    CHECK(r.orbit.product_deviation <= 1e-8);
+    if (r.family == 0 && r.event == "period_doubling") pd = &r;
+  }
+  REQUIRE(pd != nullptr);
+  CHECK(std::abs(pd->orbit.reduced_trace + 2.0) <= 1e-8);
+  CHECK(pd->orbit.h > 0.6930);
+  CHECK(pd->orbit.h < 0.6940);
+  // Independently: a multiplier of the Dormand–Prince monodromy at −1.
+  const Eigen::EigenSolver<experiments::Mat6> es(independent_monodromy(body, pd->orbit.x0, pd->orbit.period), false);
+  double nearest = INFINITY;
+  for (int k = 0; k < 6; ++k) nearest = std::min(nearest, std::abs(es.eigenvalues()(k) + 1.0));
+  CHECK(nearest <= 1e-6);
+  CHECK(std::abs(independent_monodromy(body, pd->orbit.x0, pd->orbit.period).trace() - 2.0) <= 1e-6);
+  // The doubled family leaves it with period ≈ 2T, its first two orbits (at
+  // amplitudes ε and 2ε off the doubled orbit) on one side of h_pd, the
+  // first nearer.
+  std::vector<experiments::PeriodicOrbit> doubled;
+  for (const auto& r : rows)
+    if (r.parent == 0) doubled.push_back(r.orbit);
+  REQUIRE(doubled.size() >= 2);
+  INFO("T_pd " << pd->orbit.period << " h_pd " << pd->orbit.h << " first doubled (" << doubled[0].h << ", "
+               << doubled[0].period << "), second (" << doubled[1].h << ", " << doubled[1].period << ")");
+  CHECK(std::abs(doubled[0].period - 2.0 * pd->orbit.period) <= 0.05);
+  const double dh1 = doubled[0].h - pd->orbit.h, dh2 = doubled[1].h - pd->orbit.h;
+  CHECK(std::abs(dh1) <= 1e-3);
+  CHECK(dh1 * dh2 > 0.0);
+  CHECK(std::abs(dh1) < std::abs(dh2));
+}
+
+TEST_CASE("A fold on a family of Richter's top at l = 3", "[periodic]") {
+  const HeavyTopBody body = body_of(testing::shipped_scene("general_top_richter"));
+  // A point of the ℓ = 3 family from the equilibrium at h = 5.3197 (period
+  // 4.056), on its way down in h, from `lgi periodic --l 3 --from-equilibria`.
+  Vec6 x;
+  x << 2.818457906841236, 0.7805006052769844, -0.7311888712198521, 0.8999516154419804, 0.2838829693001365,
+      -0.3309041396004405;
+  experiments::FamilySettings s;
+  s.steps = 4;
+  s.h_step = 0.06;
+  const double h = experiments::euler_poisson_invariants(body, x).value(0);
+  const auto rows = experiments::continue_family(body, x, 4.3128228985108725, h, 3.0, -1.0, 0, s);
+  std::size_t fold = rows.size();
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    CHECK(rows[k].orbit.residual <= 1e-10);
+    CHECK(rows[k].orbit.trivial_deviation <= 1e-8);
+    if (rows[k].event == "fold") fold = k;
+  }
+  REQUIRE(fold < rows.size());
+  REQUIRE(fold > 0);
+  REQUIRE(fold + 1 < rows.size());
+  const auto& f = rows[fold].orbit;
+  INFO("fold at h = " << f.h << ", T = " << f.period);
+  CHECK(std::abs(f.reduced_trace - 2.0) <= 1e-8);
+  CHECK(f.h < rows[fold - 1].orbit.h);
+  CHECK(f.h < rows[fold + 1].orbit.h);
+  CHECK(std::abs(f.h - 4.918819764955638) <= 1e-6);  // where the 20-step family of `lgi periodic` places it
+  CHECK(std::abs(independent_monodromy(body, f.x0, f.period).trace() - 6.0) <= 1e-6);
 }

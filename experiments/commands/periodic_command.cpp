@@ -3,6 +3,7 @@
 // Periodic orbits of a heavy top's Euler–Poisson flow at fixed ℓ: the Lyapunov
 // centre families of the linearly stable relative equilibria, or families from
 // seeds, continued in h (analysis/periodic/; layout and method: experiments/PERIODIC.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -28,7 +29,7 @@ namespace {
 struct PeriodicOptions {
   std::string scene, out, seed_file, h_range;
   std::optional<double> l;
-  bool from_equilibria = false;
+  bool from_equilibria = false, no_events = false, no_branch_switching = false;
   int steps = 10;
   double h_step = 0.01, dt = 2e-3, amplitude = 1e-4;
   bool force = false, quiet = false;
@@ -94,7 +95,8 @@ std::vector<TableColumn> periodic_columns(const std::vector<FamilyOrbit>& rows) 
                                 {"angular_momentum", 3}, {"gamma", 3}, {"residual"}, {"multipliers", 12},
                                 {"stability", 1, false, {}, {}, {}, true}, {"event", 1, false, {}, {}, {}, true},
                                 {"degenerate", 1, true}, {"equilibrium", 1, true}, {"omega"},
-                                {"trivial_deviation"}, {"product_deviation"}};
+                                {"trivial_deviation"}, {"product_deviation"}, {"parent", 1, true},
+                                {"reduced_trace"}, {"invariance_defect"}};
   for (const auto& r : rows) {
     const PeriodicOrbit& o = r.orbit;
     c[0].whole.push_back(r.family), c[1].whole.push_back(r.index);
@@ -102,9 +104,10 @@ std::vector<TableColumn> periodic_columns(const std::vector<FamilyOrbit>& rows) 
     for (int k = 0; k < 3; ++k) c[5].real.push_back(o.x0(k)), c[6].real.push_back(o.x0(k + 3));
     c[7].real.push_back(o.residual);
     for (const auto& m : o.multipliers) c[8].real.push_back(m.real()), c[8].real.push_back(m.imag());
-    c[9].text.push_back(o.stability), c[10].text.push_back("none");
+    c[9].text.push_back(o.stability), c[10].text.push_back(r.event);
     c[11].whole.push_back(o.degenerate ? 1 : 0), c[12].whole.push_back(r.equilibrium);
     c[13].real.push_back(r.omega), c[14].real.push_back(o.trivial_deviation), c[15].real.push_back(o.product_deviation);
+    c[16].whole.push_back(r.parent), c[17].real.push_back(o.reduced_trace), c[18].real.push_back(o.invariance_defect);
   }
   return c;
 }
@@ -118,6 +121,7 @@ int run_periodic(const PeriodicOptions& o) {
   FamilySettings s;
   s.shooting.dt = o.dt, s.amplitude = o.amplitude, s.steps = o.steps, s.h_step = o.h_step;
   s.h_min = h_min, s.h_max = h_max;
+  s.locate_events = !o.no_events, s.switch_branches = !o.no_branch_switching;
   std::vector<FamilyOrbit> rows;
   if (o.from_equilibria) {
     rows = lyapunov_families(body, *o.l, s);
@@ -125,9 +129,8 @@ int run_periodic(const PeriodicOptions& o) {
     int family = 0;
     for (const auto& [x, T] : read_seeds(o.seed_file)) {
       const double h = euler_poisson_invariants(body, x).value(0);
-      auto f = continue_family(body, x, T, h, *o.l, 1.0, s);
-      for (auto& r : f) r.family = family;
-      family += f.empty() ? 0 : 1;
+      const auto f = continue_family(body, x, T, h, *o.l, 1.0, family, s);
+      for (const auto& r : f) family = std::max(family, r.family + 1);
       rows.insert(rows.end(), f.begin(), f.end());
     }
   }
@@ -136,12 +139,15 @@ int run_periodic(const PeriodicOptions& o) {
                     {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
                     {"l", format_general(*o.l, 17)}, {"dt", format_general(o.dt, 17)},
                     {"integrator", "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"},
-                    {"continuation", "natural parameter in h; events not located (event = none)"}});
+                    {"continuation", "pseudo-arclength in (x0, T, h) after a first natural step in h"},
+                    {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
+                    {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"}});
   if (o.quiet) return exit_ok;
   int degenerate = 0;
   for (const auto& r : rows) {
-    std::printf("family=%d index=%d h=%.12g period=%.12g residual=%.2e stability=%s%s\n", r.family, r.index, r.orbit.h,
-                r.orbit.period, r.orbit.residual, r.orbit.stability.c_str(), r.orbit.degenerate ? " degenerate" : "");
+    std::printf("family=%d index=%d h=%.12g period=%.12g residual=%.2e stability=%s%s%s%s\n", r.family, r.index,
+                r.orbit.h, r.orbit.period, r.orbit.residual, r.orbit.stability.c_str(),
+                r.orbit.degenerate ? " degenerate" : "", r.event == "none" ? "" : " event=", r.event == "none" ? "" : r.event.c_str());
     degenerate += r.orbit.degenerate ? 1 : 0;
   }
   if (degenerate)
@@ -165,7 +171,10 @@ Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--seed-file", o->seed_file, "Seeds, one per line: Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T");
   sub->add_option("--h-range", o->h_range, "A:B: a family stops when h leaves [A, B]");
   sub->add_option("--steps", o->steps, "Continuation steps after each family's first orbit")->capture_default_str();
-  sub->add_option("--h-step", o->h_step, "The continuation step in h (halved on failure)")->capture_default_str();
+  sub->add_option("--h-step", o->h_step, "The first continuation step in h; later steps keep its arclength (halved on failure)")
+      ->capture_default_str();
+  sub->add_flag("--no-events", o->no_events, "Do not locate folds, period doublings and class changes");
+  sub->add_flag("--no-branch-switching", o->no_branch_switching, "Do not start the doubled family at a period doubling");
   sub->add_option("--dt", o->dt, "Step bound of the shooting integrator")->capture_default_str();
   sub->add_option("--amplitude", o->amplitude, "Start amplitude relative to |x_e| (--from-equilibria)")
       ->capture_default_str();

@@ -12,7 +12,7 @@ command line `lgi` (python/README.md):
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
 sweep(), indicators(), tangent_flow(), spectral_statistics() (docs/spectral_statistics.md), quantum_spectrum(),
-and the atlas of heavy tops (docs/atlas.md): equilibria(),
+periodic_orbit(), continue_family() (experiments/PERIODIC.md), and the atlas of heavy tops (docs/atlas.md): equilibria(),
 bifurcation(), region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
@@ -21,6 +21,7 @@ first, body -> space; matrices row-major. Long calls release the GIL.
 from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_dir, schemes, sweep, tangent_flow
 from ._lgi import spectral_statistics
 from ._lgi import quantum_spectrum
+from ._lgi import continue_family, periodic_orbit
 from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
@@ -29,9 +30,11 @@ __all__ = [
     "SimulationResult",
     "Stepper",
     "bifurcation",
+    "continue_family",
     "equilibria",
     "exact_free_flow",
     "indicators",
+    "periodic_orbit",
     "poincare",
     "quantum_spectrum",
     "region",

@@ -221,6 +221,34 @@ def quantum_spectrum(
     m, k, parity, converged (int64 0/1), change_with_jmax, k_conserved as arrays, and symmetry,
     parity_classes, moments, weight (J and c in the frame used), dimension, method."""
 
+def periodic_orbit(
+    scene: SceneLike,
+    angular_momentum: FloatArray,
+    gamma: FloatArray,
+    period: float,
+    h: Optional[float] = None,
+    l: Optional[float] = None,
+    dt: float = 2e-3,
+) -> dict[str, Any]:
+    """One periodic orbit by Newton's method from a point and a period guess (experiments/PERIODIC.md):
+    the /periodic columns for one row, plus converged, iterations and the (6, 6) monodromy."""
+
+def continue_family(
+    scene: SceneLike,
+    l: float,
+    seed: Optional[tuple[FloatArray, FloatArray, float]] = None,
+    steps: int = 10,
+    h_step: float = 0.01,
+    dt: float = 2e-3,
+    amplitude: float = 1e-4,
+    h_range: Optional[tuple[float, float]] = None,
+    events: bool = True,
+    branch_switching: bool = True,
+) -> dict[str, Any]:
+    """Families of periodic orbits at momentum l with their events and doubled families: the Lyapunov
+    families of the stable relative equilibria (seed=None) or one family from a seed; the /periodic
+    columns of `lgi periodic` (experiments/PERIODIC.md)."""
+
 def tangent_flow(
     scene: SceneLike,
     state: dict[str, Any],

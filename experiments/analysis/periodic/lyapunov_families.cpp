@@ -1,7 +1,7 @@
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -40,30 +40,19 @@ Vec6 mode_direction(const HeavyTopBody& body, const Vec6& xe, double omega) {
   return u.normalized();
 }
 
-/// One continuation step by dh from the last row; halves dh up to four times.
-/// `xe` (the equilibrium, or null for a seed) gives the first step's predictor.
-bool step_family(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, const Vec6* xe, double h_e, double& dh,
-                 double l, const FamilySettings& s) {
-  const FamilyOrbit last = rows.back();
-  for (int tries = 0; tries < 5; ++tries, dh *= 0.5) {
-    const double h = last.orbit.h + dh;
-    if (h < s.h_min || h > s.h_max) return false;
-    Vec6 x = last.orbit.x0;
-    double T = last.orbit.period;
-    if (rows.size() >= 2) {  // secant
-      const PeriodicOrbit& a = rows[rows.size() - 2].orbit;
-      const double r = dh / (last.orbit.h - a.h);
-      x += r * (last.orbit.x0 - a.x0), T += r * (last.orbit.period - a.period);
-    } else if (xe) {  // amplitude ∝ √(h − h_e) near the equilibrium
-      x = *xe + std::sqrt((h - h_e) / (last.orbit.h - h_e)) * (last.orbit.x0 - *xe);
-    }
-    PeriodicOrbit o = correct_orbit(body, x, T, h, l, s.shooting);
-    if (o.converged) {
-      rows.push_back({last.family, last.index + 1, last.equilibrium, last.omega, o});
-      return true;
-    }
+/// Appends `family` and, with s.switch_branches, the doubled family of each of
+/// its period doublings, numbered from next_family on.
+void append_with_branches(const HeavyTopBody& body, std::vector<FamilyOrbit>& all, const std::vector<FamilyOrbit>& family,
+                          int& next_family, const FamilySettings& s) {
+  all.insert(all.end(), family.begin(), family.end());
+  if (!s.switch_branches) return;
+  for (const FamilyOrbit& r : family) {
+    if (r.event != "period_doubling") continue;
+    const std::vector<FamilyOrbit> doubled = doubled_family(body, r, next_family, s);
+    if (doubled.empty()) continue;
+    all.insert(all.end(), doubled.begin(), doubled.end());
+    ++next_family;
   }
-  return false;
 }
 
 }  // namespace
@@ -80,15 +69,17 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e) {
 }
 
 std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x0, double T, double h, double l,
-                                         double direction, const FamilySettings& s) {
-  std::vector<FamilyOrbit> rows;
-  PeriodicOrbit o = correct_orbit(body, x0, T, h, l, s.shooting);
-  if (!o.converged) return rows;
-  rows.push_back({0, 0, -1, 2.0 * std::numbers::pi / T, o});
-  double dh = direction * s.h_step;
-  for (int k = 0; k < s.steps; ++k)
-    if (!step_family(body, rows, nullptr, 0.0, dh, l, s)) break;
-  return rows;
+                                         double direction, int family, const FamilySettings& s) {
+  const PeriodicOrbit o = correct_orbit(body, x0, T, h, l, s.shooting);
+  if (!o.converged) return {};
+  FamilyOrbit first;
+  first.family = family, first.omega = 2.0 * std::numbers::pi / o.period, first.orbit = o;
+  std::vector<FamilyOrbit> rows{first};
+  continue_rows(body, rows, direction * s.h_step, nullptr, 0.0, s);
+  std::vector<FamilyOrbit> all;
+  int next = family + 1;
+  append_with_branches(body, all, rows, next, s);
+  return all;
 }
 
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s) {
@@ -102,15 +93,15 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
     for (const double omega : equilibrium_frequencies(e)) {
       const Vec6 start = project_to_leaf(body, xe + s.amplitude * xe.norm() * mode_direction(body, xe, omega), l);
       const double h0 = euler_poisson_invariants(body, start).value(0);
-      const double T0 = 2.0 * std::numbers::pi / omega;
-      PeriodicOrbit o = correct_orbit(body, start, T0, h0, l, s.shooting);
+      const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, s.shooting);
       if (!o.converged) continue;
-      std::vector<FamilyOrbit> rows{{family, 0, static_cast<int>(i), omega, o}};
-      double dh = (h0 >= e.h ? 1.0 : -1.0) * s.h_step;
-      for (int k = 0; k < s.steps; ++k)
-        if (!step_family(body, rows, &xe, e.h, dh, l, s)) break;
-      all.insert(all.end(), rows.begin(), rows.end());
-      ++family;
+      FamilyOrbit first;
+      first.family = family, first.equilibrium = static_cast<int>(i), first.omega = omega, first.orbit = o;
+      std::vector<FamilyOrbit> rows{first};
+      continue_rows(body, rows, (h0 >= e.h ? 1.0 : -1.0) * s.h_step, &xe, e.h, s);
+      int next = family + 1;
+      append_with_branches(body, all, rows, next, s);
+      family = next;
     }
   }
   return all;

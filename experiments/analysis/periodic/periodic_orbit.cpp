@@ -10,8 +10,8 @@ namespace lgi::experiments {
 
 namespace {
 
-using System = Eigen::Matrix<double, 10, 7>;
-using Residual = Eigen::Matrix<double, 10, 1>;
+using System = Eigen::Matrix<double, 11, 8>;
+using Residual = Eigen::Matrix<double, 11, 1>;
 
 struct Linearised {
   Residual r;
@@ -19,19 +19,24 @@ struct Linearised {
   Shot shot;
 };
 
-Linearised linearise(const HeavyTopBody& body, const Vec6& x0, double T, const Vec6& x_ref, const Vec6& f_ref,
-                     double h, double l, double dt) {
+/// The eleven equations of the header at z and their Jacobian.
+Linearised linearise(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p, const FamilyPoint& t,
+                     const Vec6& f_ref, double l, double dt) {
   Linearised L;
-  L.shot = shoot(body, x0, T, dt);
+  const Vec6 x0 = z.head<6>();
+  L.shot = shoot(body, x0, z(6), dt);
   const Invariants inv = euler_poisson_invariants(body, x0);
   L.r.head<6>() = L.shot.end - x0;
-  L.r(6) = f_ref.dot(x0 - x_ref);
-  L.r.tail<3>() = inv.value - Eigen::Vector3d(h, l, 1.0);
+  L.r(6) = f_ref.dot(x0 - z_p.head<6>());
+  L.r.segment<3>(7) = inv.value - Eigen::Vector3d(z(7), l, 1.0);
+  L.r(10) = t.dot(z - z_p);
   L.A.setZero();
   L.A.topLeftCorner<6, 6>() = L.shot.monodromy - Mat6::Identity();
   L.A.block<6, 1>(0, 6) = euler_poisson_field(body, L.shot.end);
   L.A.block<1, 6>(6, 0) = f_ref.transpose();
-  L.A.bottomLeftCorner<3, 6>() = inv.gradients;
+  L.A.block<3, 6>(7, 0) = inv.gradients;
+  L.A(7, 7) = -1.0;
+  L.A.row(10) = t.transpose();
   return L;
 }
 
@@ -39,26 +44,51 @@ double residual_of(const Residual& r) {
   return std::max({r.head<6>().norm(), std::abs(r(7)), std::abs(r(8)), std::abs(r(9))});
 }
 
+/// Q: (n₁, n₂, n₃, f̂, w₁, w₂) of classify_orbit's comment, from a QR of [∇H ∇C ∇|Γ|² f].
+Mat6 adapted_basis(const HeavyTopBody& body, const Vec6& x0) {
+  Eigen::Matrix<double, 6, 4> G;
+  G.leftCols<3>() = euler_poisson_invariants(body, x0).gradients.transpose();
+  G.col(3) = euler_poisson_field(body, x0);
+  const Eigen::HouseholderQR<Eigen::Matrix<double, 6, 4>> qr(G);
+  return qr.householderQ() * Mat6::Identity();
+}
+
 }  // namespace
+
+FamilyPoint family_point(const PeriodicOrbit& o) {
+  FamilyPoint z;
+  z << o.x0, o.period, o.h;
+  return z;
+}
 
 PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, double T_guess, double h, double l,
                             const ShootingSettings& s) {
+  FamilyPoint z_p, t = FamilyPoint::Zero();
+  z_p << x_guess, T_guess, h;
+  t(7) = 1.0;
+  return correct_on_family(body, z_p, t, l, s);
+}
+
+PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double l,
+                                const ShootingSettings& s) {
   PeriodicOrbit o;
-  o.h = h, o.l = l;
-  Vec6 x = x_guess;
-  double T = T_guess;
-  const Vec6 f_ref = euler_poisson_field(body, x_guess).normalized();
+  o.l = l;
+  FamilyPoint z = z_p;
+  const Vec6 f_ref = euler_poisson_field(body, z_p.head<6>()).normalized();
   double best = INFINITY, previous = INFINITY;
   for (int it = 0; it <= s.max_iterations; ++it) {
-    Linearised L = linearise(body, x, T, x_guess, f_ref, h, l, s.dt);
+    Linearised L = linearise(body, z, z_p, t, f_ref, l, s.dt);
     if (!L.shot.ok || !L.r.allFinite()) break;
     const double res = residual_of(L.r);
     o.iterations = it;
     if (res < best) {
       best = res;
-      o.x0 = x, o.period = T, o.residual = res, o.monodromy = L.shot.monodromy;
-      const Eigen::Matrix<double, 7, 1> sv = Eigen::JacobiSVD<System>(L.A).singularValues();
-      o.rank_ratio = sv(6) / sv(0);
+      o.x0 = z.head<6>(), o.period = z(6), o.h = z(7), o.residual = res, o.monodromy = L.shot.monodromy;
+      const Eigen::Matrix<double, 8, 1> sv = Eigen::JacobiSVD<System>(L.A).singularValues();
+      o.rank_ratio = sv(7) / sv(0);
+      // The family's tangent: the null vector of the ten equations without the continuation row.
+      const Eigen::JacobiSVD<Eigen::Matrix<double, 10, 8>> family(L.A.topRows<10>(), Eigen::ComputeFullV);
+      o.tangent = family.matrixV().col(7);
     }
     // Stop well below the tolerance, or at it once round-off dominates (no
     // tenfold gain left), or when Newton stalls.
@@ -68,21 +98,29 @@ PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, doubl
     Eigen::CompleteOrthogonalDecomposition<System> cod;
     cod.setThreshold(1e-9);
     cod.compute(L.A);
-    const Eigen::Matrix<double, 7, 1> dz = cod.solve(L.r);
-    x -= dz.head<6>();
-    T -= dz(6);
-    if (!(T > 0.0)) break;
+    z -= cod.solve(L.r);
+    if (!(z(6) > 0.0)) break;
   }
   o.converged = o.residual <= s.tolerance;
-  classify_orbit(o);
+  classify_orbit(body, o);
   return o;
 }
 
-void classify_orbit(PeriodicOrbit& o) {
-  const Eigen::EigenSolver<Mat6> es(o.monodromy, false);
+void classify_orbit(const HeavyTopBody& body, PeriodicOrbit& o) {
+  const Mat6 Q = adapted_basis(body, o.x0);
+  const Mat6 B = Q.transpose() * o.monodromy * Q;
+  o.invariance_defect = std::max(B.topRightCorner<3, 3>().cwiseAbs().maxCoeff(),
+                                 B.block<2, 1>(4, 3).cwiseAbs().maxCoeff());
+  o.reduced_monodromy = B.bottomRightCorner<2, 2>();
+  o.section_basis = Q.rightCols<2>();
+  o.reduced_trace = o.reduced_monodromy.trace();
+  const Eigen::EigenSolver<Eigen::Matrix3d> normal(B.topLeftCorner<3, 3>(), false);
+  const Eigen::EigenSolver<Eigen::Matrix2d> section(o.reduced_monodromy, false);
   std::array<std::complex<double>, 6> mu{};
-  for (int k = 0; k < 6; ++k) mu[static_cast<std::size_t>(k)] = es.eigenvalues()(k);
-  std::sort(mu.begin(), mu.end(), [](auto a, auto b) { return std::abs(a - 1.0) < std::abs(b - 1.0); });
+  for (int k = 0; k < 3; ++k) mu[static_cast<std::size_t>(k)] = normal.eigenvalues()(k);
+  mu[3] = B(3, 3);
+  mu[4] = section.eigenvalues()(0), mu[5] = section.eigenvalues()(1);
+  std::sort(mu.begin(), mu.begin() + 4, [](auto a, auto b) { return std::abs(a - 1.0) < std::abs(b - 1.0); });
   o.multipliers = mu;
   std::complex<double> product = 1.0;
   o.trivial_deviation = 0.0;
@@ -91,13 +129,11 @@ void classify_orbit(PeriodicOrbit& o) {
     if (k < 4) o.trivial_deviation = std::max(o.trivial_deviation, std::abs(mu[k] - 1.0));
   }
   o.product_deviation = std::abs(product - 1.0);
-  // The nontrivial pair (μ, 1/μ): on the unit circle, real positive or real negative.
-  const std::complex<double> m = std::abs(mu[4]) >= std::abs(mu[5]) ? mu[4] : mu[5];
-  const bool on_circle = std::abs(std::abs(m) - 1.0) <= 1e-6;
-  const bool real = std::abs(m.imag()) <= 1e-9 * std::abs(m);
-  if (on_circle) o.stability = "elliptic";
-  else if (!real) o.stability = "complex";
-  else o.stability = m.real() > 0.0 ? "hyperbolic" : "inverse_hyperbolic";
+  // The nontrivial pair (μ, 1/μ) of the 2×2 P: on the unit circle (|tr P| < 2),
+  // real positive (tr P > 2) or real negative (tr P < −2). |tr P| within
+  // 1e-10 of 2 (|μ| − 1 below 1e-5: round-off cannot tell) counts as elliptic.
+  const double tr = o.reduced_trace;
+  o.stability = std::abs(tr) <= 2.0 + 1e-10 ? "elliptic" : (tr > 0.0 ? "hyperbolic" : "inverse_hyperbolic");
   o.degenerate = o.rank_ratio < 1e-7 && std::abs(mu[5] - 1.0) <= 1e-5 && std::abs(mu[4] - 1.0) <= 1e-5;
 }
 

@@ -1,21 +1,24 @@
 #pragma once
-// One periodic orbit of the Euler–Poisson flow in (Π, Γ) ∈ ℝ⁶ at fixed
-// (h, ℓ), by single shooting with Newton's method, and its Floquet
-// multipliers (experiments/PERIODIC.md; R. Seydel, Practical Bifurcation and
-// Stability Analysis, 3rd ed. (2010), ch. 7).
+// One periodic orbit of the Euler–Poisson flow in (Π, Γ) ∈ ℝ⁶ at fixed ℓ, by
+// single shooting with Newton's method, and its Floquet multipliers
+// (experiments/PERIODIC.md; R. Seydel, Practical Bifurcation and Stability
+// Analysis, 3rd ed. (2010), ch. 7).
 //
-// Unknowns z = (x0, T) ∈ ℝ⁷; equations (ten)
+// Unknowns z = (x0, T, h) ∈ ℝ⁸; equations (eleven)
 //   φ_T(x0) − x0 = 0,                    (6)
-//   ⟨f(x_ref), x0 − x_ref⟩ = 0,          (phase: x0 on the hyperplane through x_ref ⊥ the flow)
-//   H(x0) = h, Π·Γ = ℓ, |Γ|² = 1.
+//   ⟨f(x_p), x0 − x_p⟩ = 0,              (phase: x0 on the hyperplane through the predictor x_p ⊥ the flow)
+//   H(x0) = h, Π·Γ = ℓ, |Γ|² = 1,
+//   ⟨t, z − z_p⟩ = 0                     (continuation: t = e_h fixes h; t the family's tangent is
+//                                          pseudo-arclength, H. B. Keller (1977), Seydel §4.4).
 // The monodromy M = ∂φ_T/∂x0 has four multipliers at 1 (flow, H and the two
-// Casimirs), so φ_T − x0 alone is singular; the full system has rank 7 at an
-// isolated orbit. Each Newton step is the minimum-norm least-squares solution
-// (complete orthogonal decomposition, rank threshold 1e-9 relative).
-// Degenerate: the system's rank is below 7 (its smallest singular value below
-// 1e-7 of the largest) and all six multipliers are within 1e-5 of 1: the
-// orbit lies in a continuum of periodic orbits at the same (h, ℓ), a resonant
-// torus of an integrable top, and is not isolated.
+// Casimirs), so φ_T − x0 alone is singular; the full system has rank 8 at an
+// isolated orbit that is a regular point of its family. Each Newton step is
+// the minimum-norm least-squares solution (complete orthogonal decomposition,
+// rank threshold 1e-9 relative).
+// Degenerate: the system's smallest singular value is below 1e-7 of the
+// largest and all six multipliers are within 1e-5 of 1: the orbit lies in a
+// continuum of periodic orbits at the same (h, ℓ), a resonant torus of an
+// integrable top, and is not isolated.
 #include <array>
 #include <complex>
 #include <string>
@@ -23,6 +26,9 @@
 #include "experiments/analysis/periodic/euler_poisson_flow.hpp"
 
 namespace lgi::experiments {
+
+/// A point of a family in the unknowns of the corrector: (x0, T, h).
+using FamilyPoint = Eigen::Matrix<double, 8, 1>;
 
 struct ShootingSettings {
   double dt = 2e-3;          // the step bound; a shot takes ⌈T/dt⌉ equal steps
@@ -35,11 +41,16 @@ struct PeriodicOrbit {
   double period = 0.0, h = 0.0, l = 0.0;
   double residual = 0.0;   // max(|φ_T(x0) − x0|, |H − h|, |Π·Γ − ℓ|, ||Γ|² − 1|)
   Mat6 monodromy = Mat6::Identity();
-  std::array<std::complex<double>, 6> multipliers{};  // the four nearest 1 first, then the nontrivial pair
-  std::string stability;   // elliptic, hyperbolic, inverse_hyperbolic or complex (of the nontrivial pair)
-  double trivial_deviation = 0.0;  // max |μ − 1| over the four nearest 1
+  std::array<std::complex<double>, 6> multipliers{};  // the four trivial ones first, then the nontrivial pair
+  std::string stability;   // elliptic, hyperbolic or inverse_hyperbolic (of the nontrivial pair)
+  double reduced_trace = 0.0;      // trace of the monodromy on the section in the level set (below)
+  Eigen::Matrix<double, 6, 2> section_basis = Eigen::Matrix<double, 6, 2>::Zero();  // that section's basis
+  Eigen::Matrix2d reduced_monodromy = Eigen::Matrix2d::Identity();
+  double invariance_defect = 0.0;  // the entries that vanish exactly for the exact flow (below)
+  double trivial_deviation = 0.0;  // max |μ − 1| over the four trivial multipliers
   double product_deviation = 0.0;  // |∏ μ − 1|
   double rank_ratio = 0.0;         // smallest / largest singular value of the Newton system
+  Eigen::Matrix<double, 8, 1> tangent = Eigen::Matrix<double, 8, 1>::Zero();  // the family's unit tangent in (x0, T, h), either sense
   bool degenerate = false;
   bool converged = false;
   int iterations = 0;
@@ -50,7 +61,29 @@ struct PeriodicOrbit {
 PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, double T_guess, double h, double l,
                             const ShootingSettings& s);
 
+/// Newton from the predictor z_p with the continuation condition ⟨t, z − z_p⟩ = 0
+/// (t need not be normalised; t = e_h is correct_orbit).
+PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double l,
+                                const ShootingSettings& s);
+
+/// (x0, T, h) of an orbit.
+FamilyPoint family_point(const PeriodicOrbit& o);
+
 /// Multipliers, their checks, the stability class and the degeneracy of a corrected orbit.
-void classify_orbit(PeriodicOrbit& o);
+///
+/// The multipliers are the eigenvalues of M in an orthonormal basis adapted
+/// to what the exact flow keeps: (n₁, n₂, n₃) spanning the gradients of H,
+/// Π·Γ and |Γ|² at x0, then f̂ (the flow), then (w₁, w₂) completing the
+/// tangent space of the level set. There B = QᵀMQ is block triangular,
+///   B = [N 0; * C],  C = [1 *; 0 P],
+/// since ∇Iᵀ M = ∇Iᵀ for each invariant I (so N = I and nᵢᵀMv = 0 for v in
+/// the level set's tangent space) and M f = f. The trivial multipliers are
+/// eig(N) and C_ff, the nontrivial pair eig(P) (P: the monodromy of the
+/// section in the level set, Seydel §7.4). Taking them from the diagonal
+/// blocks is a conditioning choice, not a renormalisation: the eigenvalue of
+/// a Jordan block moves by √ε under a perturbation ε, a diagonal entry by ε.
+/// The entries taken as zero are reported as `invariance_defect` (their
+/// largest magnitude).
+void classify_orbit(const HeavyTopBody& body, PeriodicOrbit& o);
 
 }  // namespace lgi::experiments

@@ -1,0 +1,74 @@
+#pragma once
+// Continuation of a family of periodic orbits at fixed ℓ, the location of its
+// bifurcations, and branch switching at period doublings
+// (experiments/PERIODIC.md "Families").
+//
+// Predictor–corrector (H. B. Keller, in Applications of Bifurcation Theory,
+// Academic Press 1977, 359–384; R. Seydel, Practical Bifurcation and
+// Stability Analysis, 3rd ed. (2010), §4.4): at the last regular orbit z_b ∈
+// ℝ⁸ = (x0, T, h), the unit tangent t (the null vector of the corrector's ten
+// equations, in the sense of the secant from the orbit before), the
+// predictor z_b + Δs t, and the corrector of periodic_orbit.hpp with
+// ⟨t, z − z_p⟩ = 0 (pseudo-arclength), so folds in h are passed. Δs is the
+// length of the family's first step. A step fails when the corrector does
+// not converge, when its correction exceeds 0.3 Δs, or when the new secant
+// turns by more than about 25° (cos < 0.9): guards against jumping to a
+// neighbouring branch. A failed step is halved up to five times, then the
+// family stops; after a success a halved Δs is doubled back.
+//
+// Events, from the trace of the section's monodromy P (periodic_orbit.hpp),
+// between consecutive orbits a, b:
+// - tr P + 2 changes sign: a multiplier passes −1, a period doubling;
+// - tr P − 2 changes sign: the pair passes +1. With h turning there (the
+//   orbit is a fixed point of the section map at fixed h, so the implicit
+//   function theorem in h fails exactly where P has the eigenvalue 1), a fold;
+//   else a class change (elliptic ↔ hyperbolic without a fold: a branch point).
+// Each event is located by the Illinois variant of regula falsi on the
+// position s ∈ (0, 1) along the chord from z_a to z_b (the corrector with
+// ⟨z_b − z_a, z − z_p(s)⟩ = 0), to |tr P ∓ 2| ≤ 1e-9, and inserted as its own
+// row with its `event`.
+// Branch switching: at a period doubling the eigenvector v of P for −1 (in
+// ℝ⁶: section_basis · v) starts the doubled family: two orbits of period ≈ 2T
+// with ⟨v, x0 − x_pd⟩ = ε, 2ε (ε = switch_amplitude |x_pd|), then the family
+// is continued as any other; its `parent` is the family it branched from.
+#include <string>
+#include <vector>
+
+#include "experiments/analysis/periodic/periodic_orbit.hpp"
+
+namespace lgi::experiments {
+
+struct FamilySettings {
+  ShootingSettings shooting{};
+  double amplitude = 1e-4;         // ε of the first orbit at an equilibrium, relative to |x_e|
+  double switch_amplitude = 1e-3;  // ε of branch switching, relative to |x_pd|
+  int steps = 10;                  // continuation steps after the first orbit
+  double h_step = 0.0;             // the first step in h (> 0); later steps keep its arclength
+  double h_min = -INFINITY, h_max = INFINITY;  // the family stops outside
+  bool locate_events = true;
+  bool switch_branches = true;     // start the doubled family at each period doubling
+};
+
+struct FamilyOrbit {
+  int family = 0, index = 0;
+  int equilibrium = -1;  // the row in equilibria_at(body, l) the family starts at (−1: a seed or a branch)
+  int parent = -1;       // the family a doubled family branched from
+  double omega = 0.0;    // ω of the mode it was started along (2π/T of the first orbit otherwise)
+  std::string event = "none";  // none, fold, period_doubling or class_change
+  PeriodicOrbit orbit;
+};
+
+/// Continues `rows` (one or more orbits of one family, the last the newest)
+/// by up to s.steps further orbits, locating events on the way. `first_dh`
+/// is the first step in h when rows holds one orbit; `equilibrium`, if
+/// given, is the family's equilibrium (the first predictor scales about it).
+void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
+                   double h_equilibrium, const FamilySettings& s);
+
+/// The doubled family started at a period-doubling row `pd`, numbered
+/// `family` and continued by s.steps orbits in the sense that ε > 0 gives
+/// (empty if the corrector finds no orbit of period ≈ 2T off the doubled one).
+std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOrbit& pd, int family,
+                                        const FamilySettings& s);
+
+}  // namespace lgi::experiments
