@@ -18,7 +18,8 @@ namespace {
 template <class Model>
 std::array<double, 6> spectrum_of(const Model& model, system::State x, double t_end, double dt) {
   return spectrum_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(model, x, V, t, h); },
-                       [&] { return x.Pi.allFinite(); }, t_end, dt, &interrupt_requested);
+                       [&] { return x.Pi.allFinite(); }, integrators::Mat6::Identity(), t_end, dt,
+                       &interrupt_requested);
 }
 
 /// The fields every indicator run shares, from the loop's result.
@@ -106,10 +107,15 @@ StateIndicators cardan_state_indicators(const system::Scene& scene, const system
                                       top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
                                   s);
   if (s.spectrum) {
+    // Not from the identity: δq₁ is exactly invariant where q₁ is cyclic, and
+    // would hold the first Gram–Schmidt column at λ = 0.
     system::Vec6 y = system::stack(x0);
+    std::array<double, 6> unused{};
+    integrators::Mat6 V = initial_deviation_vectors(s.seed, index);
+    orthonormalise(V, unused);
     out.spectrum = spectrum_loop(
-        [&](double, double h, integrators::Mat6& V) { integrators::torus::torus_tangent_step(top, y, V, h); },
-        [&] { return y.allFinite(); }, s.t_end, s.dt, &interrupt_requested);
+        [&](double, double h, integrators::Mat6& W) { integrators::torus::torus_tangent_step(top, y, W, h); },
+        [&] { return y.allFinite(); }, V, s.t_end, s.dt, &interrupt_requested);
     out.ok = out.ok && std::isfinite(out.spectrum[0]);
   }
   if (s.gali) {

@@ -42,11 +42,10 @@ inline bool orthonormalise(integrators::Mat6& V, std::array<double, 6>& sums) {
   return true;
 }
 
-/// The six exponents over [0, t_end], V starting at the identity.
+/// The six exponents over [0, t_end] from the vectors V (columns, orthonormal).
 template <class Step, class Finite>
-std::array<double, 6> spectrum_loop(Step&& step, Finite&& finite, double t_end, double dt,
+std::array<double, 6> spectrum_loop(Step&& step, Finite&& finite, integrators::Mat6 V, double t_end, double dt,
                                     const std::atomic<bool>* stop) {
-  integrators::Mat6 V = integrators::Mat6::Identity();
   std::array<double, 6> sums{};
   double t = 0.0;
   std::int64_t steps = 0;
