@@ -77,7 +77,7 @@ inline bool normalise_columns(integrators::Mat6& V) {
 }
 
 /// The times at which gali_loop records: the end of the first step at or
-/// after each target (gali_targets: increasing, the last = t_end), a step
+/// after each target (to 1e-7 dt) (gali_targets: increasing, the last = t_end), a step
 /// recorded once; the same doubles as the loop's t.
 inline std::vector<double> gali_times(const std::vector<double>& targets, double t_end, double dt) {
   std::vector<double> times;
@@ -85,8 +85,9 @@ inline std::vector<double> gali_times(const std::vector<double>& targets, double
   std::size_t next = 0;
   while (t < t_end && next < targets.size()) {
     t = grid_next(t, t_end, dt, grid_step(t, t_end, dt));
-    if (t >= targets[next]) times.push_back(t);
-    while (next < targets.size() && targets[next] <= t) ++next;
+    const double slack = 1e-7 * dt;  // t sums steps: 2.9999999 is the step at 3
+    if (t >= targets[next] - slack) times.push_back(t);
+    while (next < targets.size() && targets[next] - slack <= t) ++next;
   }
   return times;
 }
