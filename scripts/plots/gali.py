@@ -11,7 +11,8 @@ Bountis & Antonopoulos (2008) for an s-torus (--torus-dim, default 3) in the
 6-dimensional tangent space: GALI_k constant for k <= s, t^-(k-s) for s < k <= 6 - s,
 t^-2(k-3) above. Linear samples (--gali-spacing linear, for
 chaos): log10 GALI_k against t, the rates -d ln GALI_k / dt fitted over the decay in the
-legend. Prints the fitted slopes or rates. The curves stop where GALI_2 reaches the
+legend (fitted while GALI_2 > 1e-7, before the smallest singular values meet round-off).
+Prints the fitted slopes or rates. The curves stop where GALI_2 reaches the
 round-off floor (log10 GALI_2 below -15: the vectors agree to the last bit).
 """
 import numpy as np
@@ -19,6 +20,7 @@ import numpy as np
 import lgi_plot_common as c
 
 FLOOR = -15.0
+WINDOW = -7.0  # linear files: the rates are fitted while log10 GALI_2 > WINDOW
 
 
 def law(k, s):
@@ -49,8 +51,9 @@ def main():
             x = np.log10(t) if log_t else t
             if log_t:  # the last decade: the asymptotic power law
                 fit = ok & (x >= x[ok].max() - 1.0)
-            else:  # the decay, past the first tenth of it
-                fit = ok & (x >= 0.1 * x[ok].max())
+            else:  # the decay past its first tenth, while GALI_2 > 1e-7: GALI_6's smallest
+                # singular value falls twice as fast as GALI_2 and meets round-off (1e-16) there
+                fit = ok & (x >= 0.1 * x[ok].max()) & (np.cumsum(~(v[:, 0] > WINDOW)) == 0)
             for k in range(5):
                 s = np.polyfit(x[fit], v[fit, k], 1)[0] if fit.sum() > 2 else float("nan")
                 if log_t:
