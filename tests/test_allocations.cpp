@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 
@@ -50,4 +51,20 @@ TEST_CASE("no scheme allocates per step", "[allocations]") {
       CHECK(many == few);
     }
   }
+}
+
+TEST_CASE("the GALI loop allocates nothing per step", "[allocations][gali]") {
+  // The curves are allocated once for the samples; the steps, the
+  // normalisations and the SVDs (fixed maximal sizes) allocate nothing.
+  const system::Scene scene = experiments::read_scene(std::string(LGI_SCENES_DIR) + "/general_top_richter.toml");
+  const auto count = [&](double t_end) {
+    experiments::IndicatorSettings s;
+    s.t_end = t_end, s.dt = 0.01, s.gali = true, s.gali_sampling = {20, false};
+    const long before = experiments::verification::counted_allocations();
+    const auto c = experiments::gali_curves(scene, scene.initial, s, 0);
+    const long after = experiments::verification::counted_allocations();
+    REQUIRE(c.t.size() == 20);
+    return after - before;
+  };
+  CHECK(count(1.0) == count(8.0));
 }

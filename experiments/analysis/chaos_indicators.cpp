@@ -5,47 +5,40 @@
 #include <variant>
 
 #include "experiments/analysis/seeded_random.hpp"
+#include "experiments/analysis/tangent_loops.hpp"
+#include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/system/model.hpp"
+#include "integrators/torus/torus_tangent_flow.hpp"
 
 namespace lgi::experiments {
 
 namespace {
 
-/// Modified Gram–Schmidt on the columns of V in place; adds ln R_kk to sums.
-/// False if a column vanished or is not finite.
-bool orthonormalise(integrators::Mat6& V, std::array<double, 6>& sums) {
-  for (int k = 0; k < 6; ++k) {
-    for (int j = 0; j < k; ++j) V.col(k) -= V.col(j).dot(V.col(k)) * V.col(j);
-    const double n = V.col(k).norm();
-    if (!std::isfinite(n) || !(n > 0.0)) return false;
-    V.col(k) /= n;
-    sums[static_cast<std::size_t>(k)] += std::log(n);
-  }
-  return true;
-}
-
 template <class Model>
 std::array<double, 6> spectrum_of(const Model& model, system::State x, double t_end, double dt) {
-  integrators::Mat6 V = integrators::Mat6::Identity();
-  std::array<double, 6> sums{};
-  double t = 0.0;
-  std::int64_t steps = 0;
-  while (t < t_end) {  // the time grid of integrators::accumulate_chaos_indicators
-    if (++steps % 256 == 0 && interrupt_requested.load(std::memory_order_relaxed)) {  // Ctrl-C
-      sums.fill(std::nan(""));
-      return sums;
-    }
-    const double h = (t_end - t) < 1.0000001 * dt ? t_end - t : dt;
-    integrators::tangent_step(model, x, V, t, h);
-    t = (t_end - t) < 1.0000001 * dt ? t_end : t + h;
-    if (!orthonormalise(V, sums) || !x.Pi.allFinite()) {
-      sums.fill(std::nan(""));
-      return sums;
-    }
-  }
-  for (double& s : sums) s /= t_end;
-  return sums;
+  return spectrum_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(model, x, V, t, h); },
+                       [&] { return x.Pi.allFinite(); }, integrators::Mat6::Identity(), t_end, dt,
+                       &interrupt_requested);
+}
+
+/// The fields every indicator run shares, from the loop's result.
+StateIndicators from_loop(const integrators::ChaosIndicators& r, const IndicatorSettings& s) {
+  StateIndicators out;
+  out.t_end = s.t_end;
+  out.spectrum.fill(std::nan(""));
+  out.ok = r.ok;
+  out.lyapunov = r.lyapunov;
+  out.lyapunov_last_half = r.lyapunov_last_half;
+  out.megno = r.megno;
+  out.converged = lyapunov_converged(r.lyapunov, r.lyapunov_last_half, s.rtol);
+  return out;
+}
+
+bool finite_curves(const GaliCurves& g) { return g.log10_gali.empty() || !std::isnan(g.log10_gali.back()[0]); }
+
+std::vector<double> sample_times(const IndicatorSettings& s) {
+  return gali_times(gali_targets(s.t_end, s.dt, s.gali_sampling), s.t_end, s.dt);
 }
 
 }  // namespace
@@ -67,9 +60,6 @@ bool lyapunov_converged(double lyapunov, double last_half, double rtol) {
 
 StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                                  std::int64_t index) {
-  StateIndicators out;
-  out.t_end = s.t_end;
-  out.spectrum.fill(std::nan(""));
   const system::AnyModel model = system::make_model(scene);
   const integrators::ChaosIndicators r = std::visit(
       [&](const auto& m) {
@@ -78,22 +68,70 @@ StateIndicators state_indicators(const system::Scene& scene, const system::State
                                              &interrupt_requested);
       },
       model);
-  out.ok = r.ok;
-  out.lyapunov = r.lyapunov;
-  out.lyapunov_last_half = r.lyapunov_last_half;
-  out.megno = r.megno;
-  out.converged = lyapunov_converged(r.lyapunov, r.lyapunov_last_half, s.rtol);
+  StateIndicators out = from_loop(r, s);
   if (s.spectrum) {
     out.spectrum = lyapunov_spectrum(scene, x0, s.t_end, s.dt);
     out.ok = out.ok && std::isfinite(out.spectrum[0]);
   }
+  if (s.gali) {
+    out.gali = gali_curves(scene, x0, s, index);
+    out.ok = out.ok && finite_curves(out.gali);
+  }
   return out;
+}
+
+GaliCurves gali_curves(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
+                       std::int64_t index) {
+  const system::AnyModel model = system::make_model(scene);
+  return std::visit(
+      [&](const auto& m) {
+        system::State x = x0;
+        return gali_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(m, x, V, t, h); },
+                         [&] { return x.Pi.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s),
+                         s.t_end, s.dt, &interrupt_requested);
+      },
+      model);
 }
 
 std::array<double, 6> lyapunov_spectrum(const system::Scene& scene, const system::State& x0, double t_end,
                                         double dt) {
   const system::AnyModel model = system::make_model(scene);
   return std::visit([&](const auto& m) { return spectrum_of(m, x0, t_end, dt); }, model);
+}
+
+StateIndicators cardan_state_indicators(const system::Scene& scene, const system::TorusState& x0,
+                                        const IndicatorSettings& s, std::int64_t index) {
+  const system::CardanTop top = cardan_top(scene);
+  system::TorusState x = x0;
+  StateIndicators out = from_loop(integrators::torus::torus_chaos_indicators(
+                                      top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
+                                  s);
+  if (s.spectrum) {
+    // Not from the identity: δq₁ is exactly invariant where q₁ is cyclic, and
+    // would hold the first Gram–Schmidt column at λ = 0.
+    system::Vec6 y = system::stack(x0);
+    std::array<double, 6> unused{};
+    integrators::Mat6 V = initial_deviation_vectors(s.seed, index);
+    orthonormalise(V, unused);
+    out.spectrum = spectrum_loop(
+        [&](double, double h, integrators::Mat6& W) { integrators::torus::torus_tangent_step(top, y, W, h); },
+        [&] { return y.allFinite(); }, V, s.t_end, s.dt, &interrupt_requested);
+    out.ok = out.ok && std::isfinite(out.spectrum[0]);
+  }
+  if (s.gali) {
+    out.gali = cardan_gali_curves(scene, x0, s, index);
+    out.ok = out.ok && finite_curves(out.gali);
+  }
+  return out;
+}
+
+GaliCurves cardan_gali_curves(const system::Scene& scene, const system::TorusState& x0, const IndicatorSettings& s,
+                              std::int64_t index) {
+  const system::CardanTop top = cardan_top(scene);
+  system::Vec6 y = system::stack(x0);
+  return gali_loop([&](double, double h, integrators::Mat6& V) { integrators::torus::torus_tangent_step(top, y, V, h); },
+                   [&] { return y.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s), s.t_end,
+                   s.dt, &interrupt_requested);
 }
 
 }  // namespace lgi::experiments

@@ -12,9 +12,16 @@
 // L. Galgani, A. Giorgilli, J.-M. Strelcyn, Meccanica 15 (1980) 9–20 and
 // 21–30). The values come in the Gram–Schmidt order, which is the descending
 // order once the run is long enough.
+//
+// GALI_k (k = 2 … 6) on request: six more deviation vectors, normalised
+// after every step, their volumes recorded at sample times (gali.hpp).
+//
+// Cardan scenes (T³ × ℝ³): the same indicators from the tangent flow of
+// integrators/torus/torus_tangent_flow.hpp (RK4 on ℝ⁶ × ℝ⁶), cardan_state_indicators.
 #include <array>
 #include <cstdint>
 
+#include "experiments/analysis/gali.hpp"
 #include "integrators/system/scene.hpp"
 #include "integrators/tangent_flow.hpp"
 
@@ -27,6 +34,8 @@ struct IndicatorSettings {
   std::uint64_t seed = 0;       // the tangent vector's draw, with the state's index
   bool spectrum = false;
   double rtol = 0.05;           // converged: |λ[T/2,T] − λ[0,T]| ≤ rtol max(|λ[T/2,T]|, |λ[0,T]|)
+  bool gali = false;            // GALI_2 … GALI_6 at the sample times
+  GaliSampling gali_sampling{};
 };
 
 struct StateIndicators {
@@ -36,6 +45,7 @@ struct StateIndicators {
   double t_end = 0.0;
   bool converged = false;
   std::array<double, 6> spectrum{};  // NaN unless asked for
+  GaliCurves gali{};                 // empty unless asked for
   bool ok = true;                    // false: the state or a tangent blew up (NaN values)
 };
 
@@ -50,6 +60,19 @@ bool lyapunov_converged(double lyapunov, double last_half, double rtol);
 /// tangent vector starts at initial_tangent(seed, index).
 StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                                  std::int64_t index);
+
+/// The indicators of the state x0 of the Cardan scene `scene` from t = 0, as
+/// state_indicators (the same draws of the tangent vectors).
+StateIndicators cardan_state_indicators(const system::Scene& scene, const system::TorusState& x0,
+                                        const IndicatorSettings& s, std::int64_t index);
+
+/// GALI_k (k = 2 … 6) of the state x0 over [0, t_end] with steps dt, the
+/// deviation vectors from initial_deviation_vectors(seed, index); SO(3)
+/// scenes (gali_curves) and Cardan scenes (cardan_gali_curves).
+GaliCurves gali_curves(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
+                       std::int64_t index);
+GaliCurves cardan_gali_curves(const system::Scene& scene, const system::TorusState& x0, const IndicatorSettings& s,
+                              std::int64_t index);
 
 /// The six exponents of the Gram–Schmidt loop (top of this file) over [0, t_end]
 /// with steps dt; NaN if the state or the vectors blew up.

@@ -293,8 +293,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& path_for_messag
 void refuse_cardan_scene(const Scene& scene, const std::string& command) {
   if (scene.suspension)
     throw InputError(scene.file + ": [suspension]: lgi " + command +
-                     " works on SO(3) and does not take a Cardan top (simulate, equilibria, bifurcation and poincare "
-                     "do; docs/cardan.md)");
+                     " works on SO(3) and does not take a Cardan top (simulate, equilibria, bifurcation, poincare "
+                     "and indicators do; docs/cardan.md)");
 }
 
 Scene read_scene(const std::string& path) {

@@ -32,14 +32,24 @@ inline system::Vec6 torus_tangent_rate(const system::CardanTop& top, const syste
   return (top.field(system::unstack(x + d)) - top.field(system::unstack(x - d))) * (n / (2.0 * eps));
 }
 
-/// One RK4 step of (x, v) of size h.
-inline void torus_tangent_step(const system::CardanTop& top, system::Vec6& x, system::Vec6& v, double h) {
+/// Df(x) V for six tangent vectors, the columns of V, each as above.
+inline system::Mat6 torus_tangent_rate(const system::CardanTop& top, const system::Vec6& x, const system::Mat6& V) {
+  system::Mat6 r;
+  for (int k = 0; k < 6; ++k) r.col(k) = torus_tangent_rate(top, x, system::Vec6(V.col(k)));
+  return r;
+}
+
+/// One RK4 step of (x, v) of size h; v is one tangent vector (Vec6) or six
+/// (Mat6, the Lyapunov spectrum and GALI), advanced alike.
+template <class Tangent>
+void torus_tangent_step(const system::CardanTop& top, system::Vec6& x, Tangent& v, double h) {
   constexpr double a[4] = {0.0, 0.5, 0.5, 1.0};
   constexpr double b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
-  system::Vec6 K = system::Vec6::Zero(), W = system::Vec6::Zero(), dx = system::Vec6::Zero(),
-               dv = system::Vec6::Zero();
+  system::Vec6 K = system::Vec6::Zero(), dx = system::Vec6::Zero();
+  Tangent W = Tangent::Zero(), dv = Tangent::Zero();
   for (int i = 0; i < 4; ++i) {
-    const system::Vec6 xi = x + (h * a[i]) * K, vi = v + (h * a[i]) * W;
+    const system::Vec6 xi = x + (h * a[i]) * K;
+    const Tangent vi = v + (h * a[i]) * W;
     K = top.field(system::unstack(xi));
     W = torus_tangent_rate(top, xi, vi);
     dx += (h * b[i]) * K;
@@ -52,11 +62,12 @@ inline void torus_tangent_step(const system::CardanTop& top, system::Vec6& x, sy
 /// Integrates (x, v) over [0, t_end] with steps dt (the last one shortened)
 /// and returns λ and ⟨Y⟩; NaN where the state or the tangent blew up.
 inline ChaosIndicators torus_chaos_indicators(const system::CardanTop& top, system::TorusState& s,
-                                              system::Vec6 v, double t_end, double dt) {
+                                              system::Vec6 v, double t_end, double dt,
+                                              const std::atomic<bool>* stop = nullptr) {
   system::Vec6 x = system::stack(s);
   const ChaosIndicators out = accumulate_chaos_indicators(
       [&](double, double h, system::Vec6& w) { torus_tangent_step(top, x, w, h); }, [&] { return x.allFinite(); }, v,
-      0.0, t_end, dt);
+      0.0, t_end, dt, stop);
   if (out.ok) s = system::unstack(x);
   return out;
 }

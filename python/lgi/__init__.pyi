@@ -1,7 +1,7 @@
 # Type stub of the package lgi (python/README.md). Arrays are NumPy float64
 # (step: int64); shapes in the comments, n = number of samples.
 from os import PathLike
-from typing import Any, Optional, Sequence, Union
+from typing import Any, Literal, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -202,11 +202,17 @@ def indicators(
     spectrum: bool = False,
     seed: int = 0,
     rtol: float = 0.05,
-) -> dict[str, np.ndarray]:
+    gali: bool = False,
+    gali_samples: int = 100,
+    gali_spacing: Literal["log", "linear"] = "log",
+) -> dict[str, Any]:
     """The records of `lgi indicators` (experiments/INDICATORS.md), one row per state: index,
     lyapunov, lyapunov_last_half, megno, t_end, converged (int64 0/1), angular_momentum (n, 3),
-    gamma (n, 3), and spectrum (n, 6) with spectrum=True. states: None (the scene's initial
-    state), a state file (HDF5/CSV with angular_momentum and gamma) or a dict of (n, 3) arrays."""
+    gamma (n, 3), and spectrum (n, 6) with spectrum=True. With gali=True: log10_gali_2 ..
+    log10_gali_6 (n,) at T and "gali", a dict of the file's /gali group: index, t (rows,) and
+    log10_gali (rows, 5), one row per (state, sample time). states: None (the scene's initial
+    state), a state file (HDF5/CSV with angular_momentum and gamma) or a dict of (n, 3) arrays;
+    a Cardan scene takes None and adds cardan_angles and cardan_momenta (1, 3)."""
 
 def quantum_spectrum(
     scene: SceneLike,

@@ -45,17 +45,45 @@ experiments::StateRows state_rows(const py::object& states) {
   return r;
 }
 
+/// The GALI outputs: log10_gali_2..6 at T per state, and "gali", the /gali group of the file.
+void add_gali(py::dict& d, const std::vector<experiments::StateIndicators>& r) {
+  std::vector<std::int64_t> index;
+  std::vector<double> t, curves;
+  std::vector<std::vector<double>> last(experiments::gali_orders);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    for (std::size_t j = 0; j < r[i].gali.t.size(); ++j) {
+      index.push_back(static_cast<std::int64_t>(i)), t.push_back(r[i].gali.t[j]);
+      curves.insert(curves.end(), r[i].gali.log10_gali[j].begin(), r[i].gali.log10_gali[j].end());
+    }
+    for (std::size_t k = 0; k < last.size(); ++k) last[k].push_back(r[i].gali.log10_gali.back()[k]);
+  }
+  const auto rows = static_cast<py::ssize_t>(r.size()), samples = static_cast<py::ssize_t>(t.size());
+  for (std::size_t k = 0; k < last.size(); ++k)
+    d[py::str("log10_gali_" + std::to_string(k + 2))] = to_numpy(std::move(last[k]), {rows});
+  py::dict g;
+  g["index"] = to_numpy(std::move(index), {samples});
+  g["t"] = to_numpy(std::move(t), {samples});
+  g["log10_gali"] = to_numpy(std::move(curves), {samples, experiments::gali_orders});
+  d["gali"] = g;
+}
+
 py::dict indicators(const py::object& scene_arg, std::optional<double> t_end, std::optional<double> dt,
-                    const py::object& states, bool spectrum, std::uint64_t seed, double rtol) {
+                    const py::object& states, bool spectrum, std::uint64_t seed, double rtol, bool gali,
+                    int gali_samples, const std::string& gali_spacing) {
   const std::shared_ptr<const system::Scene> scene = scene_argument(scene_arg);
-  if (scene->suspension) throw py::value_error("indicators: " + scene->file + " is a Cardan top; SO(3) scenes only");
+  const bool cardan = scene->suspension.has_value();
+  if (cardan && !states.is_none())
+    throw py::value_error("states: " + scene->file + " is a Cardan top; its [initial] state only (states=None)");
+  if (gali_samples < 1 || gali_samples > 100000) throw py::value_error("gali_samples: must be in 1..100000");
+  if (gali_spacing != "log" && gali_spacing != "linear") throw py::value_error("gali_spacing: 'log' or 'linear'");
   experiments::IndicatorSettings s;
   s.t_end = t_end ? *t_end : scene->t_end.value_or(0.0);
   s.dt = dt ? *dt : scene->dt.value_or(0.0);
   if (!(s.t_end > 0.0) || !std::isfinite(s.t_end)) throw py::value_error("t_end: missing or not a positive number");
   if (!(s.dt > 0.0) || !std::isfinite(s.dt)) throw py::value_error("dt: missing or not a positive number");
   if (!(rtol > 0.0)) throw py::value_error("rtol: must be > 0");
-  s.seed = seed, s.spectrum = spectrum, s.rtol = rtol;
+  s.seed = seed, s.spectrum = spectrum, s.rtol = rtol, s.gali = gali;
+  s.gali_sampling = {gali_samples, gali_spacing == "log"};
   std::vector<system::State> x0 = {scene->initial};
   if (!states.is_none()) {
     int normalised = 0;
@@ -65,7 +93,9 @@ py::dict indicators(const py::object& scene_arg, std::optional<double> t_end, st
   std::vector<experiments::StateIndicators> r(n);
   {
     const py::gil_scoped_release release;
-    for (std::size_t i = 0; i < n; ++i) r[i] = experiments::state_indicators(*scene, x0[i], s, static_cast<std::int64_t>(i));
+    for (std::size_t i = 0; i < n; ++i)
+      r[i] = cardan ? experiments::cardan_state_indicators(*scene, scene->cardan_initial, s, static_cast<std::int64_t>(i))
+                    : experiments::state_indicators(*scene, x0[i], s, static_cast<std::int64_t>(i));
   }
   std::vector<std::int64_t> index(n), converged(n);
   std::vector<double> lyapunov(n), half(n), megno(n), te(n), pi(3 * n), gamma(3 * n), spec(6 * n);
@@ -87,6 +117,12 @@ py::dict indicators(const py::object& scene_arg, std::optional<double> t_end, st
   d["angular_momentum"] = to_numpy(std::move(pi), {rows, 3});
   d["gamma"] = to_numpy(std::move(gamma), {rows, 3});
   if (spectrum) d["spectrum"] = to_numpy(std::move(spec), {rows, 6});
+  if (gali) add_gali(d, r);
+  if (cardan) {
+    const system::TorusState& c = scene->cardan_initial;
+    d["cardan_angles"] = to_numpy(std::vector<double>(c.q.data(), c.q.data() + 3), {1, 3});
+    d["cardan_momenta"] = to_numpy(std::vector<double>(c.p.data(), c.p.data() + 3), {1, 3});
+  }
   return d;
 }
 
@@ -164,13 +200,18 @@ system::State state_from_dict(const py::dict& d) {
 void bind_indicators(py::module_& m) {
   m.def("indicators", &indicators, py::arg("scene"), py::arg("t_end") = py::none(), py::arg("dt") = py::none(),
         py::arg("states") = py::none(), py::arg("spectrum") = false, py::arg("seed") = 0, py::arg("rtol") = 0.05,
-        "indicators(scene, t_end=None, dt=None, states=None, spectrum=False, seed=0, rtol=0.05) -> dict:\n"
+        py::arg("gali") = false, py::arg("gali_samples") = 100, py::arg("gali_spacing") = "log",
+        "indicators(scene, t_end=None, dt=None, states=None, spectrum=False, seed=0, rtol=0.05, gali=False,\n"
+        "gali_samples=100, gali_spacing='log') -> dict:\n"
         "the records of `lgi indicators` (experiments/INDICATORS.md) as NumPy arrays, one row per state:\n"
         "index, lyapunov (over [0, T]), lyapunov_last_half (over [T/2, T]), megno (<Y>), t_end, converged\n"
         "(0/1: the two exponents agree to rtol, relative), angular_momentum and gamma (n, 3), and with\n"
-        "spectrum=True spectrum (n, 6). states: None (the scene's initial state), the path of a state file\n"
-        "(HDF5 or CSV, e.g. an lgi equilibria file), or a dict with angular_momentum and gamma ((n, 3)).\n"
-        "t_end and dt default to the scene's [run] values. The GIL is released while it runs.");
+        "spectrum=True spectrum (n, 6). With gali=True: log10_gali_2 .. log10_gali_6 (at T) and gali, a dict\n"
+        "of the file's /gali group (index, t, log10_gali (rows, 5), one row per state and sample time).\n"
+        "states: None (the scene's initial state), the path of a state file (HDF5 or CSV, e.g. an lgi\n"
+        "equilibria file), or a dict with angular_momentum and gamma ((n, 3)); a Cardan scene takes None\n"
+        "only and adds cardan_angles and cardan_momenta (1, 3). t_end and dt default to the scene's [run]\n"
+        "values. The GIL is released while it runs.");
   m.def("tangent_flow", &tangent_flow, py::arg("scene"), py::arg("state"), py::arg("v"), py::arg("dt"),
         py::arg("steps") = 1, py::arg("t0") = 0.0,
         "tangent_flow(scene, state, v, dt, steps=1, t0=0.0) -> dict: `steps` RKMK4 steps of size dt of the\n"
