@@ -50,13 +50,15 @@ inline void torus_tangent_step(const system::CardanTop& top, system::Vec6& x, sy
 }
 
 /// Integrates (x, v) over [0, t_end] with steps dt (the last one shortened)
-/// and returns λ and ⟨Y⟩; NaN where the state or the tangent blew up.
+/// and returns λ and ⟨Y⟩; NaN where the state or the tangent blew up, or
+/// where a set `stop` flag ended the run (read every 256 steps).
 inline ChaosIndicators torus_chaos_indicators(const system::CardanTop& top, system::TorusState& s,
-                                              system::Vec6 v, double t_end, double dt) {
+                                              system::Vec6 v, double t_end, double dt,
+                                              const std::atomic<bool>* stop = nullptr) {
   system::Vec6 x = system::stack(s);
   const ChaosIndicators out = accumulate_chaos_indicators(
       [&](double, double h, system::Vec6& w) { torus_tangent_step(top, x, w, h); }, [&] { return x.allFinite(); }, v,
-      0.0, t_end, dt);
+      0.0, t_end, dt, stop);
   if (out.ok) s = system::unstack(x);
   return out;
 }
