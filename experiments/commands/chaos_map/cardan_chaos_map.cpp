@@ -44,7 +44,8 @@ std::string vary_spec_text(const VaryAxis& v, const std::string& scene_path) {
 /// The spec's message without its file, line and table ("--vary: ...").
 UsageError vary_error(const std::exception& e) {
   std::string why = e.what();
-  if (const auto at = why.find("key: "); at != std::string::npos) why = why.substr(at + 5);
+  if (const auto at = why.find("[vary] key: "); at != std::string::npos) why = why.substr(at + 12);
+  else if (const auto v = why.find("[vary] "); v != std::string::npos) why = why.substr(v + 7);
   return UsageError("--vary: " + why);
 }
 
@@ -166,13 +167,22 @@ VaryAxis parse_vary_flag(const std::string& text) {
   const std::size_t n = v.key.size();
   if (n > 2 && v.key[n - 2] == '_' && v.key[n - 1] >= '1' && v.key[n - 1] <= '3')
     v.component = v.key[n - 1] - '0', v.key.resize(n - 2);
+  if (v.key.rfind("initial.", 0) == 0)
+    throw UsageError("--vary: \"" + v.key + "\" sets the initial state, which chaos-map draws on each level {H = h}: "
+                     "vary a body, gravity or suspension key");
   v.values = parse_grid_range(text.substr(eq + 1), "--vary");
   try {
-    const SweepSpec spec = parse_sweep_spec(vary_spec_text(v, "/"), "lgi-chaos-map-vary.toml");
-    if (spec.vary.front().width != 1)
-      throw UsageError("--vary: \"" + v.key + "\" has " + std::to_string(spec.vary.front().width) +
-                       " numbers: vary one, e.g. " + v.key + "_1=a:b:n");
+    (void)parse_sweep_spec(vary_spec_text(v, "/"), "lgi-chaos-map-vary.toml");
   } catch (const InputError& e) {
+    VaryAxis one = v;
+    one.component = 1;
+    try {  // a vector key given whole: name its components
+      if (v.component == 0) (void)parse_sweep_spec(vary_spec_text(one, "/"), "lgi-chaos-map-vary.toml");
+    } catch (const InputError&) {
+      throw vary_error(e);
+    }
+    if (v.component == 0)
+      throw UsageError("--vary: \"" + v.key + "\" has 3 numbers: vary one of them, e.g. " + v.key + "_1=a:b:n");
     throw vary_error(e);
   }
   return v;
