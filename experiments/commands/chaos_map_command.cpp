@@ -1,5 +1,7 @@
 // lgi chaos-map --scene FILE --l-range a:b:n --h-range a:b:n --ics N --t-end T [--dt H] [--seed S]
 //   [--measure liouville|uniform] [--threshold Y] [--threads N] [--out FILE.h5] [--force] [--quiet]
+// lgi chaos-map --scene CARDAN.toml --vary KEY=a:b:n --h-range ... [--resume]: a Cardan top's
+//   (KEY, h) plane (chaos_map/cardan_chaos_map.hpp).
 // The fraction of chaotic orbits over the (l, h) plane of a heavy top: in
 // every cell N initial states drawn on the level set (l, h) exactly as
 // `lgi poincare --l --h --ics N --seed S` draws them, and for each the MEGNO
