@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <memory>
 
 #include "experiments/analysis/cardan_energy_draw.hpp"
 #include "experiments/analysis/cardan_section.hpp"
@@ -19,6 +18,7 @@
 #include "experiments/commands/sweep/sweep_ranks.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_suspension.hpp"
@@ -194,7 +194,16 @@ int run_cardan_chaos_map(const system::Scene& scene, const CardanChaosMapRequest
   SweepRanks& ranks = SweepRanks::world();
   const std::string partial = r.out + ".partial";
   const bool from_partial = r.resume && std::filesystem::exists(partial);
-  if (ranks.root() && !from_partial) hdf5::check_output_target(r.out, r.force);
+  // Rank 0 alone looks at the file system; every rank then refuses alike (no rank left waiting).
+  std::string refused;
+  try {
+    if (ranks.root() && !from_partial) hdf5::check_output_target(r.out, r.force);
+  } catch (const OutputFileError& e) {
+    refused = e.what();
+  }
+  std::vector<char> why(refused.begin(), refused.end());
+  ranks.broadcast(why);
+  if (!why.empty()) throw OutputFileError(std::string(why.begin(), why.end()));
   const Axis axis = make_axis(scene, v);
   std::vector<CardanMapOrbit> orbits(v.values.size() * hs.size() * static_cast<std::size_t>(r.ics));
   const std::string fingerprint = chaos_map_fingerprint(scene, r);
