@@ -9,6 +9,8 @@ docs/cardan.md section 9.4), as a user runs it, on a 3 x 3 (tilt, h) map of
    run's datasets bit for bit, and refuses a partial file of another command
    line; SIGTERM in the middle of a run leaves <out>.partial (exit 143), from
    which --resume finishes the map bit for bit;
+ - the Lagrange top in thin rings: no chaotic orbit with the frame upright
+   (integrable), all chaotic with the frame tilted by 0.63 rad, at h = 56;
  - bad input (an unknown key, a bad range, a value that breaks the scene, a
    vector key, --l-range on a Cardan scene, --vary on an SO(3) scene) is
    refused with exit 2 and one line naming the flag."""
@@ -82,6 +84,17 @@ def test_ranks_give_the_same_map(one_thread, tmp_path):
     assert datasets(out) == datasets(one_thread)
     with h5py.File(out, "r") as f:
         assert f["parameters"].attrs["ranks"] == "2"
+
+
+def test_lagrange_top_is_regular_upright_and_chaotic_tilted(tmp_path):
+    out = str(tmp_path / "lagrange.h5")
+    lgi("chaos-map", "--scene", os.path.join(SCENES, "cardan_lagrange_upright.toml"), "--vary",
+        "suspension.tilt=0:0.6283185307179586:2", "--h-range", "56:56:1", "--ics", "4", "--t-end", "100", "--dt",
+        "0.002", "--threads", "2", "--quiet", "--out", out)
+    with h5py.File(out, "r") as f:
+        # One h: the cell arrays have one column, stored as 1-D datasets.
+        chaotic, megno = f["chaos_map/chaotic"][()].ravel(), f["chaos_map/megno_median"][()].ravel()
+    assert list(chaotic) == [0, 4] and megno[0] < 2.5 and megno[1] > 10
 
 
 def write_partial(full, partial, keep_rows, fingerprint=None):
