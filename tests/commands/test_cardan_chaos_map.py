@@ -7,7 +7,8 @@ docs/cardan.md section 9.4), as a user runs it, on a 3 x 3 (tilt, h) map of
    datasets bit for bit;
  - --resume from a partial file holding half of the orbits gives the full
    run's datasets bit for bit, and refuses a partial file of another command
-   line; SIGTERM in the middle of a run leaves <out>.partial (exit 143), from
+   line; SIGTERM in the middle of a run leaves <out>.partial (exit 143), and
+   SIGKILL after the first round's checkpoint leaves that checkpoint, from
    which --resume finishes the map bit for bit;
  - the Lagrange top in thin rings: no chaotic orbit with the frame upright
    (integrable), all chaotic with the frame tilted by 0.63 rad, at h = 56;
@@ -137,6 +138,28 @@ def test_signal_then_resume(tmp_path):
     full = str(tmp_path / "full.h5")
     lgi(*args, "--out", full)
     assert datasets(out) == datasets(full)
+
+
+def test_kill_after_a_checkpoint_then_resume(tmp_path):
+    """16 orbits on one thread: two rounds, a checkpoint after the first; SIGKILL once it is there."""
+    args = ["chaos-map", "--scene", GENERAL_UP, "--vary", "suspension.tilt=0:1:4", "--h-range", "1:1:1",
+            "--ics", "4", "--t-end", "300", "--dt", "0.01", "--threads", "1", "--quiet"]
+    out = str(tmp_path / "k.h5")
+    p = subprocess.Popen([LGI, *args, "--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not os.path.exists(out + ".partial") and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert p.poll() is None, "the map ended before its checkpoint was seen"
+    time.sleep(0.05)  # the checkpoint is renamed into place whole (hdf5::publish)
+    p.kill()
+    p.communicate(timeout=60)
+    with h5py.File(out + ".partial", "r") as f:
+        assert f["parameters"].attrs["status"] == "checkpoint after round 1 of 2"
+        assert list(f["chaos_map/status"][()].ravel()) == [0, 0, 3, 3]
+    lgi(*args, "--out", out, "--resume")
+    full = str(tmp_path / "full.h5")
+    lgi(*args, "--out", full)
+    assert datasets(out) == datasets(full) and not os.path.exists(out + ".partial")
 
 
 @pytest.mark.parametrize("flags, words", [

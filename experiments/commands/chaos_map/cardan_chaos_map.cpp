@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -72,14 +73,15 @@ Axis make_axis(const system::Scene& scene, const VaryAxis& v) {
   return a;
 }
 
-/// This rank's orbits (task t = cell · ics + index, t ≡ rank mod ranks) on
-/// `threads` threads; each a function of its cell and index alone.
+/// This rank's orbits among tasks [begin, end) (task t = cell · ics + index,
+/// t ≡ rank mod ranks) on `threads` threads; each a function of its cell and
+/// index alone.
 void run_orbits(const CardanChaosMapRequest& r, const Axis& axis, const std::vector<double>& hs,
-                std::vector<CardanMapOrbit>& orbits, int rank, int ranks) {
-  const auto total = static_cast<std::int64_t>(orbits.size());
+                std::vector<CardanMapOrbit>& orbits, std::int64_t begin, std::int64_t end, int rank, int ranks) {
   const auto nh = static_cast<std::int64_t>(hs.size());
+  const std::int64_t first = begin + ((rank - begin % ranks) % ranks + ranks) % ranks;  // the first t ≥ begin of this rank
 #pragma omp parallel for schedule(dynamic, 1) num_threads(r.threads)
-  for (std::int64_t t = rank; t < total; t += ranks) {
+  for (std::int64_t t = first; t < end; t += ranks) {
     CardanMapOrbit& o = orbits[static_cast<std::size_t>(t)];
     if (o.done || interrupt_requested.load(std::memory_order_relaxed)) continue;
     const std::int64_t cell = t / r.ics, index = t % r.ics, j = cell / nh;
@@ -210,12 +212,27 @@ int run_cardan_chaos_map(const system::Scene& scene, const CardanChaosMapRequest
   std::int64_t resumed = 0;
   if (r.resume) resumed = load_partial_orbits(r.out + ".partial", fingerprint, r.ics, orbits, ranks);
   const auto start = std::chrono::steady_clock::now();
+  const auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
   const InterruptGuard interrupt_guard;
-  run_orbits(r, axis, hs, orbits, ranks.rank(), ranks.size());
-  gather_orbits(orbits, ranks);
-  const bool interrupted = ranks.any(interrupt_signal() != 0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Up to 16 rounds, each ended by a gather on rank 0 and a checkpoint in <out>.partial (a killed
+  // job loses one round at most); the rounds change no result, every orbit being its own.
+  const auto total = static_cast<std::int64_t>(orbits.size());
+  const std::int64_t rounds = std::clamp<std::int64_t>(total / (8 * r.threads * ranks.size()), 1, 16);
+  bool interrupted = false, checkpointed = false;
+  for (std::int64_t k = 0; k < rounds && !interrupted; ++k) {
+    run_orbits(r, axis, hs, orbits, total * k / rounds, total * (k + 1) / rounds, ranks.rank(), ranks.size());
+    gather_orbits(orbits, ranks);
+    interrupted = ranks.any(interrupt_signal() != 0);
+    if (interrupted || k + 1 == rounds || !ranks.root()) continue;
+    auto groups = result_groups(r, v, axis, hs, orbits);
+    groups.push_back(fingerprint_group(fingerprint));
+    auto parameters = parameters_of(scene, r, v, seconds(), ranks.size(), false);
+    parameters["status"] = "checkpoint after round " + std::to_string(k + 1) + " of " + std::to_string(rounds);
+    write_groups_file(partial, true, groups, parameters);
+    checkpointed = true;
+  }
+  const double wall = seconds();
   if (!ranks.root()) return interrupted ? interrupted_exit_status() : exit_ok;
   auto groups = result_groups(r, v, axis, hs, orbits);
   groups.push_back(fingerprint_group(fingerprint));
@@ -227,7 +244,7 @@ int run_cardan_chaos_map(const system::Scene& scene, const CardanChaosMapRequest
               << " (--resume goes on from them)\n";
     return interrupted_exit_status();
   }
-  if (from_partial) std::filesystem::remove(partial);
+  if (from_partial || checkpointed) std::filesystem::remove(partial);
   if (!r.quiet) {
     std::cout << "chaos-map: " << v.values.size() << " x " << hs.size() << " cells of " << v.column() << " and h, "
               << r.ics << " orbits each (microcanonical measure) to t = " << format_general(r.t_end, 6)
