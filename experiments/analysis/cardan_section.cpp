@@ -162,6 +162,17 @@ bool draw_cardan_level_point(const system::CardanTop& top, double l, double h, s
   return false;
 }
 
+void cardan_orbit_indicators(const system::CardanTop& top, const TorusState& x0, double t_end, double dt,
+                             std::uint64_t seed, std::int64_t index, double& lyapunov, double& megno,
+                             const std::atomic<bool>* stop) {
+  CounterRng rng(seed, index, tangent_stream);
+  system::Vec6 v;
+  for (int k = 0; k < 6; ++k) v(k) = 2.0 * rng.uniform() - 1.0;
+  TorusState x = x0;
+  const auto ind = integrators::torus::torus_chaos_indicators(top, x, v, t_end, dt, stop);
+  lyapunov = ind.lyapunov, megno = ind.megno;
+}
+
 CardanOrbit cardan_orbit(const system::CardanTop& top, const TorusState& x0, const CardanOrbitRequest& r,
                          std::int64_t index) {
   CardanOrbit o;
@@ -170,14 +181,7 @@ CardanOrbit cardan_orbit(const system::CardanTop& top, const TorusState& x0, con
   if (r.scheme == "cardan-midpoint") integrate_orbit<integrators::torus::TorusMidpoint>(top, r, o);
   else if (r.scheme == "cardan-dg") integrate_orbit<integrators::torus::TorusDiscreteGradient>(top, r, o);
   else integrate_orbit<integrators::torus::TorusRk4>(top, r, o);
-  if (r.indicators) {
-    CounterRng rng(r.seed, index, tangent_stream);
-    system::Vec6 v;
-    for (int k = 0; k < 6; ++k) v(k) = 2.0 * rng.uniform() - 1.0;
-    TorusState x = x0;
-    const auto ind = integrators::torus::torus_chaos_indicators(top, x, v, r.t_end, r.dt);
-    o.lyapunov = ind.lyapunov, o.megno = ind.megno;
-  }
+  if (r.indicators) cardan_orbit_indicators(top, x0, r.t_end, r.dt, r.seed, index, o.lyapunov, o.megno);
   o.cpu_seconds = integrators::detail::cpu_now() - cpu0;
   return o;
 }

@@ -27,6 +27,7 @@
 // Crossings are located on the scheme's own step map, as the SO(3) events
 // (integrators/events.hpp): Illinois regula falsi on θ for steps θh from
 // the state before the crossing.
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -71,6 +72,13 @@ void check_cardan_section_scheme(const std::string& name);
 /// set at q1 = 0 was not hit in 10⁵ draws.
 bool draw_cardan_level_point(const system::CardanTop& top, double l, double h, std::uint64_t seed,
                              std::int64_t index, system::TorusState& x);
+
+/// λ and ⟨Y⟩(t_end) of the orbit from x0 (integrators/torus/torus_tangent_flow.hpp,
+/// RK4 with steps dt), the tangent vector drawn from (seed, index); NaN where
+/// the run blew up or a set `stop` flag ended it.
+void cardan_orbit_indicators(const system::CardanTop& top, const system::TorusState& x0, double t_end, double dt,
+                             std::uint64_t seed, std::int64_t index, double& lyapunov, double& megno,
+                             const std::atomic<bool>* stop = nullptr);
 
 /// One orbit: its crossings and, on request, its indicators
 /// (integrators/torus/torus_tangent_flow.hpp, a separate pass).

@@ -1,5 +1,7 @@
 // lgi chaos-map --scene FILE --l-range a:b:n --h-range a:b:n --ics N --t-end T [--dt H] [--seed S]
 //   [--measure liouville|uniform] [--threshold Y] [--threads N] [--out FILE.h5] [--force] [--quiet]
+// lgi chaos-map --scene CARDAN.toml --vary KEY=a:b:n --h-range ... [--resume]: a Cardan top's
+//   (KEY, h) plane (chaos_map/cardan_chaos_map.hpp).
 // The fraction of chaotic orbits over the (l, h) plane of a heavy top: in
 // every cell N initial states drawn on the level set (l, h) exactly as
 // `lgi poincare --l --h --ics N --seed S` draws them, and for each the MEGNO
@@ -21,12 +23,13 @@
 #include <string>
 
 #include "experiments/analysis/accessible_region.hpp"
-#include "experiments/analysis/binomial_interval.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/thread_count.hpp"
 #include "experiments/commands/all_commands.hpp"
+#include "experiments/commands/chaos_map/cardan_chaos_map.hpp"
+#include "experiments/commands/chaos_map/chaos_map_cells.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -46,28 +49,30 @@ namespace lgi::experiments {
 namespace {
 
 struct ChaosMapOptions {
-  std::string scene, out = "chaos_map.h5", l_range, h_range, measure = "liouville";
+  std::string scene, out = "chaos_map.h5", l_range, h_range, measure = "liouville", vary;
   std::int64_t ics = 0;
   double t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;
   std::uint64_t seed = 0;
   int threads = 0;
-  bool force = false, quiet = false;
+  bool force = false, quiet = false, resume = false;
   std::string command_line;
 };
 
-enum CellStatus : std::int64_t { cell_ok = 0, cell_empty = 1, cell_unreached = 2, cell_not_run = 3 };
+using CellStatus = ChaosCellStatus;
 
-std::string number(double x) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
-}
+std::string number(double x) { return exact_number(x); }
 
 void check_flags(const ChaosMapOptions& o) {
-  const auto cells = static_cast<std::int64_t>(parse_grid_range(o.l_range, "--l-range").size() *
-                                               parse_grid_range(o.h_range, "--h-range").size());
-  check_work_limit("--l-range", cells, max_grid_cells, "cells (--l-range x --h-range)");
+  if (o.l_range.empty() == o.vary.empty())
+    throw UsageError(o.vary.empty() ? "--l-range: missing: give --l-range (a heavy top's (l, h) plane) or --vary "
+                                      "KEY=a:b:n (a Cardan top's (KEY, h) plane)"
+                                    : "--vary: replaces --l-range (a Cardan top's (KEY, h) plane): give one of them");
+  const std::size_t axis = o.vary.empty() ? parse_grid_range(o.l_range, "--l-range").size()
+                                          : parse_vary_flag(o.vary).values.size();
+  const auto cells = static_cast<std::int64_t>(axis * parse_grid_range(o.h_range, "--h-range").size());
+  check_work_limit(o.vary.empty() ? "--l-range" : "--vary", cells, max_grid_cells,
+                   o.vary.empty() ? "cells (--l-range x --h-range)" : "cells (--vary x --h-range)");
   if (o.ics < 1 || o.ics > 1000000) throw UsageError("--ics: must be between 1 and 1000000");
   check_work_limit("--ics", saturating_product(cells, o.ics), max_orbits, "orbits (cells x --ics)");
   if (!(o.t_end > 0.0) || !std::isfinite(o.t_end)) throw UsageError("--t-end: must be a positive number");
@@ -156,31 +161,19 @@ std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>&
   return orbits;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
-  const double upper = v[m];
-  if (v.size() % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
-}
-
 /// The per-cell summary (/chaos_map) and the per-orbit table (/orbits).
 std::vector<TableGroup> result_groups(const ChaosMapOptions& o, const std::vector<Cell>& cells,
                                       const std::vector<Orbit>& orbits, const std::vector<double>& ls,
                                       const std::vector<double>& hs, const std::vector<double>& h_min) {
   const int width = static_cast<int>(hs.size());
-  TableColumn l_col{"l"}, h_col{"h"}, h_min_col{"h_min"}, status{"status", width, true}, count{"orbits", width, true},
-      chaotic_count{"chaotic", width, true}, fraction{"chaotic_fraction", width},
-      fraction_low{"chaotic_fraction_low", width}, fraction_high{"chaotic_fraction_high", width}, megno_median{"megno_median", width}, lyap_max{"lyapunov_max", width},
-      lyap_median{"lyapunov_median", width};
+  TableColumn l_col{"l"}, h_col{"h"}, h_min_col{"h_min"};
+  ChaosCellColumns summary(width);
   l_col.real = ls, h_col.real = hs, h_min_col.real = h_min;
   std::vector<TableColumn> per = {{"l"}, {"h"}, {"cell", 1, true}, {"index", 1, true}, {"megno"}, {"lyapunov"},
                                   {"initial.gamma", 3}, {"initial.angular_momentum", 3}};
   for (std::size_t c = 0; c < cells.size(); ++c) {
     std::vector<double> megno, lyapunov;
     bool complete = true;
-    std::int64_t chaotic = 0;
     for (std::int64_t i = 0; cells[c].plan && i < o.ics; ++i) {
       const Orbit& r = orbits[c * static_cast<std::size_t>(o.ics) + static_cast<std::size_t>(i)];
       if (!r.done) {
@@ -194,60 +187,50 @@ std::vector<TableGroup> result_groups(const ChaosMapOptions& o, const std::vecto
       per[7].real.insert(per[7].real.end(), r.Pi.data(), r.Pi.data() + 3);
       if (!std::isfinite(r.megno) || !std::isfinite(r.lyapunov)) continue;
       megno.push_back(r.megno), lyapunov.push_back(r.lyapunov);
-      chaotic += r.megno > o.threshold ? 1 : 0;
     }
-    const CellStatus s = cells[c].status == cell_ok && !complete ? cell_not_run : cells[c].status;
-    status.whole.push_back(s);
-    count.whole.push_back(static_cast<std::int64_t>(megno.size()));
-    const bool any = s == cell_ok && !megno.empty();
-    const BinomialInterval w = any ? wilson_interval(chaotic, static_cast<std::int64_t>(megno.size())) : BinomialInterval{};
-    chaotic_count.whole.push_back(any ? chaotic : 0);
-    fraction.real.push_back(w.fraction), fraction_low.real.push_back(w.low), fraction_high.real.push_back(w.high);
-    megno_median.real.push_back(any ? median(megno) : NAN);
-    lyap_max.real.push_back(any ? *std::max_element(lyapunov.begin(), lyapunov.end()) : NAN);
-    lyap_median.real.push_back(any ? median(lyapunov) : NAN);
+    summary.add(cells[c].status == cell_ok && !complete ? cell_not_run : cells[c].status, megno, lyapunov, o.threshold);
   }
-  TableGroup map{"chaos_map", {l_col, h_col, h_min_col, status, count, chaotic_count, fraction, fraction_low,
-                               fraction_high, megno_median, lyap_max, lyap_median}};
-  map.attributes["status_names"] = "0: ok\n1: empty level (h below the minimum energy at l)\n"
-                                   "2: level not reached by the draw (h within 1e-3 of the minimum)\n3: not run (interrupted)";
-  map.attributes["threshold"] = number(o.threshold);
-  map.attributes["measure"] = o.measure;
-  map.attributes["interval"] = "chaotic_fraction_low, chaotic_fraction_high: the 95 % Wilson score interval of "
-                               "chaotic / orbits as an estimate of the phase-space fraction of the level set";
+  TableGroup map{"chaos_map", {l_col, h_col, h_min_col}};
+  for (const TableColumn& c : summary.columns()) map.columns.push_back(c);
+  add_chaos_map_attributes(map, o.threshold, o.measure, "empty level (h below the minimum energy at l)",
+                           "level not reached by the draw (h within 1e-3 of the minimum)");
   return {map, TableGroup{"orbits", per}};
 }
 
-/// One line per computed cell: l, h, chaotic/orbits = fraction [95 % Wilson interval].
-void print_fractions(const TableGroup& map) {
-  const auto column = [&](const std::string& name) -> const TableColumn& {
-    return *std::find_if(map.columns.begin(), map.columns.end(), [&](const TableColumn& c) { return c.name == name; });
-  };
-  const TableColumn &ls = column("l"), &hs = column("h"), &status = column("status"), &orbits = column("orbits"),
-                    &chaotic = column("chaotic");
-  const std::size_t nh = hs.real.size();
-  for (std::size_t c = 0; c < status.whole.size(); ++c) {
-    if (status.whole[c] != cell_ok || orbits.whole[c] == 0) continue;
-    std::cout << "  l = " << format_general(ls.real[c / nh]) << ", h = " << format_general(hs.real[c % nh])
-              << ": chaotic " << format_fraction(chaotic.whole[c], orbits.whole[c]) << '\n';
-  }
+/// A Cardan scene: the (key, h) plane (commands/chaos_map/cardan_chaos_map.hpp).
+int run_cardan(const ChaosMapOptions& o, const system::Scene& scene, double dt, int threads) {
+  if (o.vary.empty())
+    throw UsageError("--l-range: " + scene.file + " is a Cardan top: map a (KEY, h) plane with --vary KEY=a:b:n, "
+                     "e.g. --vary suspension.tilt=0:1.5707963267948966:8 (docs/cardan.md section 9.4)");
+  if (o.measure != "liouville")
+    throw UsageError("--measure: a Cardan top's orbits are drawn from the microcanonical (Liouville) measure of "
+                     "{H = h} only (docs/cardan.md section 9.4)");
+  CardanChaosMapRequest r;
+  r.vary = o.vary, r.h_range = o.h_range, r.out = o.out, r.command_line = o.command_line;
+  r.ics = o.ics, r.t_end = o.t_end, r.dt = dt, r.threshold = o.threshold, r.seed = o.seed, r.threads = threads;
+  r.force = o.force, r.quiet = o.quiet, r.resume = o.resume;
+  return run_cardan_chaos_map(scene, r);
 }
 
 int run_chaos_map(const ChaosMapOptions& o) {
   check_flags(o);
-  if (SweepRanks::world().size() > 1) throw UsageError("lgi chaos-map runs on one MPI rank (use --threads)");
   const system::Scene scene = read_scene(o.scene);
-  refuse_cardan_scene(scene, "chaos-map");
-  const HeavyTopBody body = heavy_top_of(scene, "chaos-map");
   const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
   if (const std::string why = integrators::fixed_step_grid_problem(0.0, o.t_end, dt); !why.empty())
     throw UsageError("--dt: " + why);
+  const int threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
+  if (scene.suspension) return run_cardan(o, scene, dt, threads);
+  if (!o.vary.empty())
+    throw UsageError("--vary: maps a Cardan scene ([suspension], docs/cardan.md); " + scene.file +
+                     " is a heavy top on SO(3): map its (l, h) plane with --l-range");
+  if (o.resume) throw UsageError("--resume: only for a Cardan scene's map (--vary) so far");
+  if (SweepRanks::world().size() > 1) throw UsageError("lgi chaos-map runs a heavy top's map on one MPI rank (use --threads)");
+  const HeavyTopBody body = heavy_top_of(scene, "chaos-map");
   hdf5::check_output_target(o.out, o.force);
   const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
   std::vector<double> h_min;
   const std::vector<Cell> cells = make_cells(o, scene, body, dt, ls, hs, h_min);
-  const int threads = o.threads > 0 ? o.threads : SweepRanks::world().default_threads();
   const auto start = std::chrono::steady_clock::now();
   // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
   const InterruptGuard interrupt_guard;
@@ -274,7 +257,7 @@ int run_chaos_map(const ChaosMapOptions& o) {
               << " measure) to t = " << format_general(o.t_end, 6) << ", chaotic where MEGNO > "
               << format_general(o.threshold, 6) << "; "
               << format_general(wall, 3) << " s wall on " << threads << " threads; wrote " << o.out << '\n';
-    print_fractions(groups[0]);
+    print_chaos_fractions(groups[0], "l", "l");
   }
   return exit_ok;
 }
@@ -287,8 +270,12 @@ Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context
       "chaos-map",
       "The fraction of chaotic orbits (MEGNO above a threshold), the median MEGNO and the largest Lyapunov "
       "exponent on each cell of an (l, h) grid of a heavy top (experiments/CHAOS_MAP.md)");
-  sub->add_option("--scene", o->scene, "Scene file (a heavy top: gravity alone, or a free body)")->required();
-  sub->add_option("--l-range", o->l_range, "l values a:b:n (n from a to b)")->required();
+  sub->add_option("--scene", o->scene, "Scene file (a heavy top: gravity alone, or a free body; or a Cardan top with --vary)")->required();
+  sub->add_option("--l-range", o->l_range, "l values a:b:n (n from a to b); a heavy top's map");
+  sub->add_option("--vary", o->vary,
+                  "KEY=a:b:n: a Cardan top's map over a scene key (as a sweep spec names it, e.g. suspension.tilt, "
+                  "body.center_of_mass_1) instead of l; experiments/CHAOS_MAP.md");
+  sub->add_flag("--resume", o->resume, "Go on from <out>.partial (a Cardan map of the same command line)");
   sub->add_option("--h-range", o->h_range, "h values a:b:n")->required();
   sub->add_option("--ics", o->ics, "Orbits per cell, drawn on the level set as lgi poincare draws them")->required();
   sub->add_option("--t-end", o->t_end, "Time span of each orbit")->required();

@@ -27,14 +27,17 @@ struct VariableKey {
 
 // The scene keys a sweep may vary (experiments/SWEEPS.md, "What varies").
 // initial.gamma is the sweep's own: the attitude with Γ = Rᵀe3 along it and ψ = 0.
-constexpr std::array<VariableKey, 20> variable_keys{{
+// The suspension.* keys make sense on a Cardan scene only (lgi chaos-map --vary).
+constexpr std::array<VariableKey, 27> variable_keys{{
     {"initial", "angular_momentum", 3}, {"initial", "angular_velocity", 3}, {"initial", "quaternion", 4},
     {"initial", "rotation_vector", 3},  {"initial", "euler_zxz", 3},        {"initial", "gamma", 3},
     {"body", "inertia", 3},             {"body", "inertia_cm", 3},          {"body", "center_of_mass", 3},
     {"body", "mass", 1},                {"gravity", "g", 1},                {"spring", "stiffness", 1},
     {"spring", "damping", 1},           {"spring", "rest_quaternion", 4},   {"drive", "torque_amplitude", 3},
     {"drive", "angular_frequency", 1},  {"drive", "phase", 1},              {"magnetic", "dipole_moment", 3},
-    {"magnetic", "field", 3},           {"body", "allow_unphysical", 0},
+    {"magnetic", "field", 3},           {"body", "allow_unphysical", 0},    {"suspension", "tilt", 1},
+    {"suspension", "outer_inertia", 1}, {"suspension", "inner_inertia", 3}, {"suspension", "outer_mass", 1},
+    {"suspension", "outer_center", 3},  {"suspension", "inner_mass", 1},    {"suspension", "inner_center", 3},
 }};
 
 std::string variable_key_list() {

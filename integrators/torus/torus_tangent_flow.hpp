@@ -60,7 +60,8 @@ void torus_tangent_step(const system::CardanTop& top, system::Vec6& x, Tangent& 
 }
 
 /// Integrates (x, v) over [0, t_end] with steps dt (the last one shortened)
-/// and returns λ and ⟨Y⟩; NaN where the state or the tangent blew up.
+/// and returns λ and ⟨Y⟩; NaN where the state or the tangent blew up, or
+/// where a set `stop` flag ended the run (read every 256 steps).
 inline ChaosIndicators torus_chaos_indicators(const system::CardanTop& top, system::TorusState& s,
                                               system::Vec6 v, double t_end, double dt,
                                               const std::atomic<bool>* stop = nullptr) {

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Chaos maps over the (l, h) plane from `lgi chaos-map` files (experiments/CHAOS_MAP.md:
-/chaos_map chaotic_fraction, megno_median, lyapunov_max, status, h_min).
+"""Chaos maps over the (l, h) plane, or a Cardan top's (key, h) plane, from `lgi chaos-map`
+files (experiments/CHAOS_MAP.md: /chaos_map chaotic_fraction, megno_median, lyapunov_max,
+status, h_min; `vary` and its attribute vary_key for a Cardan map).
 
 Usage: chaos_map.py --out DIR [--branches BIFURCATION.h5] CHAOS.h5 ...
 
@@ -9,7 +10,9 @@ fraction of orbits whose MEGNO <Y>(t_end) exceeds the threshold stored in the fi
 and the largest Lyapunov exponent of each cell; empty cells (h below the least energy
 at l) are left white and the least energy is drawn as a dashed line. With --branches
 (a file of `lgi bifurcation` for the same scene) the relative equilibria are drawn on
-top, as in the (l, h) bifurcation diagram.
+top, as in the (l, h) bifurcation diagram. A Cardan map (`lgi chaos-map --vary KEY=a:b:n`)
+has the varied scene key on the horizontal axis and the least potential as the dashed line;
+--branches is for (l, h) maps only.
 """
 import numpy as np
 
@@ -20,6 +23,20 @@ def edges(v):
     """Cell edges around equally spaced centres (one centre: a unit cell)."""
     d = (v[-1] - v[0]) / (len(v) - 1) if len(v) > 1 else 1.0
     return np.concatenate([[v[0] - d / 2], v + d / 2])
+
+
+def m_key(path):
+    """The varied scene key of a Cardan map (the /chaos_map attribute vary_key)."""
+    with c.h5py.File(path, "r") as f:
+        key = f["chaos_map"].attrs.get("vary_key", "")
+    return key.decode() if isinstance(key, bytes) else str(key)
+
+
+def axis_label(key):
+    """The axis label of a varied key: its meaning where known, else the key itself."""
+    known = {"suspension.tilt": "frame tilt $\\alpha$ (rad), " + key,
+             "suspension.outer_inertia": "outer ring's moment $C_o$, " + key}
+    return known.get(key, key)
 
 
 def main():
@@ -39,7 +56,10 @@ def main():
                 c.die(f"{path}: no /chaos_map (not a file written by lgi chaos-map)")
             m = {k: np.asarray(f["chaos_map"][k][()]) for k in f["chaos_map"]}
             par = c.attrs(f["parameters"])
-        l, h = m["l"], m["h"]
+        varied = "vary" in m
+        if varied and branches is not None:
+            c.die(f"{path}: --branches draws on (l, h) maps; this map varies {m_key(path)}")
+        l, h = (m["vary"] if varied else m["l"]), m["h"]
         fig, axes = c.plt.subplots(1, 2, figsize=(8.4, 3.4), sharey=True)
         panels = ((m["chaotic_fraction"], "fraction of chaotic orbits", "magma_r", 0.0, 1.0),
                   (m["lyapunov_max"], "largest Lyapunov exponent", "viridis", 0.0, None))
@@ -48,14 +68,14 @@ def main():
             ax.grid(False)  # pcolormesh under a grid is deprecated (Matplotlib 3.5)
             mesh = ax.pcolormesh(edges(l), edges(h), shown.T, cmap=cmap, vmin=vmin, vmax=vmax, shading="flat")
             fig.colorbar(mesh, ax=ax, label=label)
-            ax.plot(l, m["h_min"], color="k", ls="--", lw=0.8)
+            ax.plot(l, m["h_min"], color="0.55", ls="--", lw=0.8)  # seen on black cells too
             if branches is not None:
                 for b in np.unique(branches["branch"]):
                     sel = (branches["branch"] == b) & (branches["fold"] == 0)
                     ax.plot(branches["l"][sel], branches["h"][sel], color="0.3", lw=0.6)
             ax.set_xlim(edges(l)[0], edges(l)[-1])
             ax.set_ylim(edges(h)[0], edges(h)[-1])
-            ax.set_xlabel("$\\ell = \\Pi\\cdot\\Gamma$")
+            ax.set_xlabel(axis_label(m_key(path)) if varied else "$\\ell = \\Pi\\cdot\\Gamma$")
         axes[0].set_ylabel("$h$")
         fig.suptitle(f"{c.scene_label(par)}: {par.get('ics')} orbits per cell to t = {par.get('t_end')}, "
                      f"chaotic where MEGNO > {par.get('threshold')}", fontsize=8)

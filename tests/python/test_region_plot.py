@@ -62,3 +62,17 @@ def test_appelrot_and_chaos_map_figures(tmp_path):
     lgi("bifurcation", "--scene", SCENES / "general_top_richter.toml", "--samples", "60", "--out", branches)
     plot("chaos_map.py", out, "--branches", branches, cm)
     assert written(out, "chaos_map_cm")
+
+
+def test_cardan_chaos_map_figure(tmp_path):
+    """A Cardan map (--vary): the varied key on the horizontal axis; --branches refused."""
+    cm = tmp_path / "tilt.h5"
+    lgi("chaos-map", "--scene", SCENES / "cardan_general_asymmetric_up.toml", "--vary",
+        "suspension.tilt=0:1.5707963267948966:3", "--h-range", "-0.95:1:3", "--ics", "2", "--t-end", "5",
+        "--dt", "0.01", "--out", cm)
+    out = tmp_path / "fig"
+    plot("chaos_map.py", out, cm)
+    assert written(out, "chaos_map_tilt")
+    r = subprocess.run(["/usr/bin/python3", str(PLOTS / "chaos_map.py"), "--out", str(out), "--branches", str(cm),
+                        str(cm)], env=ENV, capture_output=True, text=True)
+    assert r.returncode != 0

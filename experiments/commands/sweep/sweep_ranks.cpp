@@ -162,6 +162,30 @@ void SweepRanks::finish(double cpu_seconds, std::int64_t events) {
   check(MPI_Send(bytes, sizeof bytes, MPI_CHAR, 0, tag_done, MPI_COMM_WORLD), "MPI_Send");
 }
 
+std::vector<double> SweepRanks::gather(const std::vector<double>& mine) {
+  if (!mpi_) return mine;
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
+  check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
+  std::vector<double> all;
+  if (root()) {
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = static_cast<int>(total), total += static_cast<std::size_t>(counts[r]);
+    all.resize(total);
+  }
+  check(MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
+                    MPI_COMM_WORLD),
+        "MPI_Gatherv");
+  return all;
+}
+
+bool SweepRanks::any(bool flag) {
+  if (!mpi_) return flag;
+  int mine = flag ? 1 : 0, all = 0;
+  check(MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+  return all != 0;
+}
+
 void SweepRanks::abort(int status) {
   if (mpi_) MPI_Abort(MPI_COMM_WORLD, status);
   std::exit(status);
@@ -179,6 +203,8 @@ std::int64_t SweepRanks::claim_chunk() { return local_counter_++; }
 void SweepRanks::send_chunk(const SweepChunk&) { throw std::logic_error("send_chunk without MPI"); }
 bool SweepRanks::receive_chunk(SweepChunk&) { return false; }
 void SweepRanks::finish(double, std::int64_t) {}
+std::vector<double> SweepRanks::gather(const std::vector<double>& mine) { return mine; }
+bool SweepRanks::any(bool flag) { return flag; }
 void SweepRanks::abort(int status) { std::exit(status); }
 
 #endif

@@ -49,6 +49,11 @@ class SweepRanks {
   /// Sums over the other ranks reported with finish().
   double others_cpu_seconds() const { return others_cpu_; }
   std::int64_t others_events() const { return others_events_; }
+  /// Collective: every rank's `mine`, concatenated in rank order, on rank 0
+  /// (the other ranks get an empty vector). lgi chaos-map's results.
+  std::vector<double> gather(const std::vector<double>& mine);
+  /// Collective: whether any rank has `flag` set (a signal seen by one rank).
+  bool any(bool flag);
   /// Ends every rank at once (an error on rank 0 after the run started).
   [[noreturn]] void abort(int status);
 
