@@ -86,8 +86,11 @@ void print_extra(const std::vector<TableGroup>& extra) {
   for (const TableGroup& g : extra) {
     if (g.name == "ebk") {
       double worst = 0.0;
-      for (double d : g.columns[5].real) worst = std::max(worst, std::abs(d));
-      std::printf("EBK: max |E_ebk - E_exact| = %.3g over %zu levels\n", worst, g.columns[5].real.size());
+      std::size_t with = 0;
+      for (double d : g.columns[5].real)
+        if (std::isfinite(d)) worst = std::max(worst, std::abs(d)), ++with;
+      std::printf("EBK: max |E_ebk - E_exact| = %.3g over %zu levels (%zu without an EBK level)\n", worst, with,
+                  g.columns[5].real.size() - with);
     } else if (g.name == "statistics") {
       const auto& levels = g.columns[2].whole;
       for (std::size_t i = 0; i < levels.size() && i < 20; ++i)
@@ -127,8 +130,9 @@ int run_quantum(const QuantumOptions& o) {
   check_flags(o);
   const system::Scene scene = read_scene(o.scene);
   const quantum::QuantumTop top = quantum::quantum_top_of(scene);
-  if (o.ebk && top.symmetry != quantum::TopSymmetry::symmetric_heavy)
-    throw InputError("--ebk: needs a Lagrange top (J1 = J2, centre of mass on the symmetry axis); scene " + scene.file +
+  if (o.ebk && !top.is_free() && top.symmetry != quantum::TopSymmetry::symmetric_heavy)
+    throw InputError("--ebk: needs a free body or a Lagrange top (J1 = J2, centre of mass on the symmetry axis); "
+                     "scene " + scene.file +
                      " is " + quantum::symmetry_name(top.symmetry));
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   quantum::QuantumSettings s;
@@ -182,8 +186,8 @@ Subcommand add_quantum_subcommand(CLI::App& app, const CommandContext& context) 
   sub->add_option("--tol", o->tol, "converged = 1 where |E(jmax + step) - E(jmax)| <= tol * max(|E|, hbar^2/(2 "
                                    "J_min))")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
-  sub->add_flag("--ebk", o->ebk, "Also write /ebk: the Lagrange top's EBK levels beside the exact ones "
-                                 "(docs/quantum.md section 7)");
+  sub->add_flag("--ebk", o->ebk, "Also write /ebk: EBK levels beside the exact ones, of a Lagrange top or a "
+                                 "free body (docs/quantum.md sections 7, 9)");
   sub->add_flag("--statistics", o->statistics, "Also write /statistics: spacings, Brody beta, number variance and "
                                                "rigidity per symmetry class, unfolded with Weyl's law");
   add_force_quiet_flags(*sub, *o, "Replace existing output files");

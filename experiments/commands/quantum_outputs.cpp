@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "experiments/analysis/quantum/ebk_lagrange.hpp"
+#include "experiments/analysis/quantum/ebk_free_rotor.hpp"
 #include "experiments/analysis/quantum/quantum_statistics.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
@@ -25,18 +25,25 @@ TableColumn whole_column(const std::string& name, std::vector<std::int64_t> valu
 }  // namespace
 
 TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
-  std::vector<std::int64_t> n, ms, k, converged;
+  std::vector<std::int64_t> n, ms, k, js, axes, converged;
   std::vector<double> ebk, exact, difference;
-  for (const quantum::EbkRow& r : quantum::ebk_lagrange_table(q, hbar, m)) {
-    n.push_back(r.n), ms.push_back(r.m), k.push_back(r.k), converged.push_back(r.converged ? 1 : 0);
+  for (const quantum::EbkRow& r : quantum::ebk_table(q, hbar, m)) {
+    n.push_back(r.n), ms.push_back(r.m), k.push_back(r.k), js.push_back(r.j), axes.push_back(r.axis);
+    converged.push_back(r.converged ? 1 : 0);
     ebk.push_back(r.energy_ebk), exact.push_back(r.energy_exact), difference.push_back(r.energy_ebk - r.energy_exact);
   }
+  const char* rule =
+      q.top.is_free()
+          ? "|L| = hbar (j + 1/2); the cap of the orbit of Pi about its axis: I_cap = hbar (n + 1/2), Maslov index 2 "
+            "(Colwell, Handy & Miller 1977); n counts the doublets from the steady rotation (docs/quantum.md "
+            "section 9)"
+          : "I_theta(E; l = m hbar, L3 = k hbar) = hbar (n + 1/2), Maslov index 2 (Keller 1958); n = the level's "
+            "rank in its k block (docs/quantum.md section 7)";
   return {"ebk",
           {whole_column("n", n), whole_column("m", ms), whole_column("k", k), real_column("energy_ebk", ebk),
            real_column("energy_exact", exact), real_column("difference", difference),
-           whole_column("converged", converged)},
-          {{"rule", "I_theta(E; l = m hbar, L3 = k hbar) = hbar (n + 1/2), Maslov index 2 (Keller 1958); n = the "
-                    "level's rank in its k block (docs/quantum.md section 7)"}}};
+           whole_column("converged", converged), whole_column("j", js), whole_column("axis", axes)},
+          {{"rule", rule}}};
 }
 
 TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {

@@ -1,13 +1,13 @@
 #pragma once
 // The optional groups of lgi quantum (experiments/QUANTUM.md): /ebk (--ebk,
-// the Lagrange top's EBK levels beside the exact ones) and /statistics
+// EBK levels beside the exact ones: a Lagrange top or a free body) and /statistics
 // (--statistics, per symmetry class, unfolded with Weyl's law).
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/io/table_file.hpp"
 
 namespace lgi::experiments {
 
-/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged (one row per level).
+/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged, j, axis (one row per level).
 TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
 
 /// /weyl: weyl_count, Weyl's smooth count N̄(E) at each /spectrum row's energy

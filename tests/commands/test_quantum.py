@@ -106,9 +106,30 @@ def test_ebk_lagrange_is_second_order(tmp_path):
 
 
 def test_ebk_refused_off_lagrange(tmp_path):
-    line = refused("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "1", "--jmax", "4",
-                   "--ebk", "--out", str(tmp_path / "x.h5"))
-    assert "--ebk" in line and "free_body_hlw.toml" in line
+    line = refused("quantum", "--scene", os.path.join(SCENES, "general_top_richter.toml"), "--hbar", "1", "--jmax",
+                   "4", "--ebk", "--out", str(tmp_path / "x.h5"))
+    assert "--ebk" in line and "general_top_richter.toml" in line
+
+
+def test_ebk_euler_top(tmp_path):
+    # docs/quantum.md section 9: one j of the HLW body; doublets n = 0, 0, 1, 1, ... from either
+    # steady rotation, the axis of the largest moment below the separatrix, the smallest above it.
+    out = str(tmp_path / "euler.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "0.05", "--m", "20", "--jmax",
+        "20", "--ebk", "--out", out)
+    t, attrs = table(out, "ebk")
+    s, _ = table(out, "spectrum")
+    assert len(t["n"]) == 41 and np.all(t["j"] == 20) and np.all(t["k"] == -1)
+    assert np.array_equal(t["energy_exact"], s["energy"])
+    assert list(t["n"][:6]) == [0, 0, 1, 1, 2, 2] and list(t["n"][-6:]) == [2, 2, 1, 1, 0, 0]
+    assert len(set(t["axis"][:6])) == 1 and len(set(t["axis"][-6:])) == 1 and t["axis"][0] != t["axis"][-1]
+    finite = np.isfinite(t["energy_ebk"])
+    assert np.count_nonzero(~finite) <= 3  # only at the separatrix
+    # Away from the separatrix (E/|L|^2 = 1/2 here) EBK is within O(hbar^2) of the exact level.
+    e = t["energy_exact"] / (0.05 * 20.5) ** 2
+    far = finite & (np.abs(e - 0.5) > 0.08)
+    assert np.count_nonzero(far) >= 20
+    assert np.max(np.abs(t["difference"][far] / t["energy_exact"][far])) < 3e-3
 
 
 def test_statistics_of_the_free_asymmetric_rotor(tmp_path):
