@@ -9,6 +9,7 @@
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
 #include "experiments/analysis/spectral/reference_curves.hpp"
+#include "experiments/io/number_format.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -61,9 +62,11 @@ TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
                        "Vol{H <= E}/(2 pi hbar)^2 (a free body: N_j(E) of its j); docs/quantum.md section 8"}}};
 }
 
-TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m, double energy_low,
+                            double energy_high) {
   const spectral::StatisticsOptions options;
-  const auto classes = quantum::quantum_statistics(q, hbar, m, options);
+  const auto classes = quantum::quantum_statistics(q, hbar, m, options, energy_low, energy_high);
+  const quantum::PooledBrody pooled = quantum::pooled_brody(classes);
   const std::size_t bins = static_cast<std::size_t>(std::lround(options.s_max / options.bin_width));
   const std::size_t nl = options.lengths.size();
   std::vector<std::int64_t> j, parity, levels, bound;
@@ -112,7 +115,12 @@ TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int 
            real_column("gue_number_variance", gue_s2), real_column("gue_rigidity", gue_d3)},
           {{"unfolding", "Weyl's law (docs/quantum.md section 8): per class N(E)/classes; a free body per j "
                          "and D2 class N_j(E)/4"},
-           {"levels_used", "converged levels only; a symmetric heavy top at m = 0: k >= 0 only"}}};
+           {"levels_used", "converged levels with energy_low <= E <= energy_high only; a symmetric heavy top at "
+                           "m = 0: k >= 0 only"},
+           {"energy_low", format_general(energy_low, 17)}, {"energy_high", format_general(energy_high, 17)},
+           {"pooled_spacings", std::to_string(pooled.spacings)},
+           {"pooled_brody_beta", format_general(pooled.fit.beta, 6)},
+           {"pooled_brody_error", format_general(pooled.fit.standard_error, 6)}}};
 }
 
 }  // namespace lgi::experiments

@@ -17,6 +17,9 @@ TableGroup weyl_group(const quantum::QuantumSpectrum& spectrum, double hbar, int
 /// /statistics: per class (j, parity, levels, Brody β ± error, ...), the
 /// spacing histograms (classes × bins), Σ²(L) and Δ₃(L) (classes × lengths)
 /// and the Poisson and GOE references.
-TableGroup statistics_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+/// Only converged levels with energy_low ≤ E ≤ energy_high enter; the attributes state the window and
+/// the Brody fit of all classes' spacings pooled.
+TableGroup statistics_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m, double energy_low,
+                            double energy_high);
 
 }  // namespace lgi::experiments

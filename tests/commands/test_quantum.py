@@ -12,6 +12,7 @@ import csv
 import math
 import os
 
+import h5py
 import numpy as np
 from lgi_cli import lgi, refused, table
 
@@ -167,3 +168,27 @@ def test_statistics_of_a_heavy_top(tmp_path):
     ok = s["converged"] == 1
     staircase = np.arange(np.count_nonzero(ok)) + 0.5
     assert np.max(np.abs(w["weyl_count"][ok] - staircase)) < 5
+
+
+def test_statistics_in_an_energy_window(tmp_path):
+    # --energy-window LO:HI: only the converged levels in [LO, HI] enter /statistics; the
+    # attributes state the window and the Brody fit of all classes' spacings pooled.
+    out = str(tmp_path / "win.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "kovalevskaya.toml"), "--hbar", "0.2", "--m", "1",
+        "--jmax", "20", "--levels", "60", "--statistics", "--energy-window", "0:1.5", "--out", out)
+    t, _ = table(out, "statistics")
+    s, _ = table(out, "spectrum")
+    inside = (s["converged"] == 1) & (s["energy"] >= 0) & (s["energy"] <= 1.5)
+    assert 10 < sum(t["levels"]) == np.count_nonzero(inside) < len(s["energy"])
+    with h5py.File(out, "r") as f:
+        a = {k: (v.decode() if isinstance(v, bytes) else str(v)) for k, v in f["statistics"].attrs.items()}
+    assert float(a["energy_low"]) == 0 and float(a["energy_high"]) == 1.5
+    assert int(a["pooled_spacings"]) == sum(t["levels"]) - len(t["levels"])
+    assert 0 <= float(a["pooled_brody_beta"]) <= 1 and float(a["pooled_brody_error"]) > 0
+    scene = os.path.join(SCENES, "kovalevskaya.toml")
+    for flags, word in ((["--energy-window", "0:1"], "--statistics"),
+                        (["--statistics", "--energy-window", "2:1"], "LO < HI"),
+                        (["--statistics", "--energy-window", "0:x"], "LO:HI")):
+        line = refused("quantum", "--scene", scene, "--hbar", "0.2", "--jmax", "6", *flags,
+                       "--out", str(tmp_path / "x.h5"))
+        assert "--energy-window" in line and word in line, line
