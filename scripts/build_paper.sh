@@ -316,6 +316,22 @@ else
 fi
 say "atlas done ($(( $(date +%s) - t_start )) s)"
 
+# ── quantum tops (paper/sections/quantum.tex) ────────────────────────────────
+if has_sub quantum && has_sub chaos-map; then
+  "$root/scripts/paper_quantum.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_quantum.sh failed"; }
+else
+  for n in quantum_levels_richter quantum_ebk quantum_compare; do
+    missing_note "$n" "This \\texttt{lgi} lacks quantum or chaos-map: no data."
+  done
+  for n in quantum_compare.tex quantum_commands.tex; do
+    echo '\lginote{This \texttt{lgi} lacks quantum or chaos-map: no data.}' > "$gen/$n"
+  done
+  echo '\multicolumn{6}{l}{no data: this \texttt{lgi} lacks quantum} \\' > "$gen/quantum_euler_ebk.tex"
+  printf '\\newcommand{\\%s}{?}\n' QLagEbkErrors QLagEbkHbars QLagEbkRatios > "$gen/quantum_numbers.tex"
+fi
+say "quantum done ($(( $(date +%s) - t_start )) s)"
+
 # ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
 bench="$(dirname "$lgi")/lgi_bench"
 rm -f "$gen/benchmarks.tex"

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -36,19 +37,40 @@ struct QuantumOptions {
   int m = 0, jmax = 40, levels = 20, jmax_step = 4;
   double tol = 1e-8;
   bool ebk = false, statistics = false;
+  std::string energy_window;  // "LO:HI" (empty: every level)
+  double energy_low = -std::numeric_limits<double>::infinity(), energy_high = std::numeric_limits<double>::infinity();
   bool force = false, quiet = false;
   std::string command_line;
 };
 
 std::string number(double x) { return format_general(x, 17); }
 
-void check_flags(const QuantumOptions& o) {
+/// --energy-window LO:HI: two finite numbers, LO < HI; only with --statistics.
+void parse_window(QuantumOptions& o) {
+  if (o.energy_window.empty()) return;
+  if (!o.statistics) throw UsageError("--energy-window: needs --statistics (it selects the levels of /statistics)");
+  const auto colon = o.energy_window.find(':');
+  const auto bad = [&] { return UsageError("--energy-window: expected LO:HI with LO < HI, got '" + o.energy_window + "'"); };
+  if (colon == std::string::npos) throw bad();
+  try {
+    std::size_t a = 0, b = 0;
+    const std::string lo = o.energy_window.substr(0, colon), hi = o.energy_window.substr(colon + 1);
+    o.energy_low = std::stod(lo, &a), o.energy_high = std::stod(hi, &b);
+    if (a != lo.size() || b != hi.size()) throw bad();
+  } catch (const std::logic_error&) {
+    throw bad();
+  }
+  if (!std::isfinite(o.energy_low) || !std::isfinite(o.energy_high) || !(o.energy_low < o.energy_high)) throw bad();
+}
+
+void check_flags(QuantumOptions& o) {
   if (!(o.hbar > 0.0) || !std::isfinite(o.hbar)) throw UsageError("--hbar: must be a positive number");
   if (o.jmax > 400) throw UsageError("--jmax: at most 400 (the basis has (jmax+1)^2 - m^2 states)");
   if (o.m < -o.jmax || o.m > o.jmax) throw UsageError("--jmax: must be at least |m| (j runs from |m| to jmax)");
   if (o.levels < 1) throw UsageError("--levels: must be at least 1");
   if (o.jmax_step < 1 || o.jmax_step > 100) throw UsageError("--jmax-step: must be in 1..100");
   if (!(o.tol > 0.0) || !std::isfinite(o.tol)) throw UsageError("--tol: must be a positive number");
+  parse_window(o);
 }
 
 std::vector<TableColumn> columns_of(const quantum::QuantumSpectrum& q, int m) {
@@ -86,8 +108,11 @@ void print_extra(const std::vector<TableGroup>& extra) {
   for (const TableGroup& g : extra) {
     if (g.name == "ebk") {
       double worst = 0.0;
-      for (double d : g.columns[5].real) worst = std::max(worst, std::abs(d));
-      std::printf("EBK: max |E_ebk - E_exact| = %.3g over %zu levels\n", worst, g.columns[5].real.size());
+      std::size_t with = 0;
+      for (double d : g.columns[5].real)
+        if (std::isfinite(d)) worst = std::max(worst, std::abs(d)), ++with;
+      std::printf("EBK: max |E_ebk - E_exact| = %.3g over %zu levels (%zu without an EBK level)\n", worst, with,
+                  g.columns[5].real.size() - with);
     } else if (g.name == "statistics") {
       const auto& levels = g.columns[2].whole;
       for (std::size_t i = 0; i < levels.size() && i < 20; ++i)
@@ -123,12 +148,13 @@ std::map<std::string, std::string> parameters_of(const QuantumOptions& o, const 
           {"method", q.method}, {"wall_seconds", format_general(wall, 6)}};
 }
 
-int run_quantum(const QuantumOptions& o) {
+int run_quantum(QuantumOptions o) {
   check_flags(o);
   const system::Scene scene = read_scene(o.scene);
   const quantum::QuantumTop top = quantum::quantum_top_of(scene);
-  if (o.ebk && top.symmetry != quantum::TopSymmetry::symmetric_heavy)
-    throw InputError("--ebk: needs a Lagrange top (J1 = J2, centre of mass on the symmetry axis); scene " + scene.file +
+  if (o.ebk && !top.is_free() && top.symmetry != quantum::TopSymmetry::symmetric_heavy)
+    throw InputError("--ebk: needs a free body or a Lagrange top (J1 = J2, centre of mass on the symmetry axis); "
+                     "scene " + scene.file +
                      " is " + quantum::symmetry_name(top.symmetry));
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   quantum::QuantumSettings s;
@@ -143,7 +169,7 @@ int run_quantum(const QuantumOptions& o) {
   std::vector<TableGroup> extra;
   try {
     if (o.ebk) extra.push_back(ebk_group(q, o.hbar, o.m));
-    if (o.statistics) extra.push_back(statistics_group(q, o.hbar, o.m));
+    if (o.statistics) extra.push_back(statistics_group(q, o.hbar, o.m, o.energy_low, o.energy_high));
     if (o.statistics) extra.push_back(weyl_group(q, o.hbar, o.m));
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string(e.what()) + " (scene " + scene.file + ")");
@@ -182,8 +208,10 @@ Subcommand add_quantum_subcommand(CLI::App& app, const CommandContext& context) 
   sub->add_option("--tol", o->tol, "converged = 1 where |E(jmax + step) - E(jmax)| <= tol * max(|E|, hbar^2/(2 "
                                    "J_min))")->capture_default_str();
   sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
-  sub->add_flag("--ebk", o->ebk, "Also write /ebk: the Lagrange top's EBK levels beside the exact ones "
-                                 "(docs/quantum.md section 7)");
+  sub->add_flag("--ebk", o->ebk, "Also write /ebk: EBK levels beside the exact ones, of a Lagrange top or a "
+                                 "free body (docs/quantum.md sections 7, 9)");
+  sub->add_option("--energy-window", o->energy_window, "With --statistics: only the levels with LO <= E <= HI "
+                                                      "enter /statistics (LO:HI)");
   sub->add_flag("--statistics", o->statistics, "Also write /statistics: spacings, Brody beta, number variance and "
                                                "rigidity per symmetry class, unfolded with Weyl's law");
   add_force_quiet_flags(*sub, *o, "Replace existing output files");

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <limits>
 
-#include "experiments/analysis/quantum/ebk_lagrange.hpp"
+#include "experiments/analysis/quantum/ebk_free_rotor.hpp"
 #include "experiments/analysis/quantum/quantum_statistics.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
 #include "experiments/analysis/spectral/reference_curves.hpp"
+#include "experiments/io/number_format.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -25,18 +26,25 @@ TableColumn whole_column(const std::string& name, std::vector<std::int64_t> valu
 }  // namespace
 
 TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
-  std::vector<std::int64_t> n, ms, k, converged;
+  std::vector<std::int64_t> n, ms, k, js, axes, converged;
   std::vector<double> ebk, exact, difference;
-  for (const quantum::EbkRow& r : quantum::ebk_lagrange_table(q, hbar, m)) {
-    n.push_back(r.n), ms.push_back(r.m), k.push_back(r.k), converged.push_back(r.converged ? 1 : 0);
+  for (const quantum::EbkRow& r : quantum::ebk_table(q, hbar, m)) {
+    n.push_back(r.n), ms.push_back(r.m), k.push_back(r.k), js.push_back(r.j), axes.push_back(r.axis);
+    converged.push_back(r.converged ? 1 : 0);
     ebk.push_back(r.energy_ebk), exact.push_back(r.energy_exact), difference.push_back(r.energy_ebk - r.energy_exact);
   }
+  const char* rule =
+      q.top.is_free()
+          ? "|L| = hbar (j + 1/2); the cap of the orbit of Pi about its axis: I_cap = hbar (n + 1/2), Maslov index 2 "
+            "(Colwell, Handy & Miller 1977); n counts the doublets from the steady rotation (docs/quantum.md "
+            "section 9)"
+          : "I_theta(E; l = m hbar, L3 = k hbar) = hbar (n + 1/2), Maslov index 2 (Keller 1958); n = the level's "
+            "rank in its k block (docs/quantum.md section 7)";
   return {"ebk",
           {whole_column("n", n), whole_column("m", ms), whole_column("k", k), real_column("energy_ebk", ebk),
            real_column("energy_exact", exact), real_column("difference", difference),
-           whole_column("converged", converged)},
-          {{"rule", "I_theta(E; l = m hbar, L3 = k hbar) = hbar (n + 1/2), Maslov index 2 (Keller 1958); n = the "
-                    "level's rank in its k block (docs/quantum.md section 7)"}}};
+           whole_column("converged", converged), whole_column("j", js), whole_column("axis", axes)},
+          {{"rule", rule}}};
 }
 
 TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
@@ -54,9 +62,11 @@ TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
                        "Vol{H <= E}/(2 pi hbar)^2 (a free body: N_j(E) of its j); docs/quantum.md section 8"}}};
 }
 
-TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m, double energy_low,
+                            double energy_high) {
   const spectral::StatisticsOptions options;
-  const auto classes = quantum::quantum_statistics(q, hbar, m, options);
+  const auto classes = quantum::quantum_statistics(q, hbar, m, options, energy_low, energy_high);
+  const quantum::PooledBrody pooled = quantum::pooled_brody(classes);
   const std::size_t bins = static_cast<std::size_t>(std::lround(options.s_max / options.bin_width));
   const std::size_t nl = options.lengths.size();
   std::vector<std::int64_t> j, parity, levels, bound;
@@ -105,7 +115,12 @@ TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int 
            real_column("gue_number_variance", gue_s2), real_column("gue_rigidity", gue_d3)},
           {{"unfolding", "Weyl's law (docs/quantum.md section 8): per class N(E)/classes; a free body per j "
                          "and D2 class N_j(E)/4"},
-           {"levels_used", "converged levels only; a symmetric heavy top at m = 0: k >= 0 only"}}};
+           {"levels_used", "converged levels with energy_low <= E <= energy_high only; a symmetric heavy top at "
+                           "m = 0: k >= 0 only"},
+           {"energy_low", format_general(energy_low, 17)}, {"energy_high", format_general(energy_high, 17)},
+           {"pooled_spacings", std::to_string(pooled.spacings)},
+           {"pooled_brody_beta", format_general(pooled.fit.beta, 6)},
+           {"pooled_brody_error", format_general(pooled.fit.standard_error, 6)}}};
 }
 
 }  // namespace lgi::experiments

@@ -1,13 +1,13 @@
 #pragma once
 // The optional groups of lgi quantum (experiments/QUANTUM.md): /ebk (--ebk,
-// the Lagrange top's EBK levels beside the exact ones) and /statistics
+// EBK levels beside the exact ones: a Lagrange top or a free body) and /statistics
 // (--statistics, per symmetry class, unfolded with Weyl's law).
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/io/table_file.hpp"
 
 namespace lgi::experiments {
 
-/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged (one row per level).
+/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged, j, axis (one row per level).
 TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
 
 /// /weyl: weyl_count, Weyl's smooth count N̄(E) at each /spectrum row's energy
@@ -17,6 +17,9 @@ TableGroup weyl_group(const quantum::QuantumSpectrum& spectrum, double hbar, int
 /// /statistics: per class (j, parity, levels, Brody β ± error, ...), the
 /// spacing histograms (classes × bins), Σ²(L) and Δ₃(L) (classes × lengths)
 /// and the Poisson and GOE references.
-TableGroup statistics_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+/// Only converged levels with energy_low ≤ E ≤ energy_high enter; the attributes state the window and
+/// the Brody fit of all classes' spacings pooled.
+TableGroup statistics_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m, double energy_low,
+                            double energy_high);
 
 }  // namespace lgi::experiments

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "experiments/analysis/quantum/ebk_lagrange.hpp"
+#include "experiments/analysis/quantum/ebk_free_rotor.hpp"
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "python/src/bindings.hpp"
@@ -33,7 +33,7 @@ void add_semiclassics(py::dict& d, const experiments::quantum::QuantumSpectrum& 
     std::vector<std::int64_t> n;
     std::vector<double> energy;
     try {
-      for (const eq::EbkRow& r : eq::ebk_lagrange_table(q, hbar, m)) n.push_back(r.n), energy.push_back(r.energy_ebk);
+      for (const eq::EbkRow& r : eq::ebk_table(q, hbar, m)) n.push_back(r.n), energy.push_back(r.energy_ebk);
     } catch (const std::invalid_argument& e) {
       throw py::value_error(e.what());
     }
@@ -97,7 +97,7 @@ void bind_quantum(py::module_& m) {
         "weight (the frame's J and c), dimension, method. ValueError for a scene term that is not a\n"
         "potential of Gamma and for settings out of range. weyl=True adds weyl_count (Weyl's smooth count at\n"
         "each level, the file's /weyl); ebk=True adds ebk_n and energy_ebk (the file's /ebk; a Lagrange top\n"
-        "only, ValueError otherwise), docs/quantum.md sections 7-8.");
+        "or a free body, ValueError otherwise), docs/quantum.md sections 7-9.");
 }
 
 }  // namespace lgi::python

@@ -12,6 +12,7 @@ import csv
 import math
 import os
 
+import h5py
 import numpy as np
 from lgi_cli import lgi, refused, table
 
@@ -106,9 +107,30 @@ def test_ebk_lagrange_is_second_order(tmp_path):
 
 
 def test_ebk_refused_off_lagrange(tmp_path):
-    line = refused("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "1", "--jmax", "4",
-                   "--ebk", "--out", str(tmp_path / "x.h5"))
-    assert "--ebk" in line and "free_body_hlw.toml" in line
+    line = refused("quantum", "--scene", os.path.join(SCENES, "general_top_richter.toml"), "--hbar", "1", "--jmax",
+                   "4", "--ebk", "--out", str(tmp_path / "x.h5"))
+    assert "--ebk" in line and "general_top_richter.toml" in line
+
+
+def test_ebk_euler_top(tmp_path):
+    # docs/quantum.md section 9: one j of the HLW body; doublets n = 0, 0, 1, 1, ... from either
+    # steady rotation, the axis of the largest moment below the separatrix, the smallest above it.
+    out = str(tmp_path / "euler.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar", "0.05", "--m", "20", "--jmax",
+        "20", "--ebk", "--out", out)
+    t, attrs = table(out, "ebk")
+    s, _ = table(out, "spectrum")
+    assert len(t["n"]) == 41 and np.all(t["j"] == 20) and np.all(t["k"] == -1)
+    assert np.array_equal(t["energy_exact"], s["energy"])
+    assert list(t["n"][:6]) == [0, 0, 1, 1, 2, 2] and list(t["n"][-6:]) == [2, 2, 1, 1, 0, 0]
+    assert len(set(t["axis"][:6])) == 1 and len(set(t["axis"][-6:])) == 1 and t["axis"][0] != t["axis"][-1]
+    finite = np.isfinite(t["energy_ebk"])
+    assert np.count_nonzero(~finite) <= 3  # only at the separatrix
+    # Away from the separatrix (E/|L|^2 = 1/2 here) EBK is within O(hbar^2) of the exact level.
+    e = t["energy_exact"] / (0.05 * 20.5) ** 2
+    far = finite & (np.abs(e - 0.5) > 0.08)
+    assert np.count_nonzero(far) >= 20
+    assert np.max(np.abs(t["difference"][far] / t["energy_exact"][far])) < 3e-3
 
 
 def test_statistics_of_the_free_asymmetric_rotor(tmp_path):
@@ -146,3 +168,27 @@ def test_statistics_of_a_heavy_top(tmp_path):
     ok = s["converged"] == 1
     staircase = np.arange(np.count_nonzero(ok)) + 0.5
     assert np.max(np.abs(w["weyl_count"][ok] - staircase)) < 5
+
+
+def test_statistics_in_an_energy_window(tmp_path):
+    # --energy-window LO:HI: only the converged levels in [LO, HI] enter /statistics; the
+    # attributes state the window and the Brody fit of all classes' spacings pooled.
+    out = str(tmp_path / "win.h5")
+    lgi("quantum", "--scene", os.path.join(SCENES, "kovalevskaya.toml"), "--hbar", "0.2", "--m", "1",
+        "--jmax", "20", "--levels", "60", "--statistics", "--energy-window", "0:1.5", "--out", out)
+    t, _ = table(out, "statistics")
+    s, _ = table(out, "spectrum")
+    inside = (s["converged"] == 1) & (s["energy"] >= 0) & (s["energy"] <= 1.5)
+    assert 10 < sum(t["levels"]) == np.count_nonzero(inside) < len(s["energy"])
+    with h5py.File(out, "r") as f:
+        a = {k: (v.decode() if isinstance(v, bytes) else str(v)) for k, v in f["statistics"].attrs.items()}
+    assert float(a["energy_low"]) == 0 and float(a["energy_high"]) == 1.5
+    assert int(a["pooled_spacings"]) == sum(t["levels"]) - len(t["levels"])
+    assert 0 <= float(a["pooled_brody_beta"]) <= 1 and float(a["pooled_brody_error"]) > 0
+    scene = os.path.join(SCENES, "kovalevskaya.toml")
+    for flags, word in ((["--energy-window", "0:1"], "--statistics"),
+                        (["--statistics", "--energy-window", "2:1"], "LO < HI"),
+                        (["--statistics", "--energy-window", "0:x"], "LO:HI")):
+        line = refused("quantum", "--scene", scene, "--hbar", "0.2", "--jmax", "6", *flags,
+                       "--out", str(tmp_path / "x.h5"))
+        assert "--energy-window" in line and word in line, line

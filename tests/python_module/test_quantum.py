@@ -71,4 +71,6 @@ def test_weyl_and_ebk_match_the_command_line(lgi_exe, tmp_path):
     assert np.array_equal(mine["energy_ebk"], ebk) and np.array_equal(mine["ebk_n"], n)
     assert "weyl_count" not in lgi.quantum_spectrum(scene, 0.1, m=1, jmax=20, levels=2)
     with pytest.raises(ValueError, match="Lagrange"):
-        lgi.quantum_spectrum(FREE, 1.0, jmax=3, ebk=True)
+        lgi.quantum_spectrum(os.path.join(SCENES, "general_top_richter.toml"), 0.1, jmax=6, levels=2, ebk=True)
+    free = lgi.quantum_spectrum(FREE, 1.0, m=3, jmax=3, ebk=True)  # the Euler top at j = 3 (docs/quantum.md §9)
+    assert list(free["ebk_n"]) == [0, 0, 1, 1, 1, 0, 0]

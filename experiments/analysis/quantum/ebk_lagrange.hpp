@@ -24,9 +24,12 @@ namespace lgi::experiments::quantum {
 std::optional<double> ebk_lagrange_level(const LagrangeBody& body, double hbar, int n, int m, int k,
                                          double energy_cap = 1e6);
 
-/// One exact level beside its EBK level: n is its rank in its k block.
+/// One exact level beside its EBK level: n is its rank in its k block (a free
+/// body: ebk_free_rotor.hpp).
 struct EbkRow {
   int n = 0, m = 0, k = 0;
+  int j = -1;     // a free body: the level's j; −1 otherwise
+  int axis = -1;  // a free asymmetric body: the frame axis (0, 1, 2) its torus circulates about; −1 otherwise
   double energy_ebk = 0.0, energy_exact = 0.0;
   bool converged = false;  // the exact level's convergence in jmax
 };

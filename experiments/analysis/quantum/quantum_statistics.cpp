@@ -6,18 +6,20 @@
 #include <set>
 
 #include "experiments/analysis/quantum/weyl_law.hpp"
+#include "experiments/analysis/spectral/brody_fit.hpp"
 
 namespace lgi::experiments::quantum {
 
 std::vector<QuantumClassStatistics> quantum_statistics(const QuantumSpectrum& q, double hbar, int m,
-                                                       const spectral::StatisticsOptions& options) {
+                                                       const spectral::StatisticsOptions& options, double energy_low,
+                                                       double energy_high) {
   const QuantumTop& top = q.top;
   // Labels: 4j + parity for a free body (parity ∈ 0..3, or 0 where −1), the parity otherwise.
   std::vector<double> energies;
   std::vector<int> labels;
   std::set<int> classes;
   for (const QuantumLevel& l : q.levels) {
-    if (!l.converged) continue;
+    if (!l.converged || !(l.energy >= energy_low && l.energy <= energy_high)) continue;
     if (top.symmetry == TopSymmetry::symmetric_heavy && m == 0 && l.k < 0) continue;
     energies.push_back(l.energy);
     labels.push_back(top.is_free() ? 4 * l.j + std::max(l.parity, 0)
@@ -46,6 +48,17 @@ std::vector<QuantumClassStatistics> quantum_statistics(const QuantumSpectrum& q,
     out.push_back(std::move(r));
   }
   return out;
+}
+
+PooledBrody pooled_brody(const std::vector<QuantumClassStatistics>& classes) {
+  std::vector<double> all;
+  for (const QuantumClassStatistics& c : classes)
+    if (!c.statistics.too_few) all.insert(all.end(), c.statistics.statistics.spacings.begin(),
+                                          c.statistics.statistics.spacings.end());
+  PooledBrody p;
+  p.spacings = all.size();
+  if (all.size() >= 2) p.fit = spectral::fit_brody(all);
+  return p;
 }
 
 }  // namespace lgi::experiments::quantum

@@ -9,7 +9,10 @@
 //    integrable case of Berry & Tabor, unfolded by N̄(E); at m = 0 only
 //    k ≥ 0 (E(k) = E(−k)) and by N̄(E)/2;
 //  - otherwise per `parity` class, unfolded by N̄(E)/(number of classes).
-// Only converged levels enter (a heavy top's unconverged levels are its highest).
+// Only converged levels enter (a heavy top's unconverged levels are its highest),
+// and only those with energy_low ≤ E ≤ energy_high (an energy window, to
+// compare with the classical chaotic fraction at the same (ℓ, h)).
+#include <limits>
 #include <vector>
 
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
@@ -24,6 +27,16 @@ struct QuantumClassStatistics {
 };
 
 std::vector<QuantumClassStatistics> quantum_statistics(const QuantumSpectrum& spectrum, double hbar, int m,
-                                                       const spectral::StatisticsOptions& options = {});
+                                                       const spectral::StatisticsOptions& options = {},
+                                                       double energy_low = -std::numeric_limits<double>::infinity(),
+                                                       double energy_high = std::numeric_limits<double>::infinity());
+
+/// The Brody fit of the spacings of every class with enough levels taken
+/// together (each class unfolded and spaced on its own, then pooled; Haake ch. 4).
+struct PooledBrody {
+  spectral::BrodyFit fit;
+  std::size_t spacings = 0;
+};
+PooledBrody pooled_brody(const std::vector<QuantumClassStatistics>& classes);
 
 }  // namespace lgi::experiments::quantum
