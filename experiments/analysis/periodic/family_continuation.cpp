@@ -133,6 +133,7 @@ void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, dou
   if (rows.size() == 1) {
     if (s.steps == 0 || !natural_step(body, rows, first_dh, equilibrium, h_equilibrium, s)) return renumber(rows);
     ++taken;
+    if (s.locate_events) locate_events(body, rows, s);
   }
   const auto [a, b] = last_regular_pair(rows);
   const double ds0 = (family_point(rows[b].orbit) - family_point(rows[a].orbit)).norm();
