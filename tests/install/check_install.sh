@@ -23,6 +23,9 @@ configure "$here/consumer" "$work/consumer"
 "$work/consumer/lie_only"
 "$work/consumer/run_scene" "$scenes/free_body_hlw.toml" rkmk4
 "$work/prefix/bin/lgi" schemes --family RKMK > /dev/null
+# The installed sweep specs find the installed scenes.
+"$work/prefix/bin/lgi" sweep --spec "$work/prefix/share/lgi/sweeps/free_body_grid.toml" --out "$work/grid.h5" --quiet > /dev/null
+test -s "$work/grid.h5"
 # The scheme added out of tree (docs/extending.md): registered, simulated, verified.
 configure "$here/../../examples/custom_scheme" "$work/custom_scheme"
 "$work/custom_scheme/custom_scheme" "$work/custom_scheme/rkmk3_heun.h5" > "$work/custom_scheme.log"
