@@ -313,7 +313,7 @@ dt = -1e-3
              StartsWith("test.toml:6: [run] dt: must be > 0, got -0.001"));
 }
 
-TEST_CASE("bad input: tol <= 0", "[scene][bad]") {
+TEST_CASE("bad input: tol <= 0 or >= 1", "[scene][bad]") {
   CHECK_THAT(error_of(R"(name = "t"
 [body]
 inertia = [1, 1, 1]
@@ -321,7 +321,15 @@ inertia = [1, 1, 1]
 t_end = 1
 tol = 0.0
 )"),
-             StartsWith("test.toml:6: [run] tol: must be > 0, got 0"));
+             StartsWith("test.toml:6: [run] tol: must be in (0, 1) (a relative tolerance), got 0"));
+  CHECK_THAT(error_of(R"(name = "t"
+[body]
+inertia = [1, 1, 1]
+[run]
+t_end = 1
+tol = 1e50
+)"),
+             StartsWith("test.toml:6: [run] tol: must be in (0, 1) (a relative tolerance), got 1e+50"));
 }
 
 TEST_CASE("bad input: TOML syntax error", "[scene][bad]") {

@@ -22,6 +22,9 @@ void check_step_flags(const StepFlags& flags, bool allow_zero_t_end) {
   check_t_end_flag(flags.t_end, allow_zero_t_end);
   if (flags.dt && !positive_finite(*flags.dt)) throw UsageError("--dt: must be a finite number > 0");
   if (flags.tol && !positive_finite(*flags.tol)) throw UsageError("--tol: must be a finite number > 0");
+  // A relative tolerance of 1 or more asks for no accuracy at all (the controller
+  // then takes any step the stability allows): refused rather than run.
+  if (flags.tol && *flags.tol >= 1.0) throw UsageError("--tol: must be below 1 (a relative tolerance)");
 }
 
 double resolve_t_end(const std::optional<double>& flag, const system::Scene& scene, bool allow_zero) {

@@ -238,7 +238,8 @@ void read_run(const Table& run, Scene& s) {
   s.dt = run.optional_number("dt");
   if (s.dt && !(*s.dt > 0.0)) run.fail(*run.get("dt"), "dt", "must be > 0, got " + fmt(*s.dt));
   s.tol = run.optional_number("tol");
-  if (s.tol && !(*s.tol > 0.0)) run.fail(*run.get("tol"), "tol", "must be > 0, got " + fmt(*s.tol));
+  if (s.tol && !(*s.tol > 0.0 && *s.tol < 1.0))
+    run.fail(*run.get("tol"), "tol", "must be in (0, 1) (a relative tolerance), got " + fmt(*s.tol));
 }
 
 }  // namespace
