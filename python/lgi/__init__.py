@@ -12,6 +12,7 @@ command line `lgi` (python/README.md):
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
 sweep(), indicators(), tangent_flow(), spectral_statistics() (docs/spectral_statistics.md), quantum_spectrum(),
+frequencies() (NAFF, docs/frequency_analysis.md),
 and the atlas of heavy tops (docs/atlas.md): equilibria(),
 bifurcation(), region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
@@ -21,6 +22,7 @@ first, body -> space; matrices row-major. Long calls release the GIL.
 from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_dir, schemes, sweep, tangent_flow
 from ._lgi import spectral_statistics
 from ._lgi import quantum_spectrum
+from ._lgi import frequencies
 from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
@@ -31,6 +33,7 @@ __all__ = [
     "bifurcation",
     "equilibria",
     "exact_free_flow",
+    "frequencies",
     "indicators",
     "poincare",
     "quantum_spectrum",

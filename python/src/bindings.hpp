@@ -25,6 +25,7 @@ void bind_atlas(py::module_& m);       // bind_atlas.cpp: equilibria(), bifurcat
 void bind_indicators(py::module_& m);  // bind_indicators.cpp: indicators(), tangent_flow()
 void bind_spectral(py::module_& m);    // bind_spectral.cpp: spectral_statistics()
 void bind_quantum(py::module_& m);     // bind_quantum.cpp: quantum_spectrum()
+void bind_frequencies(py::module_& m);  // bind_frequencies.cpp: frequencies()
 
 /// lgi.Scene: a scene as read by the command line's scene reader (shared, immutable).
 struct PyScene {

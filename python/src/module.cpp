@@ -55,4 +55,5 @@ PYBIND11_MODULE(_lgi, m) {
   lp::bind_indicators(m);
   lp::bind_spectral(m);
   lp::bind_quantum(m);
+  lp::bind_frequencies(m);
 }
