@@ -8,7 +8,8 @@
 //  - the Lagrange top: the frequency of γ3 = cos θ equals the closed form's
 //    nutation frequency 2π/T_θ (analysis/actions.hpp) to 1e-9;
 //  - consistency with `lgi actions`: NAFF's lines on the Euler and Lagrange
-//    tops are integer combinations of the closed-form ∂H/∂I.
+//    tops are integer combinations of the closed-form ∂H/∂I, on the Kovalevskaya
+//    top of the numerical torus's.
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <catch2/catch.hpp>
 #include <algorithm>
@@ -192,5 +193,22 @@ TEST_CASE("NAFF's lines on the Euler top are combinations of the closed-form dH/
       if (testing::verbose()) std::cout << "gamma line " << n.terms[k].frequency << " amplitude " << n.terms[k].amplitude << '\n';
       CHECK(combination_distance(n.terms[k].frequency, omega_g, omega_l) < 1e-9 * omega_g);
     }
+  }
+}
+
+TEST_CASE("NAFF's lines on the Kovalevskaya top are combinations of the numerical torus's dH/dI", "[frequencies]") {
+  // `lgi actions`' numerical torus (docs/actions.md §3): ω_a = 2πρ/(kT̄), ω_b = 2π/(kT̄) of the reduced 2-torus.
+  const system::Scene scene = testing::shipped_scene("kovalevskaya");
+  const experiments::NumericalTorus torus = experiments::numerical_torus(scene, scene.initial, {});
+  REQUIRE(torus.ok);
+  const double wa = std::abs(torus.omega_a), wb = std::abs(torus.omega_b);
+  const fq::SampledRun r = run(scene, "split-symmetric@kahan-li8", 0.01, 1000.0, {"gamma_3", "angular_momentum_3"});
+  for (std::size_t s = 0; s < 2; ++s) {
+    const fq::NaffResult n = fq::naff_real(r.series[s], r.output_dt, {5, 2});
+    if (testing::verbose())
+      std::cout << "Kovalevskaya leading " << n.terms[0].frequency << " vs omega_b " << wb << ", relative "
+                << relative(n.terms[0].frequency, wb) << '\n';
+    CHECK(relative(n.terms[0].frequency, wb) < 1e-8);  // measured: 2.8e-11 (γ3), 2.0e-9 (Π3)
+    for (std::size_t k = 1; k < 4; ++k) CHECK(combination_distance(n.terms[k].frequency, wa, wb) < 1e-6 * wb);
   }
 }
