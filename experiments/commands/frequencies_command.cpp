@@ -5,7 +5,6 @@
 // run samples them at t0 + k D (analysis/frequency/observable_series.hpp),
 // NAFF gives K terms each (naff.hpp), and the two halves of the run the
 // diffusion index (frequency_diffusion.hpp).
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <numbers>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -56,11 +56,11 @@ void check_flags(const FrequenciesOptions& o) {
                        ": must be a positive number");
   if (o.terms < 1 || o.terms > 100) throw UsageError("--terms: must be between 1 and 100");
   if (o.window_order < 0 || o.window_order > 8) throw UsageError("--window-order: must be between 0 and 8");
-  const auto& names = fq::observable_names();
-  for (const auto& n : o.observables)
-    if (std::find(names.begin(), names.end(), n) == names.end())
-      throw UsageError("--observable: unknown observable '" + n +
-                       "' (angular_momentum_1..3, gamma_1..3, angular_velocity_1..3)");
+  try {
+    fq::components_of(o.observables);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--observable: ") + e.what());
+  }
 }
 
 /// The sampling of the run, checked against the scheme (the flags named in the refusals).
@@ -140,7 +140,7 @@ int run_frequencies(const FrequenciesOptions& o) {
   fq::SampledRun run;
   {
     const InterruptGuard interrupt_guard;
-    run = fq::sample_observables(scene, scheme, s, names, &interrupt_requested);
+    run = fq::sample_observables(scene, scheme, s, fq::components_of(names), &interrupt_requested);
   }
   if (!run.stats.ok) {
     std::cerr << "lgi: " << scheme.name << " on " << scene.file << ": " << run.stats.status << '\n';
@@ -177,7 +177,7 @@ Subcommand add_frequencies_subcommand(CLI::App& app, const CommandContext& conte
   sub->add_option("--t-end", o->t_end, "Length of the run T")->required();
   sub->add_option("--observable", o->observables,
                   "Observables (comma-separated), named as in the trajectory file: angular_momentum_1..3, gamma_1..3, "
-                  "angular_velocity_1..3. Default: all nine")
+                  "angular_velocity_1..3, or a complex pair A+iB of two of them (signed frequencies). Default: the nine")
       ->delimiter(',');
   sub->add_option("--terms", o->terms, "Terms per observable")->capture_default_str();
   sub->add_option("--window-order", o->window_order, "Order p of Laskar's window (error ~ T^-(2p+2))")

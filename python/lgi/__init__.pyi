@@ -224,7 +224,8 @@ def frequencies(
     observable and term, terms by decreasing amplitude) and 'diffusion' (observable, frequency,
     frequency_first_half, frequency_second_half, relative_change, log10_relative_change, mean: one
     row per observable); 'samples' and 'output_dt'. observables: names as in the trajectory file
-    (angular_momentum_1..3, gamma_1..3, angular_velocity_1..3; default all nine). ValueError on bad
+    (angular_momentum_1..3, gamma_1..3, angular_velocity_1..3; default all nine), or complex pairs
+    'A+iB' (signed frequencies). ValueError on bad
     arguments, RuntimeError if the run fails."""
 
 def quantum_spectrum(

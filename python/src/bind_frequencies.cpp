@@ -82,11 +82,12 @@ py::dict frequencies(const py::object& scene_arg, double t_end, const std::optio
   s.output_dt = positive(output_dt, s.dt, "output_dt");
   s.tol = positive(tol, scene->tol.value_or(1e-10), "tol");
   const std::vector<std::string> observables = names ? *names : fq::observable_names();
+  const std::vector<std::string> components = fq::components_of(observables);
   fq::SampledRun run;
   std::vector<fq::ObservableFrequencies> records;
   {
     const py::gil_scoped_release release;
-    run = fq::sample_observables(*scene, scheme, s, observables, nullptr);
+    run = fq::sample_observables(*scene, scheme, s, components, nullptr);
     if (run.stats.ok) records = fq::observable_frequencies(run, observables, {terms, window_order});
   }
   if (!run.stats.ok) throw std::runtime_error(scheme.name + " on " + scene->file + ": " + run.stats.status);

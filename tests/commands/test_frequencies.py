@@ -4,6 +4,7 @@
  - on the free body, the leading frequency of Pi_1 and Pi_2 is 2 pi / T with
    T = 4K(k)/lambda (Landau & Lifshitz §37, scipy's ellipk) to 1e-10, the
    same for both, and the diffusion index of a torus is tiny;
+ - a complex pair A+iB: signed frequencies, the sign flipped with the order;
  - bad input (an unknown observable, a flag out of range, a Cardan scene, a
    scheme that cannot run the scene): one line on stderr and exit 2."""
 import math
@@ -87,3 +88,18 @@ def test_bad_input(tmp_path):
     cardan = os.path.join(SCENES, "cardan_lagrange_upright.toml")
     assert "Cardan" in refused("frequencies", "--scene", cardan, "--t-end", "10", "--out", out)
     assert not os.path.exists(out)
+
+
+def test_complex_pair(tmp_path):
+    """Pi_1 + i Pi_2 on HLW's body: one signed line at -/+ 2 pi / T, its sign flipped with the pair's order."""
+    out = str(tmp_path / "c.h5")
+    lgi("frequencies", "--scene", FREE, "--t-end", "600", "--scheme", "exact", "--dt", "0.02", "--window-order", "2",
+        "--terms", "2", "--observable", "angular_momentum_1+iangular_momentum_2,angular_momentum_2+iangular_momentum_1",
+        "--out", out, "--quiet")
+    d, _ = table(out, "frequencies")
+    exact = free_body_frequency([2.0, 1.0, 2.0 / 3.0], [math.cos(1.1), 0.0, math.sin(1.1)])
+    assert abs(abs(d["frequency"][0]) - exact) <= 1e-10 * exact
+    assert abs(d["frequency"][2] + d["frequency"][0]) <= 1e-13 * exact
+    assert abs(d["amplitude"][2] - d["amplitude"][0]) <= 1e-12 * d["amplitude"][0]
+    assert "energy" in refused("frequencies", "--scene", FREE, "--t-end", "10", "--observable", "gamma_1+ienergy",
+                               "--out", out)

@@ -1,7 +1,7 @@
 """lgi.frequencies (python/README.md, experiments/FREQUENCIES.md): the tables
 of `lgi frequencies` bit for bit on the same run; the Lagrange top's nutation
 frequency against the closed form's period as `lgi actions` writes it (1e-9);
-bad arguments raise ValueError."""
+a complex pair A+iB has signed frequencies; bad arguments raise ValueError."""
 import os
 import subprocess
 
@@ -37,6 +37,17 @@ def test_frequencies_match_the_command(lgi_exe, tmp_path):
     nutation = r["frequencies"]["frequency"][0]
     assert abs(nutation - 2 * np.pi / period) < 1e-9 * nutation
     assert r["samples"] == 30001 and r["diffusion"]["log10_relative_change"][0] < -8
+
+
+def test_complex_pair():
+    """Pi_1 + i Pi_2 of HLW's body turns clockwise: a negative frequency, the same magnitude as Pi_1's."""
+    free = os.path.join(SCENES, "free_body_hlw.toml")
+    r = lgi.frequencies(free, 300.0, observables=["angular_momentum_1+iangular_momentum_2", "angular_momentum_1"],
+                        terms=2, window_order=2, scheme="exact", dt=0.02)
+    f = r["frequencies"]
+    assert f["observable"][0] == "angular_momentum_1+iangular_momentum_2" and f["frequency"][0] < 0
+    assert abs(f["frequency"][0] + f["frequency"][2]) < 1e-10 * f["frequency"][2]
+    assert r["diffusion"]["mean"][0] == 0.0
 
 
 def test_bad_arguments():

@@ -16,19 +16,34 @@ double nearest(const NaffResult& r, double leading) {
   return best;
 }
 
+NaffResult analyse(const std::vector<double>& f, double dt, const NaffOptions& o) { return naff_real(f, dt, o); }
+NaffResult analyse(const std::vector<std::complex<double>>& f, double dt, const NaffOptions& o) {
+  return naff_complex(f, dt, o);
+}
+
+template <class T>
+FrequencyDiffusion halves(const std::vector<T>& f, double dt, const NaffOptions& options, double leading) {
+  const std::size_t half = f.size() / 2;
+  const auto middle = f.begin() + static_cast<std::ptrdiff_t>(half);
+  const std::vector<T> first(f.begin(), middle + 1), second(middle, f.end());
+  FrequencyDiffusion d;
+  d.first_half = nearest(analyse(first, dt, options), leading);
+  d.second_half = nearest(analyse(second, dt, options), leading);
+  d.relative_change = std::abs(d.second_half - d.first_half) / std::abs(d.first_half);
+  d.log10_relative_change = std::log10(d.relative_change);
+  return d;
+}
+
 }  // namespace
 
 FrequencyDiffusion frequency_diffusion(const std::vector<double>& f, double dt, const NaffOptions& options,
                                        double leading) {
-  const std::size_t half = f.size() / 2;
-  const auto middle = f.begin() + static_cast<std::ptrdiff_t>(half);
-  const std::vector<double> first(f.begin(), middle + 1), second(middle, f.end());
-  FrequencyDiffusion d;
-  d.first_half = nearest(naff_real(first, dt, options), leading);
-  d.second_half = nearest(naff_real(second, dt, options), leading);
-  d.relative_change = std::abs(d.second_half - d.first_half) / std::abs(d.first_half);
-  d.log10_relative_change = std::log10(d.relative_change);
-  return d;
+  return halves(f, dt, options, leading);
+}
+
+FrequencyDiffusion frequency_diffusion(const std::vector<std::complex<double>>& f, double dt,
+                                       const NaffOptions& options, double leading) {
+  return halves(f, dt, options, leading);
 }
 
 }  // namespace lgi::experiments::frequency

@@ -3,6 +3,7 @@
 // Laskar, Physica D 67 (1993) 257): the leading frequency measured on the first
 // and on the second half of a run. On a torus both halves give the same
 // frequency to NAFF's precision; a chaotic orbit's frequency drifts.
+#include <complex>
 #include <vector>
 
 #include "experiments/analysis/frequency/naff.hpp"
@@ -19,5 +20,8 @@ struct FrequencyDiffusion {
 /// sample), each analysed with `options`; `leading` is the whole run's leading frequency.
 FrequencyDiffusion frequency_diffusion(const std::vector<double>& f, double dt, const NaffOptions& options,
                                        double leading);
+/// The same for a complex signal (signed frequencies).
+FrequencyDiffusion frequency_diffusion(const std::vector<std::complex<double>>& f, double dt,
+                                       const NaffOptions& options, double leading);
 
 }  // namespace lgi::experiments::frequency

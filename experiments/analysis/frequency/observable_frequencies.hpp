@@ -16,9 +16,12 @@ struct ObservableFrequencies {
   FrequencyDiffusion diffusion;  // leading frequency on the two halves
 };
 
-/// One record per series of `run` (named by `names`, in order); observables that
-/// are constant along the run (no term found) get no terms and NaN diffusion.
-std::vector<ObservableFrequencies> observable_frequencies(const SampledRun& run, const std::vector<std::string>& names,
+/// One record per observable, in order: a real one, or a complex pair "A+iB" analysed as the
+/// complex signal A + iB (signed frequencies: the sense of rotation in the (A, B) plane).
+/// `run` holds the series of components_of(observables), in that order. An observable that is
+/// constant along the run (no term found) gets no terms and NaN diffusion.
+std::vector<ObservableFrequencies> observable_frequencies(const SampledRun& run,
+                                                          const std::vector<std::string>& observables,
                                                           const NaffOptions& options);
 
 }  // namespace lgi::experiments::frequency

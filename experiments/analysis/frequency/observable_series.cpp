@@ -56,6 +56,29 @@ const std::vector<std::string>& observable_names() {
   return names;
 }
 
+std::optional<std::pair<std::string, std::string>> complex_pair(const std::string& observable) {
+  const std::size_t plus = observable.find("+i");
+  if (plus == std::string::npos) return std::nullopt;
+  return std::make_pair(observable.substr(0, plus), observable.substr(plus + 2));
+}
+
+std::vector<std::string> components_of(const std::vector<std::string>& observables) {
+  std::vector<std::string> out;
+  const auto add = [&](const std::string& name) {
+    indices_of({name});  // throws on an unknown name
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  };
+  for (const auto& o : observables) {
+    if (const auto pair = complex_pair(o)) {
+      add(pair->first);
+      add(pair->second);
+    } else {
+      add(o);
+    }
+  }
+  return out;
+}
+
 SampledRun sample_observables(const system::Scene& scene, const integrators::SchemeInfo& scheme,
                               const SamplingSettings& settings, const std::vector<std::string>& names,
                               const std::atomic<bool>* stop) {

@@ -4,6 +4,8 @@
 // the one time loop (integrators/stepper_loop.hpp) with RunConfig::output_times,
 // so the samples lie on t0 + k D whatever the scheme's own steps.
 #include <atomic>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,14 @@ namespace lgi::experiments::frequency {
 /// The names, as in the trajectory file (1-based components): angular_momentum_1..3 (Π),
 /// gamma_1..3 (Γ = Rᵀe3, the vertical in the body frame), angular_velocity_1..3 (Ω).
 const std::vector<std::string>& observable_names();
+
+/// The real observables that `observables` need, each once, in order of first use: a name, or a
+/// complex pair "A+iB" (A + iB, e.g. angular_momentum_1+iangular_momentum_2) of two names.
+/// Throws std::invalid_argument naming an unknown observable.
+std::vector<std::string> components_of(const std::vector<std::string>& observables);
+
+/// The two names of a complex pair "A+iB", or nothing for a real observable.
+std::optional<std::pair<std::string, std::string>> complex_pair(const std::string& observable);
 
 struct SamplingSettings {
   double t_end = 0.0;      // the run is [t0, t0 + K D] with K D ≤ t_end − t0 (whole intervals only)
