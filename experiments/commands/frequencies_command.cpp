@@ -1,10 +1,12 @@
 // lgi frequencies --scene FILE --t-end T [--observable NAME[,NAME...]] [--terms K] [--window-order P]
-//   [--scheme S] [--dt H] [--output-dt D] [--tol TOL] --out FILE.h5 [--force] [--quiet]
+//   [--scheme S] [--dt H] [--output-dt D] [--tol TOL] [--threads N] --out FILE.h5 [--force] [--quiet]
 // Laskar's frequency analysis (NAFF) of chosen observables along the scene's
 // trajectory (experiments/FREQUENCIES.md, docs/frequency_analysis.md): the
 // run samples them at t0 + k D (analysis/frequency/observable_series.hpp),
 // NAFF gives K terms each (naff.hpp), and the two halves of the run the
 // diffusion index (frequency_diffusion.hpp).
+#include <omp.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,7 @@
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
+#include "experiments/cli/thread_count.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/hdf5_support.hpp"
@@ -40,7 +43,7 @@ struct FrequenciesOptions {
   std::string scene, out, scheme = "split-symmetric@kahan-li8";
   std::optional<double> t_end, dt, output_dt, tol;
   std::vector<std::string> observables;
-  int terms = 5, window_order = 1;
+  int terms = 5, window_order = 1, threads = 0;
   bool force = false, quiet = false;
   std::string command_line;
 };
@@ -146,7 +149,8 @@ int run_frequencies(const FrequenciesOptions& o) {
     std::cerr << "lgi: " << scheme.name << " on " << scene.file << ": " << run.stats.status << '\n';
     return run.stats.interrupted ? interrupted_exit_status() : exit_run_failed;
   }
-  const auto records = fq::observable_frequencies(run, names, {o.terms, o.window_order});
+  const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
+  const auto records = fq::observable_frequencies(run, names, {o.terms, o.window_order}, threads);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::map<std::string, std::string> parameters = {
       {"subcommand", "frequencies"}, {"command_line", o.command_line}, {"scene_file", scene.file},
@@ -156,7 +160,7 @@ int run_frequencies(const FrequenciesOptions& o) {
       {"terms", std::to_string(o.terms)}, {"window_order", std::to_string(o.window_order)},
       {"method", "NAFF (Laskar 1990, 1993): window chi_p, FFT peak, Brent, zero of the derivative, Gram-Schmidt; "
                  "real signals as c + sum A cos(w (t - t0) + phi), w > 0; docs/frequency_analysis.md"},
-      {"wall_seconds", format_general(wall, 6)}};
+      {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)}};
   write_table_file(o.out, o.force, "frequencies", term_columns(records), parameters, {diffusion_group(records)});
   if (o.quiet) return exit_ok;
   print_records(records);
@@ -186,6 +190,8 @@ Subcommand add_frequencies_subcommand(CLI::App& app, const CommandContext& conte
   sub->add_option("--dt", o->dt, "Step. Default: the scene's [run] dt");
   sub->add_option("--output-dt", o->output_dt, "Sample spacing D (a whole multiple of a fixed step). Default: --dt");
   sub->add_option("--tol", o->tol, "Tolerance of an adaptive scheme. Default: the scene's [run] tol, else 1e-10");
+  sub->add_option("--threads", o->threads, "OpenMP threads over the observables (default: all cores; at most 64 per core)")
+      ->check(thread_count_check());
   sub->add_option("--out", o->out, "Output file (HDF5); the terms also as CSV beside it")->required();
   add_force_quiet_flags(*sub, *o, "Replace existing output files");
   sub->footer(exit_status_help);

@@ -3,6 +3,7 @@
 // one loop (analysis/frequency/observable_series.hpp), then NAFF and the
 // diffusion index (observable_frequencies.hpp). Bad arguments raise
 // ValueError (the analysis's std::invalid_argument).
+#include <omp.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -88,7 +89,7 @@ py::dict frequencies(const py::object& scene_arg, double t_end, const std::optio
   {
     const py::gil_scoped_release release;
     run = fq::sample_observables(*scene, scheme, s, components, nullptr);
-    if (run.stats.ok) records = fq::observable_frequencies(run, observables, {terms, window_order});
+    if (run.stats.ok) records = fq::observable_frequencies(run, observables, {terms, window_order}, omp_get_max_threads());
   }
   if (!run.stats.ok) throw std::runtime_error(scheme.name + " on " + scene->file + ": " + run.stats.status);
   py::dict d;

@@ -66,11 +66,19 @@ def test_layout_and_free_body(tmp_path):
         assert f.readline().strip().split(",")[:5] == ["observable", "term", "frequency", "amplitude", "phase"]
 
 
-def test_default_observables(tmp_path):
-    out = str(tmp_path / "lt.h5")
-    lgi("frequencies", "--scene", LAGRANGE, "--t-end", "50", "--terms", "2", "--out", out, "--quiet")
-    diff, p = table(out, "frequencies/diffusion")
+def test_default_observables_and_threads(tmp_path):
+    """All nine observables by default; the records do not depend on --threads."""
+    runs = []
+    for threads in ("1", "2"):
+        out = str(tmp_path / f"lt{threads}.h5")
+        lgi("frequencies", "--scene", LAGRANGE, "--t-end", "50", "--terms", "2", "--threads", threads, "--out", out,
+            "--quiet")
+        runs.append((table(out, "frequencies")[0], table(out, "frequencies/diffusion")))
+    (d1, (diff, p)), (d2, (diff2, _)) = runs
     assert len(diff["observable"]) == 9 and p["scheme"] == "split-symmetric@kahan-li8" and p["output_dt"] == "0.01"
+    for k in ("frequency", "amplitude", "phase"):
+        assert np.array_equal(d1[k], d2[k]), k
+    assert np.array_equal(diff["relative_change"], diff2["relative_change"], equal_nan=True)
 
 
 def test_bad_input(tmp_path):

@@ -124,7 +124,8 @@ BAD_NUMBERS = [
     ("frequencies", FREQ, "--window-order", ["-1", "9", "1.5"]),
     ("frequencies", FREQ, "--dt", ["0", "nan", "-0.1"]),
     ("frequencies", FREQ, "--output-dt", ["0", "0.15", "inf"]),
-    ("frequencies", FREQ, "--observable", ["energy", "gamma_4", ""]),
+    ("frequencies", FREQ, "--observable", ["energy", "gamma_4", "", "gamma_1+i"]),
+    ("frequencies", FREQ, "--threads", ["0", "100000"]),
 ]
 for name, base, flag, values in BAD_NUMBERS:
     for v in values:

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <complex>
+#include <cstdint>
+#include <exception>
 #include <limits>
 #include <type_traits>
 
@@ -35,20 +37,30 @@ ObservableFrequencies analysed(const std::string& observable, const std::vector<
 
 std::vector<ObservableFrequencies> observable_frequencies(const SampledRun& run,
                                                           const std::vector<std::string>& observables,
-                                                          const NaffOptions& options) {
+                                                          const NaffOptions& options, int threads) {
   const std::vector<std::string> components = components_of(observables);
-  std::vector<ObservableFrequencies> out;
-  for (const auto& o : observables) {
-    if (const auto pair = complex_pair(o)) {
-      const std::vector<double>& a = series_of(run, components, pair->first);
-      const std::vector<double>& b = series_of(run, components, pair->second);
-      std::vector<std::complex<double>> z(a.size());
-      for (std::size_t i = 0; i < a.size(); ++i) z[i] = {a[i], b[i]};
-      out.push_back(analysed(o, z, run.output_dt, options));
-    } else {
-      out.push_back(analysed(o, series_of(run, components, o), run.output_dt, options));
+  std::vector<ObservableFrequencies> out(observables.size());
+  std::exception_ptr failure;  // an exception may not leave an OpenMP region
+  const auto n = static_cast<std::int64_t>(observables.size());
+#pragma omp parallel for num_threads(std::max(1, threads)) schedule(dynamic, 1)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::string& o = observables[static_cast<std::size_t>(k)];
+    try {
+      if (const auto pair = complex_pair(o)) {
+        const std::vector<double>& a = series_of(run, components, pair->first);
+        const std::vector<double>& b = series_of(run, components, pair->second);
+        std::vector<std::complex<double>> z(a.size());
+        for (std::size_t i = 0; i < a.size(); ++i) z[i] = {a[i], b[i]};
+        out[static_cast<std::size_t>(k)] = analysed(o, z, run.output_dt, options);
+      } else {
+        out[static_cast<std::size_t>(k)] = analysed(o, series_of(run, components, o), run.output_dt, options);
+      }
+    } catch (...) {
+#pragma omp critical(lgi_frequencies_failure)
+      if (!failure) failure = std::current_exception();
     }
   }
+  if (failure) std::rethrow_exception(failure);
   return out;
 }
 
