@@ -9,7 +9,7 @@ const std::vector<CommandFactory>& all_commands() {
       add_long_time_subcommand,  add_singularity_subcommand, add_stress_subcommand,  add_sweep_subcommand,
       add_equilibria_subcommand, add_bifurcation_subcommand, add_poincare_subcommand, add_region_subcommand,
       add_chaos_map_subcommand,  add_actions_subcommand,     add_indicators_subcommand, add_quantum_subcommand,
-      add_periodic_subcommand,
+      add_periodic_subcommand,  add_frequencies_subcommand,
   };
   return table;
 }

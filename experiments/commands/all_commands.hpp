@@ -25,6 +25,7 @@ Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context);
 Subcommand add_indicators_subcommand(CLI::App& app, const CommandContext& context);
 Subcommand add_quantum_subcommand(CLI::App& app, const CommandContext& context);
 Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context);
+Subcommand add_frequencies_subcommand(CLI::App& app, const CommandContext& context);
 
 /// Every subcommand, in `lgi --help` order.
 const std::vector<CommandFactory>& all_commands();

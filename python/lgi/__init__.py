@@ -12,7 +12,8 @@ command line `lgi` (python/README.md):
 
 Functions: schemes(), scenes(), scenes_dir(), simulate(), exact_free_flow(),
 sweep(), indicators(), tangent_flow(), spectral_statistics() (docs/spectral_statistics.md), quantum_spectrum(),
-periodic_orbit(), continue_family() (experiments/PERIODIC.md), and the atlas of heavy tops (docs/atlas.md): equilibria(),
+periodic_orbit(), continue_family() (experiments/PERIODIC.md), frequencies() (NAFF, docs/frequency_analysis.md),
+and the atlas of heavy tops (docs/atlas.md): equilibria(),
 bifurcation(), region(), region_cells(), poincare(); classes: Scene, Stepper, SimulationResult. Units are SI and the
 conventions those of docs/conventions.md: quaternions (w, x, y, z), scalar
 first, body -> space; matrices row-major. Long calls release the GIL.
@@ -22,6 +23,7 @@ from ._lgi import Scene, Stepper, exact_free_flow, indicators, scenes, scenes_di
 from ._lgi import spectral_statistics
 from ._lgi import quantum_spectrum
 from ._lgi import continue_family, periodic_orbit
+from ._lgi import frequencies
 from ._lgi import bifurcation, equilibria, poincare, region, region_cells
 from ._lgi import _simulate
 
@@ -33,6 +35,7 @@ __all__ = [
     "continue_family",
     "equilibria",
     "exact_free_flow",
+    "frequencies",
     "indicators",
     "periodic_orbit",
     "poincare",

@@ -214,6 +214,26 @@ def indicators(
     state), a state file (HDF5/CSV with angular_momentum and gamma) or a dict of (n, 3) arrays;
     a Cardan scene takes None and adds cardan_angles and cardan_momenta (1, 3)."""
 
+def frequencies(
+    scene: SceneLike,
+    t_end: float,
+    observables: Optional[Sequence[str]] = None,
+    terms: int = 5,
+    window_order: int = 1,
+    scheme: str = "split-symmetric@kahan-li8",
+    dt: Optional[float] = None,
+    output_dt: Optional[float] = None,
+    tol: Optional[float] = None,
+) -> dict[str, Any]:
+    """The tables of `lgi frequencies` (experiments/FREQUENCIES.md, docs/frequency_analysis.md):
+    'frequencies' (observable (list of str), term, frequency, amplitude, phase, period: one row per
+    observable and term, terms by decreasing amplitude) and 'diffusion' (observable, frequency,
+    frequency_first_half, frequency_second_half, relative_change, log10_relative_change, mean: one
+    row per observable); 'samples' and 'output_dt'. observables: names as in the trajectory file
+    (angular_momentum_1..3, gamma_1..3, angular_velocity_1..3; default all nine), or complex pairs
+    'A+iB' (signed frequencies). ValueError on bad
+    arguments, RuntimeError if the run fails."""
+
 def quantum_spectrum(
     scene: SceneLike,
     hbar: float,

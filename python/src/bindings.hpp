@@ -26,6 +26,7 @@ void bind_indicators(py::module_& m);  // bind_indicators.cpp: indicators(), tan
 void bind_spectral(py::module_& m);    // bind_spectral.cpp: spectral_statistics()
 void bind_quantum(py::module_& m);     // bind_quantum.cpp: quantum_spectrum()
 void bind_periodic(py::module_& m);    // bind_periodic.cpp: periodic_orbit(), continue_family()
+void bind_frequencies(py::module_& m);  // bind_frequencies.cpp: frequencies()
 
 /// lgi.Scene: a scene as read by the command line's scene reader (shared, immutable).
 struct PyScene {

@@ -56,4 +56,5 @@ PYBIND11_MODULE(_lgi, m) {
   lp::bind_spectral(m);
   lp::bind_quantum(m);
   lp::bind_periodic(m);
+  lp::bind_frequencies(m);
 }

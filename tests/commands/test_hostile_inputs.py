@@ -40,6 +40,7 @@ BIF = ["bifurcation", "--scene", "{HEAVY}"]
 REG = ["region", "--scene", "{KOV}"]
 ACT = ["actions", "--scene", "{KOV}"]
 IND = ["indicators", "--scene", "{FREE}", "--t-end", "0.2", "--dt", "0.1"]
+FREQ = ["frequencies", "--scene", "{FREE}", "--t-end", "2", "--dt", "0.1"]
 SWEEP = ["sweep", "--spec", "{SPEC}"]
 OUT = ["--out", "{OUT}"]
 
@@ -67,7 +68,8 @@ def without(base, flag):
 # Every subcommand that needs --scene refuses its absence, and a scene file that is not there, by name.
 for name, base in (("simulate", SIM), ("work-precision", WP), ("long-time", LT), ("equilibria", EQ),
                    ("bifurcation", BIF), ("poincare", [*POIN, "--ics", "2"]), ("region", [*REG, "--l", "1", "--h", "2"]),
-                   ("chaos-map", [*CMAP, "--ics", "2"]), ("actions", ACT), ("indicators", IND)):
+                   ("chaos-map", [*CMAP, "--ics", "2"]), ("actions", ACT), ("indicators", IND),
+                   ("frequencies", FREQ)):
     CASES.append((f"{name}-no-scene", [name], 2, "--scene"))
     CASES.append((f"{name}-missing-scene-file", [*without(base, "--scene"), "--scene", "{MISSING}", *OUT], 2,
                   "no_such_file"))
@@ -117,6 +119,13 @@ BAD_NUMBERS = [
     ("sweep", SWEEP, "--simd", ["bogus"]),
     ("indicators", IND, "--threads", ["0", "100000"]),
     ("indicators", IND, "--rtol", ["abc"]),
+    ("frequencies", FREQ, "--t-end", ["0", "-1", "nan", "inf", "abc", "1", "1e12"]),
+    ("frequencies", FREQ, "--terms", ["0", "101", "abc"]),
+    ("frequencies", FREQ, "--window-order", ["-1", "9", "1.5"]),
+    ("frequencies", FREQ, "--dt", ["0", "nan", "-0.1"]),
+    ("frequencies", FREQ, "--output-dt", ["0", "0.15", "inf"]),
+    ("frequencies", FREQ, "--observable", ["energy", "gamma_4", "", "gamma_1+i"]),
+    ("frequencies", FREQ, "--threads", ["0", "100000"]),
 ]
 for name, base, flag, values in BAD_NUMBERS:
     for v in values:
