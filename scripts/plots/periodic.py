@@ -208,7 +208,7 @@ def plane_window(tables, branches, args):
         if not args.l_range:
             l0, l1 = min(l0, ls.min()), max(l1, ls.max())
         return l0, l1, h0, h1
-    span_l, span_h = max(ls.max() - ls.min(), 1.0), max(hs.max() - hs.min(), 1e-3)
+    span_l, span_h = max(ls.max() - ls.min(), 0.4), max(hs.max() - hs.min(), 1e-3)
     l0, l1 = args.l_range or (ls.min() - 0.5 * span_l, ls.max() + 0.5 * span_l)
     h0, h1 = args.h_range or (hs.min() - 0.1 * span_h, hs.max() + 0.1 * span_h)
     return l0, l1, h0, h1
@@ -219,7 +219,7 @@ def plane_figure(tables, branches, args, stem):
     with it a second panel enlarges the families."""
     window = plane_window(tables, branches, args)
     ncols = 2 if branches is not None else 1
-    fig, axes = c.plt.subplots(1, ncols, figsize=(4.2 * ncols, 3.4), squeeze=False)
+    fig, axes = c.plt.subplots(1, ncols, figsize=(8.4, 3.4) if ncols == 2 else (4.4, 3.4), squeeze=False)
     ax = axes[0, 0]
     extra = []
     if branches is not None:
@@ -231,7 +231,7 @@ def plane_figure(tables, branches, args, stem):
     else:
         ax.set_title("families of periodic orbits (vertical segments at their $\\ell$)", fontsize=8)
     nfam = max(len(np.unique(t["family"])) for t in tables)
-    dl = 0.006 * (window[1] - window[0])
+    dl = (0.006 if branches is not None else 0.03) * (window[1] - window[0])  # apart, yet near their l
     plane_segments(ax, tables, dl, names=branches is None)
     ax.set_xlim(window[0], window[1])
     ax.set_ylim(window[2], window[3])
@@ -255,8 +255,11 @@ def plane_figure(tables, branches, args, stem):
     ax.set_ylabel("$h$")
     merged = {k: np.concatenate([t[k] for t in tables]) for k in ("stability", "event", "parent")}
     handles, labels = legend_handles(merged, extra, "periodic orbits: ")
-    fig.tight_layout(rect=(0, 0.16, 1, 1))
-    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, 0.0))
+    if ncols == 2:
+        fig.tight_layout(rect=(0, 0.16, 1, 1))
+        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, 0.0))
+    else:
+        ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=6.5, borderaxespad=0)
     c.save(fig, args.out, f"periodic_plane_{stem}")
 
 
