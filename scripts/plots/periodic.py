@@ -189,6 +189,10 @@ def plane_segments(ax, tables, dl, names=False):
         for i, (fam, rows) in enumerate(families(t)):
             x[rows] += i * dl
             draw_coloured(ax, x, t["h"], t, rows, t["parent"][rows[0]] >= 0, lw=2.2)
+            if i:  # where the family really starts: a dot at its l, tied to the shifted segment
+                r = rows[0]
+                ax.plot([t["l"][r], x[r]], [t["h"][r], t["h"][r]], color="0.3", lw=0.6, ls=":", zorder=4)
+                ax.plot(t["l"][r], t["h"][r], "o", ms=2.2, color="0.2", zorder=4)
             if names:
                 top = rows[np.argmax(t["h"][rows])]
                 ax.annotate(str(fam), (x[top], t["h"][top]), fontsize=6, ha="center", xytext=(0, 3),
