@@ -20,10 +20,15 @@ file>.{pdf,png}: the families in the (l, h) plane, each a vertical segment at
 its l from its least to its largest h, coloured by class along it, events
 marked. With --branches (a file of `lgi bifurcation`) the segments are drawn
 over its bifurcation diagram (scripts/plots/bifurcation.py's drawing; the
-window as there, or --l-range / --h-range / --l-nonneg), with an inset that
+window as there, or --l-range / --h-range / --l-nonneg), beside a panel that
 enlarges the families. Families of one file share an l: each is drawn a
 little to the right of the previous one, so that overlapping families stay
-apart (the offset is a drawing aid, not a value of l).
+apart (the offset is a drawing aid, not a value of l), a dotted line tying
+its first orbit to its true (l, h), a black dot.
+
+Refused with one line on stderr and exit 1: a file without /periodic (or
+unreadable), a stability class other than the four, a --branches file
+without /equilibria.
 """
 import os
 import sys

@@ -2,7 +2,8 @@
 """Poincaré sections from `lgi poincare` files (experiments/POINCARE.md: /events
 phi, theta, sheet; /sweep megno where computed).
 
-Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S] SECTION.h5 ...
+Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S]
+                   [--periodic PERIODIC.h5 [--periodic-h-tol D]] SECTION.h5 ...
 
 (MEGNO colours are drawn on a grey ground, where the chaotic orbits' yellow shows.)
 
@@ -21,6 +22,11 @@ pieces: the two copies of the shape torus (q3, q2), told apart by the sign
 of dq3/dt, and the two cylinders (q3, psi) at q2 = 0 and pi, psi the
 direction of the shape velocity; the title says what is fixed (p1 and h where
 p1 is an integral, else h and the orbits' initial p1).
+
+--periodic marks the orbits of an `lgi periodic` file (experiments/PERIODIC.md)
+at the section's l, of each family the one nearest h within --periodic-h-tol,
+where they cross the section (periodic_crossings.py): open circles elliptic,
+red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate.
 """
 import os
 import sys
