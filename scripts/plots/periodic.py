@@ -159,6 +159,18 @@ def period_figure(path, t, stem, out):
     c.save(fig, out, f"periodic_period_{stem}")
 
 
+def symlog_ticks(ax, top):
+    """A y axis linear within +-4 (the classes change at +-2) and logarithmic beyond, labelled
+    at 0, +-2, +-4 and the decades +-10^k in view."""
+    from matplotlib import ticker
+    ax.set_yscale("symlog", linthresh=4, linscale=1.5)
+    decades = 10.0 ** np.arange(1, int(np.ceil(np.log10(top))) + 1)
+    ticks = np.concatenate([-decades[::-1], [-4, -2, 0, 2, 4], decades])
+    ax.yaxis.set_major_locator(ticker.FixedLocator(ticks))
+    ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.yaxis.set_minor_locator(ticker.NullLocator())
+
+
 def trace_figure(path, t, stem, out):
     if "reduced_trace" not in t:
         print(f"periodic.py: {path}: no /periodic/reduced_trace (an older file): periodic_trace_{stem} not drawn",
@@ -175,7 +187,7 @@ def trace_figure(path, t, stem, out):
     for v in (2, -2):
         ax.axhline(v, color="k", lw=0.8, ls=":", zorder=2)
     if np.nanmax(np.abs(tr)) > 4:
-        ax.set_yscale("symlog", linthresh=4, linscale=1.5)
+        symlog_ticks(ax, np.nanmax(np.abs(tr)))
     ax.set_xlabel("$h$")
     ax.set_ylabel("tr $P$ (reduced monodromy)")
     ax.set_title(title(path, t) + ": elliptic between the lines tr $P = \\pm 2$", fontsize=8)
