@@ -269,7 +269,7 @@ def plane_figure(tables, branches, args, stem):
         plane_segments(last, tables, dl, names=True)
         last.set_xlim(zoom[0], zoom[1])
         last.set_ylim(zoom[2], zoom[3])
-        last.set_title("enlarged (families numbered; offset in $\\ell$ per family)", fontsize=7.5)
+        last.set_title("enlarged: families numbered, shifted in $\\ell$", fontsize=7.5)
         ax.indicate_inset_zoom(last, edgecolor="0.4")
     for a in axes.ravel():
         a.set_xlabel("$\\ell = \\Pi\\cdot\\Gamma$")
@@ -277,7 +277,8 @@ def plane_figure(tables, branches, args, stem):
     merged = {k: np.concatenate([t[k] for t in tables]) for k in ("stability", "event", "parent")}
     handles, labels = legend_handles(merged, extra, "periodic orbits: ")
     if ncols == 2:
-        fig.tight_layout(rect=(0, 0.16, 1, 1))
+        # fixed margins: tight_layout would count the zoom's connector lines and squeeze the panels
+        fig.subplots_adjust(left=0.07, right=0.98, bottom=0.3, top=0.86, wspace=0.22)
         fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, 0.0))
     else:
         ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=6.5, borderaxespad=0)
