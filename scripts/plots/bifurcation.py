@@ -330,10 +330,11 @@ def appelrot_figure(f, stem, out, args):
     c.save(fig, out, f"appelrot_{stem}")
 
 
-def bifurcation_figure(t, J, w, name, labels, args, stem):
-    window = default_window(t, args)
+def draw_branches(ax, t, J, w, labels, window):
+    """The branches of /equilibria t on ax, coloured by class, folds and class changes
+    marked, named, with the closed-form overlays; the legend entries of the classes and
+    marks. Also drawn under the families of scripts/plots/periodic.py."""
     l0, l1, h0, h1 = window
-    fig, ax = c.plt.subplots(figsize=(5.6, 3.6))
     overlays(ax, J, w, l0, l1)
     cc = t.get("class_change", np.zeros_like(t["fold"]))
     for b in np.unique(t["branch"]):
@@ -349,6 +350,13 @@ def bifurcation_figure(t, J, w, name, labels, args, stem):
     for k, (label, colour) in CLASSES.items():
         ax.plot([], [], color=colour, label=label)
     label_branches(ax, t, labels, window)
+
+
+def bifurcation_figure(t, J, w, name, labels, args, stem):
+    window = default_window(t, args)
+    l0, l1, h0, h1 = window
+    fig, ax = c.plt.subplots(figsize=(5.6, 3.6))
+    draw_branches(ax, t, J, w, labels, window)
     ax.set_xlim(l0, l1)
     ax.set_ylim(h0, h1)
     ax.set_xlabel("$\\ell = \\Pi\\cdot\\Gamma$")

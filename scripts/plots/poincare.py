@@ -2,7 +2,8 @@
 """Poincaré sections from `lgi poincare` files (experiments/POINCARE.md: /events
 phi, theta, sheet; /sweep megno where computed).
 
-Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S] SECTION.h5 ...
+Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S]
+                   [--periodic PERIODIC.h5 [--periodic-h-tol D]] SECTION.h5 ...
 
 (MEGNO colours are drawn on a grey ground, where the chaotic orbits' yellow shows.)
 
@@ -21,13 +22,20 @@ pieces: the two copies of the shape torus (q3, q2), told apart by the sign
 of dq3/dt, and the two cylinders (q3, psi) at q2 = 0 and pi, psi the
 direction of the shape velocity; the title says what is fixed (p1 and h where
 p1 is an integral, else h and the orbits' initial p1).
+
+--periodic marks the orbits of an `lgi periodic` file (experiments/PERIODIC.md)
+at the section's l, of each family the one nearest h within --periodic-h-tol,
+where they cross the section (periodic_crossings.py): open circles elliptic,
+red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate.
 """
 import os
+import sys
 import tomllib
 
 import numpy as np
 
 import lgi_plot_common as c
+import periodic_crossings as pc
 
 
 PIECES = ((1, "torus copy $\\dot q_3 > 0$", "$q_2$"), (-1, "torus copy $\\dot q_3 < 0$", "$q_2$"),
@@ -91,12 +99,47 @@ def draw_cardan(f, path, args):
     c.save(fig, args.out, f"poincare_{stem}")
 
 
-def section_frame(e):
-    """f1, f2 of analysis/poincare_section.cpp: f1 the body axis least aligned with e, made orthogonal."""
-    k = int(np.argmin(np.abs(e)))
-    f1 = np.eye(3)[k] - e[k] * e
-    f1 /= np.linalg.norm(f1)
-    return f1, np.cross(e, f1)
+MARKS = {"elliptic": ("elliptic periodic orbit", "o", "white", "k"),
+         "hyperbolic": ("hyperbolic periodic orbit", "X", "tab:red", "k"),
+         "degenerate": ("degenerate periodic orbit (resonant torus)", "D", "0.6", "k")}
+
+
+def mark_periodic(ax, par, path, args):
+    """The crossings of the orbits of --periodic at this l and h (to --periodic-h-tol) with
+    this section (periodic_crossings.py), one marker per class; how many are drawn."""
+    try:
+        table = c.load_table(args.periodic, "periodic")
+        pars = c.load_attrs(args.periodic, "parameters")
+    except OSError as e:
+        c.die(f"--periodic: {args.periodic}: cannot read ({e})")
+    need = ("family", "l", "h", "period", "angular_momentum", "gamma", "stability")
+    if table is None or any(k not in table for k in need) or "scene_toml" not in pars:
+        c.die(f"--periodic: {args.periodic}: no /periodic table with a scene (not a file written by lgi periodic)")
+    table.setdefault("event", np.array(["none"] * len(table["h"]), dtype=object))
+    table.setdefault("degenerate", np.zeros(len(table["h"]), dtype=int))
+    l, h = float(par.get("l", 0.0)), float(par.get("h", 0.0))
+    J, w = pc.body_of(pars["scene_toml"])
+    J_sec, w_sec = pc.body_of(par["scene_toml"])
+    if not (np.allclose(J, J_sec, rtol=1e-12, atol=0) and np.allclose(w, w_sec, rtol=1e-12, atol=0)):
+        c.die(f"--periodic: {args.periodic}: another top than the section's {path} (inertia or m g chi differ)")
+    e = np.array([float(par.get(f"axis_{k}", 0.0)) for k in (1, 2, 3)])
+    e /= np.linalg.norm(e)
+    richter = par.get("section", "richter") == "richter"
+    rows = pc.orbits_at(table, l, h, args.periodic_h_tol)
+    points = {k: [] for k in MARKS}
+    for r in rows:
+        x0 = np.concatenate([table["angular_momentum"].reshape(-1, 3)[r], table["gamma"].reshape(-1, 3)[r]])
+        kind = ("degenerate" if table["degenerate"][r] else
+                "elliptic" if table["stability"][r] == "elliptic" else "hyperbolic")
+        for phi, theta, sheet in pc.crossings(x0, float(table["period"][r]), J, w, e, richter):
+            points[kind].append((phi, theta if not richter or sheet > 0 else 2 * np.pi - theta))
+    for kind, (label, marker, face, edge) in MARKS.items():
+        if points[kind]:
+            x, y = np.array(points[kind]).T
+            ax.plot(x, y, marker, ls="none", mfc=face, mec=edge, ms=6, mew=0.9, zorder=5, label=label)
+    print(f"poincare.py: {path}: {len(rows)} periodic orbit(s) of {args.periodic} within "
+          f"{c.num(args.periodic_h_tol)} of h = {c.num(h)} at l = {c.num(l)}", file=sys.stderr)
+    return len(rows)
 
 
 def region_boundary(ax, par):
@@ -109,7 +152,7 @@ def region_boundary(ax, par):
     e = np.array([float(par.get(f"axis_{k}", 0.0)) for k in (1, 2, 3)])
     if not np.linalg.norm(e):
         return
-    f1, f2 = section_frame(e / np.linalg.norm(e))
+    f1, f2 = pc.section_frame(e / np.linalg.norm(e))
     phi, th = np.meshgrid(np.linspace(0, 2 * np.pi, 361), np.linspace(0, np.pi, 181))
     G = (np.sin(th) * np.cos(phi))[..., None] * f1 + (np.sin(th) * np.sin(phi))[..., None] * f2 \
         + np.cos(th)[..., None] * e
@@ -120,7 +163,6 @@ def region_boundary(ax, par):
     for y in (th, 2 * np.pi - th):
         ax.contour(phi, y, U, levels=[h], colors="k", linewidths=0.8)
     ax.plot([], [], color="k", lw=0.8, label="$U_\\ell = h$ (accessible region)")
-    ax.legend(loc="lower right", fontsize=6.5)
 
 
 def main():
@@ -129,12 +171,20 @@ def main():
                    help="colour of the dots: the orbit's index (default), its MEGNO <Y>, or the crossing's direction")
     p.add_argument("--dot-size", type=float,
                    help="dot area in points^2 (default 0.6 by orbit, 1.2 by MEGNO or direction; 2.5 on the Cardan pieces)")
+    p.add_argument("--periodic", metavar="PERIODIC.h5",
+                   help="a file of lgi periodic: its orbits at the section's l and h marked where they cross it")
+    p.add_argument("--periodic-h-tol", type=float, default=1e-2, metavar="D",
+                   help="--periodic: the orbit of each family nearest h, if within D of it (default 0.01)")
     args = p.parse_args()
     if not args.files:
         c.die("give at least one file written by lgi poincare")
+    if not (args.periodic_h_tol >= 0 and np.isfinite(args.periodic_h_tol)):
+        c.die(f"--periodic-h-tol: {args.periodic_h_tol}: expected a finite number >= 0")
     for path in args.files:
         with c.h5py.File(path, "r") as f:
             if "events" in f and "piece" in f["events"]:
+                if args.periodic:
+                    c.die(f"--periodic: {path} is a section of a Cardan top; periodic orbits are of heavy tops")
                 draw_cardan(f, path, args)
                 continue
             if "events" not in f or "phi" not in f["events"]:
@@ -162,6 +212,10 @@ def main():
             region_boundary(ax, par)
         else:
             ax.set_ylabel("angle of $\\Pi$ from the axis")
+        if args.periodic:
+            mark_periodic(ax, par, path, args)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(loc="lower right", fontsize=6.5)
         seeds = " (orbits from --seeds)" if par.get("seeds_file") else ""
         ax.set_title(f"{c.scene_label(par)}: $\\ell$ = {c.num(par.get('l', 0))}, h = {c.num(par.get('h', 0))}{seeds}",
                      fontsize=8)
