@@ -110,7 +110,9 @@ TEST_CASE("Lyapunov families of a general top: periods, residuals, multipliers",
   s.h_step = 0.02;
   bool rerun_done = false;
   for (const double l : {2.2, 3.0}) {
-    const auto rows = experiments::lyapunov_families(body, l, s);
+    std::vector<std::string> failures;
+    const auto rows = experiments::lyapunov_families(body, l, s, failures);
+    CHECK(failures.empty());
     const auto eqs = experiments::equilibria_at(body, l).rows;
     int stable_modes = 0;
     for (const auto& e : eqs)
@@ -148,7 +150,8 @@ TEST_CASE("Lagrange top: the carrousels' families are degenerate, periods multip
   s.steps = 1;
   s.h_step = 0.02;
   int degenerate = 0;
-  for (const auto& r : experiments::lyapunov_families(body, 3.0, s)) {
+  std::vector<std::string> failures;
+  for (const auto& r : experiments::lyapunov_families(body, 3.0, s, failures)) {
     CHECK(r.orbit.residual <= 1e-10);
     if (!r.orbit.degenerate) continue;
     ++degenerate;
@@ -174,7 +177,8 @@ TEST_CASE("A period doubling on a family of Richter's top, and the doubled famil
   s.h_step = 0.02;
   s.switch_amplitude = 2e-4;
   const double h = experiments::euler_poisson_invariants(body, x).value(0);
-  const auto rows = experiments::continue_family(body, x, 4.061522325732049, h, 2.2, 1.0, 0, s);
+  std::vector<std::string> failures;
+  const auto rows = experiments::continue_family(body, x, 4.061522325732049, h, 2.2, 1.0, 0, s, failures);
   const experiments::FamilyOrbit* pd = nullptr;
   for (const auto& r : rows) {
     INFO("family " << r.family << " index " << r.index << " h " << r.orbit.h << " event " << r.event);
@@ -194,8 +198,7 @@ TEST_CASE("A period doubling on a family of Richter's top, and the doubled famil
   CHECK(nearest <= 1e-6);
   CHECK(std::abs(independent_monodromy(body, pd->orbit.x0, pd->orbit.period).trace() - 2.0) <= 1e-6);
   // The doubled family leaves it with period ≈ 2T, its first two orbits (at
-  // amplitudes ε and 2ε off the doubled orbit) on one side of h_pd, the
-  // first nearer.
+  // amplitudes ε and 2ε along the eigenvector of −1) at h − h_pd ∝ ε²: ratio 4.
   std::vector<experiments::PeriodicOrbit> doubled;
   for (const auto& r : rows)
     if (r.parent == 0) doubled.push_back(r.orbit);
@@ -206,7 +209,7 @@ TEST_CASE("A period doubling on a family of Richter's top, and the doubled famil
   const double dh1 = doubled[0].h - pd->orbit.h, dh2 = doubled[1].h - pd->orbit.h;
   CHECK(std::abs(dh1) <= 1e-3);
   CHECK(dh1 * dh2 > 0.0);
-  CHECK(std::abs(dh1) < std::abs(dh2));
+  CHECK(std::abs(dh2 / dh1 - 4.0) <= 0.5);
 }
 
 TEST_CASE("A fold on a family of Richter's top at l = 3", "[periodic]") {
@@ -220,7 +223,8 @@ TEST_CASE("A fold on a family of Richter's top at l = 3", "[periodic]") {
   s.steps = 4;
   s.h_step = 0.06;
   const double h = experiments::euler_poisson_invariants(body, x).value(0);
-  const auto rows = experiments::continue_family(body, x, 4.3128228985108725, h, 3.0, -1.0, 0, s);
+  std::vector<std::string> failures;
+  const auto rows = experiments::continue_family(body, x, 4.3128228985108725, h, 3.0, -1.0, 0, s, failures);
   std::size_t fold = rows.size();
   for (std::size_t k = 0; k < rows.size(); ++k) {
     CHECK(rows[k].orbit.residual <= 1e-10);

@@ -96,7 +96,8 @@ std::vector<TableColumn> periodic_columns(const std::vector<FamilyOrbit>& rows) 
                                 {"stability", 1, false, {}, {}, {}, true}, {"event", 1, false, {}, {}, {}, true},
                                 {"degenerate", 1, true}, {"equilibrium", 1, true}, {"omega"},
                                 {"trivial_deviation"}, {"product_deviation"}, {"parent", 1, true},
-                                {"reduced_trace"}, {"invariance_defect"}};
+                                {"reduced_trace"}, {"invariance_defect"},
+                                {"family_end", 1, false, {}, {}, {}, true}};
   for (const auto& r : rows) {
     const PeriodicOrbit& o = r.orbit;
     c[0].whole.push_back(r.family), c[1].whole.push_back(r.index);
@@ -108,8 +109,15 @@ std::vector<TableColumn> periodic_columns(const std::vector<FamilyOrbit>& rows) 
     c[11].whole.push_back(o.degenerate ? 1 : 0), c[12].whole.push_back(r.equilibrium);
     c[13].real.push_back(r.omega), c[14].real.push_back(o.trivial_deviation), c[15].real.push_back(o.product_deviation);
     c[16].whole.push_back(r.parent), c[17].real.push_back(o.reduced_trace), c[18].real.push_back(o.invariance_defect);
+    c[19].text.push_back(r.family_end);
   }
   return c;
+}
+
+std::string failures_text(const std::vector<std::string>& failures) {
+  std::string t = failures.empty() ? "none" : "";
+  for (const std::string& f : failures) t += (t.empty() ? "" : "; ") + f;
+  return t;
 }
 
 int run_periodic(const PeriodicOptions& o) {
@@ -123,13 +131,14 @@ int run_periodic(const PeriodicOptions& o) {
   s.h_min = h_min, s.h_max = h_max;
   s.locate_events = !o.no_events, s.switch_branches = !o.no_branch_switching;
   std::vector<FamilyOrbit> rows;
+  std::vector<std::string> failures;
   if (o.from_equilibria) {
-    rows = lyapunov_families(body, *o.l, s);
+    rows = lyapunov_families(body, *o.l, s, failures);
   } else {
     int family = 0;
     for (const auto& [x, T] : read_seeds(o.seed_file)) {
       const double h = euler_poisson_invariants(body, x).value(0);
-      const auto f = continue_family(body, x, T, h, *o.l, 1.0, family, s);
+      const auto f = continue_family(body, x, T, h, *o.l, 1.0, family, s, failures);
       for (const auto& r : f) family = std::max(family, r.family + 1);
       rows.insert(rows.end(), f.begin(), f.end());
     }
@@ -141,7 +150,10 @@ int run_periodic(const PeriodicOptions& o) {
                     {"integrator", "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"},
                     {"continuation", "pseudo-arclength in (x0, T, h) after a first natural step in h"},
                     {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
-                    {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"}});
+                    {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
+                    {"failures", failures_text(failures)}});
+  // Starts that failed are said even with --quiet: they are missing families.
+  for (const std::string& f : failures) std::cerr << "lgi: periodic: no family from " << f << '\n';
   if (o.quiet) return exit_ok;
   int degenerate = 0;
   for (const auto& r : rows) {
@@ -149,6 +161,7 @@ int run_periodic(const PeriodicOptions& o) {
                 r.orbit.h, r.orbit.period, r.orbit.residual, r.orbit.stability.c_str(),
                 r.orbit.degenerate ? " degenerate" : "", r.event == "none" ? "" : " event=", r.event == "none" ? "" : r.event.c_str());
     degenerate += r.orbit.degenerate ? 1 : 0;
+    if (!r.family_end.empty()) std::printf("family=%d ended: %s\n", r.family, r.family_end.c_str());
   }
   if (degenerate)
     std::printf("note: %d orbit(s) degenerate: the Newton system is rank-deficient and all multipliers are at 1; "

@@ -36,7 +36,7 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
   std::vector<std::int64_t> family(n), index(n), degenerate(n), equilibrium(n), parent(n);
   std::vector<double> l(n), h(n), period(n), pi(3 * n), gamma(3 * n), residual(n), mult(12 * n), omega(n), trivial(n),
       product(n), trace(n), defect(n);
-  py::list stability, event;
+  py::list stability, event, family_end;
   for (std::size_t i = 0; i < n; ++i) {
     const auto& r = rows[i];
     const auto& o = r.orbit;
@@ -46,7 +46,7 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
     defect[i] = o.invariance_defect;
     for (int k = 0; k < 3; ++k) pi[3 * i + k] = o.x0(k), gamma[3 * i + k] = o.x0(k + 3);
     for (std::size_t k = 0; k < 6; ++k) mult[12 * i + 2 * k] = o.multipliers[k].real(), mult[12 * i + 2 * k + 1] = o.multipliers[k].imag();
-    stability.append(o.stability), event.append(r.event);
+    stability.append(o.stability), event.append(r.event), family_end.append(r.family_end);
   }
   const auto N = static_cast<py::ssize_t>(n);
   py::dict d;
@@ -55,7 +55,7 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
   d["period"] = to_numpy(std::move(period), {N});
   d["angular_momentum"] = to_numpy(std::move(pi), {N, 3}), d["gamma"] = to_numpy(std::move(gamma), {N, 3});
   d["residual"] = to_numpy(std::move(residual), {N}), d["multipliers"] = to_numpy(std::move(mult), {N, 6, 2});
-  d["stability"] = stability, d["event"] = event;
+  d["stability"] = stability, d["event"] = event, d["family_end"] = family_end;
   d["degenerate"] = to_numpy(std::move(degenerate), {N}), d["equilibrium"] = to_numpy(std::move(equilibrium), {N});
   d["omega"] = to_numpy(std::move(omega), {N}), d["trivial_deviation"] = to_numpy(std::move(trivial), {N});
   d["product_deviation"] = to_numpy(std::move(product), {N}), d["parent"] = to_numpy(std::move(parent), {N});
@@ -70,6 +70,8 @@ py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_m
   const ex::Vec6 x = point_of(angular_momentum, gamma);
   if (!(period > 0.0) || !std::isfinite(period)) throw py::value_error("period: must be a positive number");
   if (!(dt > 0.0) || !(dt <= 1.0)) throw py::value_error("dt: must be in (0, 1]");
+  if (period / dt > 1e8) throw py::value_error("period, dt: more than 1e8 steps a shot");
+  if ((h && !std::isfinite(*h)) || (l && !std::isfinite(*l))) throw py::value_error("h, l: must be finite numbers");
   const auto inv = ex::euler_poisson_invariants(body, x).value;
   ex::ShootingSettings s;
   s.dt = dt;
@@ -105,19 +107,24 @@ py::dict continue_family(const py::object& scene_arg, double l, const py::object
     s.h_min = h_range->first, s.h_max = h_range->second;
   }
   std::vector<ex::FamilyOrbit> rows;
+  std::vector<std::string> failures;
   if (seed.is_none()) {
     const py::gil_scoped_release release;
-    rows = ex::lyapunov_families(body, l, s);
+    rows = ex::lyapunov_families(body, l, s, failures);
   } else {
+    if (!py::isinstance<py::tuple>(seed) && !py::isinstance<py::list>(seed))
+      throw py::value_error("seed: expected (angular_momentum, gamma, period)");
     const auto t = seed.cast<py::tuple>();
     if (t.size() != 3) throw py::value_error("seed: expected (angular_momentum, gamma, period)");
     const ex::Vec6 x = point_of(t[0], t[1]);
     const double T = t[2].cast<double>();
     if (!(T > 0.0) || !std::isfinite(T)) throw py::value_error("seed: the period must be a positive number");
     const py::gil_scoped_release release;
-    rows = ex::continue_family(body, x, T, ex::euler_poisson_invariants(body, x).value(0), l, 1.0, 0, s);
+    rows = ex::continue_family(body, x, T, ex::euler_poisson_invariants(body, x).value(0), l, 1.0, 0, s, failures);
   }
-  return family_columns(rows);
+  py::dict d = family_columns(rows);
+  d["failures"] = failures;
+  return d;
 }
 
 }  // namespace

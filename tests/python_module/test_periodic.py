@@ -35,6 +35,14 @@ def test_family_through_a_period_doubling():
     assert one["converged"] and one["residual"][0] <= 1e-10
     assert one["monodromy"].shape == (6, 6)
     assert abs(np.trace(one["monodromy"]) - 4.0 - one["reduced_trace"][0]) <= 1e-8
+    # M maps the flow direction to itself (and is not its transpose): M f = f.
+    scene = lgi.Scene.from_file(RICHTER)
+    w = scene.mass * tomllib.loads(scene.toml)["gravity"]["g"] * np.asarray(scene.center_of_mass)
+    pi, g = one["angular_momentum"][0], one["gamma"][0]
+    om = np.linalg.solve(np.asarray(scene.inertia), pi)
+    f = np.concatenate([np.cross(pi, om) + np.cross(g, w), np.cross(g, om)])
+    assert np.linalg.norm(one["monodromy"] @ f - f) <= 1e-6 * np.linalg.norm(f)
+    assert fam["family_end"][-1] != "" and fam["failures"] == []
 
 
 def test_an_independent_integrator_closes_the_orbit():

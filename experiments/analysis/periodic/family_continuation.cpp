@@ -1,7 +1,9 @@
 #include "experiments/analysis/periodic/family_continuation.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 
 namespace lgi::experiments {
@@ -25,27 +27,34 @@ FamilyOrbit next_row(const FamilyOrbit& last, const PeriodicOrbit& o) {
   return r;
 }
 
+std::string at_h(double h) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.9g", h);
+  return buf;
+}
+
 /// The first step, natural in h: from one orbit (and its equilibrium, if any).
-bool natural_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double dh, const Vec6* xe, double h_e,
-                  const FamilySettings& s) {
+/// Returns "" or why the family ends.
+std::string natural_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double dh, const Vec6* xe,
+                         double h_e, const FamilySettings& s) {
   const FamilyOrbit last = rows.back();
   for (int tries = 0; tries < 5; ++tries, dh *= 0.5) {
     const double h = last.orbit.h + dh;
-    if (!in_range(h, s)) return false;
+    if (!in_range(h, s)) return "h range reached";
     Vec6 x = last.orbit.x0;
     if (xe) x = *xe + std::sqrt((h - h_e) / (last.orbit.h - h_e)) * (last.orbit.x0 - *xe);  // amplitude ∝ √(h − h_e)
     const PeriodicOrbit o = correct_orbit(body, x, last.orbit.period, h, last.orbit.l, s.shooting);
     if (o.converged) {
       rows.push_back(next_row(last, o));
-      return true;
+      return "";
     }
   }
-  return false;
+  return "the corrector failed at h = " + at_h(last.orbit.h + 2.0 * dh) + " after 5 halvings of the first step";
 }
 
-/// One pseudo-arclength step of length ds (halved up to four times).
-bool arclength_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double& ds, double ds0,
-                    const FamilySettings& s) {
+/// One pseudo-arclength step of length ds (halved up to five times). Returns "" or why the family ends.
+std::string arclength_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double& ds, double ds0,
+                           const FamilySettings& s) {
   const auto [a, b] = last_regular_pair(rows);
   const FamilyPoint za = family_point(rows[a].orbit), zb = family_point(rows[b].orbit);
   const FamilyPoint secant = zb - za;
@@ -53,34 +62,39 @@ bool arclength_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, do
   for (int tries = 0; tries < 6; ++tries, ds *= 0.5) {
     const PeriodicOrbit o = correct_on_family(body, zb + ds * t, t, rows[b].orbit.l, s.shooting);
     if (!o.converged) continue;
-    // Against branch jumping: the correction stays small beside the step, and
-    // the new secant turns by less than about 25 degrees.
-    const FamilyPoint z = family_point(o);
-    if ((z - zb - ds * t).norm() > 0.3 * ds || (z - zb).normalized().dot(t) < 0.9) continue;
-    if (!in_range(o.h, s)) return false;
+    // Against branch jumping: the correction (orthogonal to t) stays below
+    // 0.3 Δs, so the new secant turns by less than about 17 degrees.
+    if ((family_point(o) - zb - ds * t).norm() > 0.3 * ds) continue;
+    if (!in_range(o.h, s)) return "h range reached";
     rows.push_back(next_row(rows.back(), o));
     ds = std::min(ds0, 2.0 * ds);
-    return true;
+    return "";
   }
-  return false;
+  return "no step found beyond h = " + at_h(rows[b].orbit.h) + " (corrector or branch guard, 6 halvings)";
 }
 
-/// The orbit on the chord z_a → z_b where g(orbit) = 0 (Illinois regula falsi in s).
+struct Located {
+  PeriodicOrbit orbit;
+  double s = 0.0;  // the position along the chord
+  bool found = false;
+};
+
+/// The orbit on the chord z_a → z_b where g(orbit) = 0 (Illinois regula falsi in s),
+/// found when |g| ≤ 1e-9 at the best iterate.
 template <class G>
-PeriodicOrbit locate(const HeavyTopBody& body, const PeriodicOrbit& a, const PeriodicOrbit& b, G g,
-                     const FamilySettings& s, bool& found) {
+Located locate(const HeavyTopBody& body, const PeriodicOrbit& a, const PeriodicOrbit& b, G g, const FamilySettings& s) {
   const FamilyPoint za = family_point(a), chord = family_point(b) - za;
   double s0 = 0.0, s1 = 1.0, g0 = g(a), g1 = g(b);
   int last_side = 0;
-  PeriodicOrbit best = std::abs(g0) < std::abs(g1) ? a : b;
-  found = false;
+  Located best{std::abs(g0) < std::abs(g1) ? a : b, std::abs(g0) < std::abs(g1) ? 0.0 : 1.0, false};
+  double best_g = std::min(std::abs(g0), std::abs(g1));
   for (int it = 0; it < 30; ++it) {
     const double sm = (s0 * g1 - s1 * g0) / (g1 - g0);
     const PeriodicOrbit o = correct_on_family(body, za + sm * chord, chord, a.l, s.shooting);
-    if (!o.converged) return best;
+    if (!o.converged) break;
     const double gm = g(o);
-    best = o;
-    if (std::abs(gm) <= 1e-9 || std::abs(s1 - s0) <= 1e-12) break;
+    if (std::abs(gm) < best_g) best = {o, sm, false}, best_g = std::abs(gm);
+    if (best_g <= 1e-9 || std::abs(s1 - s0) <= 1e-12) break;
     if ((gm < 0.0) == (g0 < 0.0)) {
       s0 = sm, g0 = gm;
       if (last_side == -1) g1 *= 0.5;
@@ -91,67 +105,95 @@ PeriodicOrbit locate(const HeavyTopBody& body, const PeriodicOrbit& a, const Per
       last_side = 1;
     }
   }
-  found = true;
+  best.found = best_g <= 1e-9;
   return best;
 }
 
-/// Locates the events between the last regular orbit before the newest and the newest.
-void locate_events(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, const FamilySettings& s) {
+/// Locates the events between the last two regular orbits; a sign change that
+/// is not located is added to `notes`.
+void locate_events(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, std::string& notes,
+                   const FamilySettings& s) {
   const auto [a, b] = last_regular_pair(rows);
   if (a == b) return;
   const PeriodicOrbit &oa = rows[a].orbit, &ob = rows[b].orbit;
-  std::vector<FamilyOrbit> events;
+  if (oa.degenerate || ob.degenerate) return;
+  std::vector<std::pair<double, FamilyOrbit>> events;
   const auto add = [&](double shift, const char* name) {
     const auto g = [shift](const PeriodicOrbit& o) { return o.reduced_trace - shift; };
-    if (!((g(oa) < 0.0) != (g(ob) < 0.0)) || oa.degenerate || ob.degenerate) return;
-    bool found = false;
-    const PeriodicOrbit o = locate(body, oa, ob, g, s, found);
-    if (!found) return;
-    FamilyOrbit r = rows[b];
-    r.event = name, r.orbit = o;
-    // A fold: h turns at the orbit (it lies outside [h_a, h_b] or h_a − h_pre, h_b − h_a differ in sign).
-    if (shift > 0.0 && a > 0) {
-      const double before = oa.h - rows[a - 1].orbit.h, after = ob.h - oa.h;
-      if ((before < 0.0) != (after < 0.0) || (o.h - oa.h) * (ob.h - o.h) < 0.0) r.event = "fold";
+    // A dead band: a trace within 1e-8 of ±2 at either end is not a sign.
+    if (std::abs(g(oa)) <= 1e-8 || std::abs(g(ob)) <= 1e-8 || (g(oa) < 0.0) == (g(ob) < 0.0)) return;
+    const Located found = locate(body, oa, ob, g, s);
+    if (!found.found) {
+      notes += std::string(notes.empty() ? "" : "; ") + name + " between h = " + at_h(oa.h) + " and " + at_h(ob.h) +
+               " not located";
+      return;
     }
-    events.push_back(r);
+    FamilyOrbit r = rows[b];
+    r.event = name, r.orbit = found.orbit;
+    // A fold: h turns at the orbit (it lies outside [h_a, h_b], or h's steps
+    // before a and after it differ in sign).
+    if (shift > 0.0) {
+      bool turns = (found.orbit.h - oa.h) * (ob.h - found.orbit.h) < 0.0;
+      std::size_t p = a;
+      while (p > 0 && rows[--p].event != "none") {
+      }
+      if (p != a && rows[p].event == "none") turns = turns || ((oa.h - rows[p].orbit.h < 0.0) != (ob.h - oa.h < 0.0));
+      if (turns) r.event = "fold";
+    }
+    events.emplace_back(found.s, r);
   };
   add(-2.0, "period_doubling");
   add(2.0, "class_change");
-  rows.insert(std::next(rows.begin(), static_cast<std::ptrdiff_t>(b)), events.begin(), events.end());
+  std::sort(events.begin(), events.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<FamilyOrbit> sorted;
+  for (auto& e : events) sorted.push_back(std::move(e.second));
+  rows.insert(std::next(rows.begin(), static_cast<std::ptrdiff_t>(b)), sorted.begin(), sorted.end());
 }
 
-void renumber(std::vector<FamilyOrbit>& rows) {
+void finish(std::vector<FamilyOrbit>& rows, const std::string& end, const std::string& notes) {
   for (std::size_t k = 0; k < rows.size(); ++k) rows[k].index = static_cast<int>(k);
+  if (!rows.empty()) rows.back().family_end = notes.empty() ? end : end + "; " + notes;
 }
 
 }  // namespace
 
 void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
-                   double h_equilibrium, const FamilySettings& s) {
+                   double h_equilibrium, const FamilySettings& s, double ds0) {
   int taken = 0;
+  std::string notes, end = "steps done";
   if (rows.size() == 1) {
-    if (s.steps == 0 || !natural_step(body, rows, first_dh, equilibrium, h_equilibrium, s)) return renumber(rows);
+    if (s.steps == 0) return finish(rows, end, notes);
+    if (std::string why = natural_step(body, rows, first_dh, equilibrium, h_equilibrium, s); !why.empty())
+      return finish(rows, why, notes);
     ++taken;
-    if (s.locate_events) locate_events(body, rows, s);
+    if (s.locate_events) locate_events(body, rows, notes, s);
   }
-  const auto [a, b] = last_regular_pair(rows);
-  const double ds0 = (family_point(rows[b].orbit) - family_point(rows[a].orbit)).norm();
+  if (!(ds0 > 0.0)) {
+    const auto [a, b] = last_regular_pair(rows);
+    ds0 = (family_point(rows[b].orbit) - family_point(rows[a].orbit)).norm();
+  }
   double ds = ds0;
   for (; taken < s.steps; ++taken) {
-    if (!arclength_step(body, rows, ds, ds0, s)) break;
-    if (s.locate_events) locate_events(body, rows, s);
+    if (std::string why = arclength_step(body, rows, ds, ds0, s); !why.empty()) {
+      end = why;
+      break;
+    }
+    if (s.locate_events) locate_events(body, rows, notes, s);
   }
-  renumber(rows);
+  finish(rows, end, notes);
 }
 
 std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOrbit& pd, int family,
-                                        const FamilySettings& s) {
+                                        const FamilySettings& s, std::string& why_not) {
   const PeriodicOrbit& o = pd.orbit;
-  // The eigenvector of P for −1: the null vector of P + I, taken from its larger column's normal.
+  // The eigenvector of P for −1: at a period doubling A = P + I has rank one
+  // and A² = (tr A) A ≈ 0, so its column space is its null space: its larger column.
   const Eigen::Matrix2d A = o.reduced_monodromy + Eigen::Matrix2d::Identity();
-  const int c = A.col(0).norm() >= A.col(1).norm() ? 0 : 1;
-  const Eigen::Vector2d v2(-A(1, c), A(0, c));
+  const Eigen::Vector2d v2 = A.col(A.col(0).norm() >= A.col(1).norm() ? 0 : 1);
+  if (!(v2.norm() > 0.0)) {
+    why_not = "P + I vanishes (a double multiplier −1 with two eigenvectors)";
+    return {};
+  }
   // The direction off the doubled parent: v, made orthogonal to the parent
   // family's tangent taken twice round, (τ_x, 2τ_T, τ_h), which also solves
   // the doubled equations.
@@ -167,14 +209,22 @@ std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOr
   for (const double k : {1.0, 2.0}) {
     const double eps = k * s.switch_amplitude * o.x0.norm();
     const PeriodicOrbit d = correct_on_family(body, z_pd + eps * t, t, o.l, s.shooting);
-    // Off the doubled parent: not periodic with half its period.
-    if (!d.converged || (shoot(body, d.x0, 0.5 * d.period, s.shooting.dt).end - d.x0).norm() <= 1e-3 * eps) return {};
+    if (!d.converged) {
+      why_not = "the corrector failed at amplitude " + at_h(eps);
+      return {};
+    }
+    // Off the doubled parent (not periodic with half its period), and of period ≈ 2T.
+    const Shot half = shoot(body, d.x0, 0.5 * d.period, s.shooting.dt);
+    if (!half.ok || (half.end - d.x0).norm() <= 1e-3 * eps || std::abs(d.period - 2.0 * o.period) > 0.1 * o.period) {
+      why_not = "the orbit found at amplitude " + at_h(eps) + " is the doubled parent or not of period 2T";
+      return {};
+    }
     FamilyOrbit r;
     r.family = family, r.index = static_cast<int>(rows.size()), r.parent = pd.family;
     r.omega = 2.0 * std::acos(-1.0) / d.period, r.orbit = d;
     rows.push_back(r);
   }
-  continue_rows(body, rows, 0.0, nullptr, 0.0, s);
+  continue_rows(body, rows, 0.0, nullptr, 0.0, s, std::max(s.h_step, (family_point(rows[1].orbit) - family_point(rows[0].orbit)).norm()));
   return rows;
 }
 

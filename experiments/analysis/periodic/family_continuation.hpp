@@ -10,11 +10,14 @@
 // equations, in the sense of the secant from the orbit before), the
 // predictor z_b + Δs t, and the corrector of periodic_orbit.hpp with
 // ⟨t, z − z_p⟩ = 0 (pseudo-arclength), so folds in h are passed. Δs is the
-// length of the family's first step. A step fails when the corrector does
-// not converge, when its correction exceeds 0.3 Δs, or when the new secant
-// turns by more than about 25° (cos < 0.9): guards against jumping to a
+// length of the family's first step (a doubled family: the larger of its
+// first chord and h_step). A step fails when the corrector does not converge
+// or when its correction (orthogonal to t) exceeds 0.3 Δs, so that the new
+// secant turns by less than about 17°: a guard against jumping to a
 // neighbouring branch. A failed step is halved up to five times, then the
-// family stops; after a success a halved Δs is doubled back.
+// family ends; after a success a halved Δs is doubled back. Why a family
+// ended is written on its last row (`family_end`), with any event whose sign
+// change was seen but not located.
 //
 // Events, from the trace of the section's monodromy P (periodic_orbit.hpp),
 // between consecutive orbits a, b:
@@ -26,11 +29,14 @@
 // Each event is located by the Illinois variant of regula falsi on the
 // position s ∈ (0, 1) along the chord from z_a to z_b (the corrector with
 // ⟨z_b − z_a, z − z_p(s)⟩ = 0), to |tr P ∓ 2| ≤ 1e-9, and inserted as its own
-// row with its `event`.
+// row with its `event`, in the order of s. A trace within 1e-8 of ±2 at either
+// end is not counted as a sign (no events on round-off).
 // Branch switching: at a period doubling the eigenvector v of P for −1 (in
-// ℝ⁶: section_basis · v) starts the doubled family: two orbits of period ≈ 2T
-// with ⟨v, x0 − x_pd⟩ = ε, 2ε (ε = switch_amplitude |x_pd|), then the family
-// is continued as any other; its `parent` is the family it branched from.
+// ℝ⁶: section_basis · v, made orthogonal to the parent's doubled tangent)
+// starts the doubled family: two orbits with ⟨v, z − z_pd⟩ = ε, 2ε
+// (ε = switch_amplitude |x_pd|), each checked to be of period within 10 % of
+// 2T and not periodic with half its period; then the family is continued as
+// any other; its `parent` is the family it branched from.
 #include <string>
 #include <vector>
 
@@ -55,6 +61,7 @@ struct FamilyOrbit {
   int parent = -1;       // the family a doubled family branched from
   double omega = 0.0;    // ω of the mode it was started along (2π/T of the first orbit otherwise)
   std::string event = "none";  // none, fold, period_doubling or class_change
+  std::string family_end;      // on a family's last row: why it ended, and events seen but not located
   PeriodicOrbit orbit;
 };
 
@@ -62,13 +69,14 @@ struct FamilyOrbit {
 /// by up to s.steps further orbits, locating events on the way. `first_dh`
 /// is the first step in h when rows holds one orbit; `equilibrium`, if
 /// given, is the family's equilibrium (the first predictor scales about it).
+/// ds0 > 0 sets the arclength step (else the length of the last chord).
 void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
-                   double h_equilibrium, const FamilySettings& s);
+                   double h_equilibrium, const FamilySettings& s, double ds0 = 0.0);
 
 /// The doubled family started at a period-doubling row `pd`, numbered
 /// `family` and continued by s.steps orbits in the sense that ε > 0 gives
-/// (empty if the corrector finds no orbit of period ≈ 2T off the doubled one).
+/// (empty, with the reason in why_not, if no orbit of period ≈ 2T off the doubled one is found).
 std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOrbit& pd, int family,
-                                        const FamilySettings& s);
+                                        const FamilySettings& s, std::string& why_not);
 
 }  // namespace lgi::experiments

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace lgi::experiments {
 
@@ -44,12 +45,17 @@ Vec6 mode_direction(const HeavyTopBody& body, const Vec6& xe, double omega) {
 /// its period doublings, numbered from next_family on.
 void append_with_branches(const HeavyTopBody& body, std::vector<FamilyOrbit>& all, const std::vector<FamilyOrbit>& family,
                           int& next_family, const FamilySettings& s) {
+  const std::size_t last = all.size() + family.size() - 1;
   all.insert(all.end(), family.begin(), family.end());
   if (!s.switch_branches) return;
   for (const FamilyOrbit& r : family) {
     if (r.event != "period_doubling") continue;
-    const std::vector<FamilyOrbit> doubled = doubled_family(body, r, next_family, s);
-    if (doubled.empty()) continue;
+    std::string why_not;
+    const std::vector<FamilyOrbit> doubled = doubled_family(body, r, next_family, s, why_not);
+    if (doubled.empty()) {  // said on the parent's last row
+      all[last].family_end += "; no doubled family at h = " + std::to_string(r.orbit.h) + ": " + why_not;
+      continue;
+    }
     all.insert(all.end(), doubled.begin(), doubled.end());
     ++next_family;
   }
@@ -69,9 +75,14 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e) {
 }
 
 std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x0, double T, double h, double l,
-                                         double direction, int family, const FamilySettings& s) {
+                                         double direction, int family, const FamilySettings& s,
+                                         std::vector<std::string>& failures) {
   const PeriodicOrbit o = correct_orbit(body, x0, T, h, l, s.shooting);
-  if (!o.converged) return {};
+  if (!o.converged) {
+    failures.push_back("seed at h = " + std::to_string(h) + ", T = " + std::to_string(T) +
+                       ": Newton did not converge (residual " + std::to_string(o.residual) + ")");
+    return {};
+  }
   FamilyOrbit first;
   first.family = family, first.omega = 2.0 * std::numbers::pi / o.period, first.orbit = o;
   std::vector<FamilyOrbit> rows{first};
@@ -82,7 +93,8 @@ std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x
   return all;
 }
 
-std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s) {
+std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
+                                           std::vector<std::string>& failures) {
   std::vector<FamilyOrbit> all;
   const EquilibriumSet set = equilibria_at(body, l);
   int family = 0;
@@ -94,7 +106,11 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
       const Vec6 start = project_to_leaf(body, xe + s.amplitude * xe.norm() * mode_direction(body, xe, omega), l);
       const double h0 = euler_poisson_invariants(body, start).value(0);
       const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, s.shooting);
-      if (!o.converged) continue;
+      if (!o.converged) {
+        failures.push_back("equilibrium " + std::to_string(i) + ", omega = " + std::to_string(omega) +
+                           ": the first orbit did not converge (residual " + std::to_string(o.residual) + ")");
+        continue;
+      }
       FamilyOrbit first;
       first.family = family, first.equilibrium = static_cast<int>(i), first.omega = omega, first.orbit = o;
       std::vector<FamilyOrbit> rows{first};

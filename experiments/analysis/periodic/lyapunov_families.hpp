@@ -12,6 +12,7 @@
 // back onto Π·Γ = ℓ, |Γ| = 1; h = H(x0); period guess 2π/ω. The first row's
 // period differs from 2π/ω by O(ε²).
 // Continuation, events and branch switching: family_continuation.hpp.
+#include <string>
 #include <vector>
 
 #include "experiments/analysis/periodic/family_continuation.hpp"
@@ -25,11 +26,15 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e);
 /// Every family of every linearly stable equilibrium at l, in the order of
 /// equilibria_at(body, l) then ascending ω, each followed by the doubled
 /// families of its period doublings (s.switch_branches); numbered from 0.
-std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s);
+/// A mode whose first orbit does not converge is listed in `failures`.
+std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
+                                           std::vector<std::string>& failures);
 
 /// One family from a start (x0, T) at h (a seed), numbered `family`, its
 /// first step `direction` · h_step in h; then its doubled families.
+/// A seed whose orbit does not converge is listed in `failures`.
 std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x0, double T, double h, double l,
-                                         double direction, int family, const FamilySettings& s);
+                                         double direction, int family, const FamilySettings& s,
+                                         std::vector<std::string>& failures);
 
 }  // namespace lgi::experiments

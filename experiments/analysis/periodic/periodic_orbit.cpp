@@ -40,8 +40,10 @@ Linearised linearise(const HeavyTopBody& body, const FamilyPoint& z, const Famil
   return L;
 }
 
+/// Every equation's defect, the phase and continuation planes included (a
+/// least-squares step need not satisfy them when the system loses rank).
 double residual_of(const Residual& r) {
-  return std::max({r.head<6>().norm(), std::abs(r(7)), std::abs(r(8)), std::abs(r(9))});
+  return std::max({r.head<6>().norm(), std::abs(r(6)), std::abs(r(7)), std::abs(r(8)), std::abs(r(9)), std::abs(r(10))});
 }
 
 /// Q: (n₁, n₂, n₃, f̂, w₁, w₂) of classify_orbit's comment, from a QR of [∇H ∇C ∇|Γ|² f].
@@ -92,7 +94,8 @@ PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p
     }
     // Stop well below the tolerance, or at it once round-off dominates (no
     // tenfold gain left), or when Newton stalls.
-    if (res <= s.tolerance * 1e-2 || (res <= s.tolerance && res > 0.1 * previous) || (it > 8 && res > 0.5 * previous))
+    if (res <= s.tolerance * 1e-2 || (res <= s.tolerance && res > 0.1 * previous) || (it > 8 && res > 0.5 * previous) ||
+        it == s.max_iterations)
       break;
     previous = res;
     Eigen::CompleteOrthogonalDecomposition<System> cod;
@@ -101,8 +104,8 @@ PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p
     z -= cod.solve(L.r);
     if (!(z(6) > 0.0)) break;
   }
-  o.converged = o.residual <= s.tolerance;
-  classify_orbit(body, o);
+  o.converged = o.residual <= s.tolerance;  // false when no iterate was finite (residual ∞)
+  if (o.residual < INFINITY) classify_orbit(body, o);
   return o;
 }
 

@@ -20,6 +20,7 @@
 // continuum of periodic orbits at the same (h, ℓ), a resonant torus of an
 // integrable top, and is not isolated.
 #include <array>
+#include <cmath>
 #include <complex>
 #include <string>
 
@@ -39,7 +40,8 @@ struct ShootingSettings {
 struct PeriodicOrbit {
   Vec6 x0 = Vec6::Zero();  // (Π, Γ): a point of the orbit
   double period = 0.0, h = 0.0, l = 0.0;
-  double residual = 0.0;   // max(|φ_T(x0) − x0|, |H − h|, |Π·Γ − ℓ|, ||Γ|² − 1|)
+  double residual = INFINITY;  // max(|φ_T(x0) − x0|, |H − h|, |Π·Γ − ℓ|, ||Γ|² − 1|, both plane conditions); ∞: no iterate
+
   Mat6 monodromy = Mat6::Identity();
   std::array<std::complex<double>, 6> multipliers{};  // the four trivial ones first, then the nontrivial pair
   std::string stability;   // elliptic, hyperbolic or inverse_hyperbolic (of the nontrivial pair)
