@@ -8,6 +8,8 @@
 #include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/torus/torus_tangent_flow.hpp"
+#include "support/cardan_problems.hpp"
 
 using namespace lgi;
 
@@ -67,4 +69,21 @@ TEST_CASE("the GALI loop allocates nothing per step", "[allocations][gali]") {
     return after - before;
   };
   CHECK(count(1.0) == count(8.0));
+}
+
+TEST_CASE("the Cardan tangent step allocates nothing", "[allocations][cardan]") {
+  // The dual-number field (integrators/system/dual.hpp) lives in fixed-size
+  // Eigen objects: one vector and six vectors, not a single allocation.
+  const system::CardanTop top = testing::cardan_test_top(0.4);
+  system::Vec6 x = system::stack(testing::cardan_test_initial(top));
+  system::Vec6 v = system::Vec6::Ones();
+  system::Mat6 V = system::Mat6::Identity();
+  const long before = experiments::verification::counted_allocations();
+  for (int k = 0; k < 100; ++k) {
+    integrators::torus::torus_tangent_step(top, x, v, 1e-3);
+    integrators::torus::torus_tangent_step(top, x, V, 1e-3);
+  }
+  const long after = experiments::verification::counted_allocations();
+  CHECK(after - before == 0);
+  CHECK(v.allFinite());
 }

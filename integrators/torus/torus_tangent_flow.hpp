@@ -6,11 +6,12 @@
 // T³ × ℝ³ is flat (the angles are carried on the universal cover), so the
 // tangent vector v ∈ ℝ⁶ perturbs x = (q, p) to x + v and obeys
 //   v̇ = Df(x) v,
-// f the canonical field of integrators/system/cardan.hpp. Df(x) v is taken
-// as the directional central difference (f(x + εv̂) − f(x − εv̂)) |v| / (2ε),
-// v̂ = v/|v|, ε = 1e-6 (1 + |x|): two field evaluations per stage instead of
-// the twelve of a full Jacobian, and a relative error of about 1e-10 in the
-// linear map, far below what the indicators resolve.
+// f the canonical field of integrators/system/cardan.hpp. Df(x) v is exact:
+// the field evaluated in dual numbers at x + v·ε (integrators/system/dual.hpp,
+// integrators/system/cardan_field.hpp), whose ε-part is Df(x) v to
+// round-off, with no difference step (docs/cardan.md §9.3 measures what the
+// former central difference, relative error ~1e-10, cost the indicators).
+// One dual evaluation per stage and vector.
 //
 // One step integrates (x, v) ∈ ℝ¹² with the classical RK4 tableau (HNW I,
 // §II.1). The indicators are those of integrators/tangent_flow.hpp
@@ -19,17 +20,21 @@
 #include <cmath>
 
 #include "integrators/system/cardan.hpp"
+#include "integrators/system/cardan_field.hpp"
+#include "integrators/system/dual.hpp"
 #include "integrators/tangent_flow.hpp"
 
 namespace lgi::integrators::torus {
 
-/// Df(x) v by a directional central difference (top of this file).
+/// Df(x) v, exactly: the ε-part of the field at the dual point x + v·ε.
 inline system::Vec6 torus_tangent_rate(const system::CardanTop& top, const system::Vec6& x, const system::Vec6& v) {
-  const double n = v.norm();
-  if (!(n > 0.0)) return system::Vec6::Zero();
-  const double eps = 1e-6 * (1.0 + x.norm());
-  const system::Vec6 d = (eps / n) * v;
-  return (top.field(system::unstack(x + d)) - top.field(system::unstack(x - d))) * (n / (2.0 * eps));
+  using system::Dual;
+  const system::cardan_detail::Vec3T<Dual> q(Dual(x[0], v[0]), Dual(x[1], v[1]), Dual(x[2], v[2]));
+  const system::cardan_detail::Vec3T<Dual> p(Dual(x[3], v[3]), Dual(x[4], v[4]), Dual(x[5], v[5]));
+  const system::cardan_detail::Vec6T<Dual> f = system::cardan_detail::field(top, q, p);
+  system::Vec6 r;
+  for (int k = 0; k < 6; ++k) r[k] = f[k].b;
+  return r;
 }
 
 /// Df(x) V for six tangent vectors, the columns of V, each as above.
