@@ -192,7 +192,7 @@ CASES += [
     ("actions-l-without-h", [*ACT, "--l", "1", *OUT], 2, "--l"),
     ("chaos-map-bad-measure", [*CMAP, "--ics", "2", "--measure", "bogus", *OUT], 2, "--measure"),
     ("chaos-map-cardan", ["chaos-map", "--scene", "{CARDAN}", "--l-range", "1:1:1", "--h-range", "2:2:1", "--ics", "2",
-                          "--t-end", "0.5", *OUT], 2, "chaos-map"),
+                          "--t-end", "0.5", *OUT], 2, "--vary KEY=a:b:n"),
     ("indicators-bad-scheme", [*IND, "--scheme", "cf4", *OUT], 2, "--scheme"),
     ("sweep-resume-nothing", [*SWEEP, "--resume", *OUT], 2, "--resume"),
     ("long-time-resume-nothing", [*LT, "--resume", *OUT], 2, "--resume"),
