@@ -44,7 +44,7 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
     parent[i] = r.parent, l[i] = o.l, h[i] = o.h, period[i] = o.period, residual[i] = o.residual, omega[i] = r.omega;
     trivial[i] = o.trivial_deviation, product[i] = o.product_deviation, trace[i] = o.reduced_trace;
     defect[i] = o.invariance_defect;
-    for (int k = 0; k < 3; ++k) pi[3 * i + k] = o.x0(k), gamma[3 * i + k] = o.x0(k + 3);
+    for (std::size_t k = 0; k < 3; ++k) pi[3 * i + k] = o.x0(static_cast<int>(k)), gamma[3 * i + k] = o.x0(static_cast<int>(k) + 3);
     for (std::size_t k = 0; k < 6; ++k) mult[12 * i + 2 * k] = o.multipliers[k].real(), mult[12 * i + 2 * k + 1] = o.multipliers[k].imag();
     stability.append(o.stability), event.append(r.event), family_end.append(r.family_end);
   }
