@@ -89,7 +89,8 @@ fq::SamplingSettings sampling(const FrequenciesOptions& o, const system::Scene& 
 }
 
 std::vector<TableColumn> term_columns(const std::vector<fq::ObservableFrequencies>& records) {
-  std::vector<TableColumn> c = {{"observable"}, {"term", 1, true}, {"frequency"}, {"amplitude"}, {"phase"}, {"period"}};
+  std::vector<TableColumn> c = {{"observable"}, {"term", 1, true}, {"frequency"}, {"amplitude"},
+                                {"phase"},      {"period"},         {"diffusion"}};
   c[0].is_text = true;
   for (const auto& r : records)
     for (std::size_t k = 0; k < r.terms.terms.size(); ++k) {
@@ -100,12 +101,13 @@ std::vector<TableColumn> term_columns(const std::vector<fq::ObservableFrequencie
       c[3].real.push_back(t.amplitude);
       c[4].real.push_back(t.phase);
       c[5].real.push_back(2.0 * std::numbers::pi / std::abs(t.frequency));
+      c[6].real.push_back(r.diffusion.log10_relative_change);  // the observable's, on each of its rows
     }
   return c;
 }
 
 TableGroup diffusion_group(const std::vector<fq::ObservableFrequencies>& records) {
-  TableGroup g{"frequencies/diffusion"};
+  TableGroup g{"frequency_diffusion"};
   g.columns = {{"observable"}, {"frequency"}, {"frequency_first_half"}, {"frequency_second_half"},
                {"relative_change"}, {"log10_relative_change"}, {"mean"}};
   g.columns[0].is_text = true;

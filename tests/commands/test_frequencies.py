@@ -1,6 +1,6 @@
 """`lgi frequencies` as a user runs it (experiments/FREQUENCIES.md):
  - the contract's layout (/frequencies/<column>, one row per observable and
-   term; /frequencies/diffusion, one row per observable) and the CSV beside it;
+   term, with the observable's diffusion index; /frequency_diffusion, one row per observable) and the CSV beside it;
  - on the free body, the leading frequency of Pi_1 and Pi_2 is 2 pi / T with
    T = 4K(k)/lambda (Landau & Lifshitz §37, scipy's ellipk) to 1e-10, the
    same for both, and the diffusion index of a torus is tiny;
@@ -34,7 +34,7 @@ def free_body_frequency(moments, pi):
 
 
 def table(path, name):
-    """The datasets of group /name (not its subgroups, /frequencies/diffusion) and /parameters."""
+    """The datasets of group /name and /parameters."""
     with h5py.File(path, "r") as f:
         g = f[name]
         return {k: g[k][()] for k in g if isinstance(g[k], h5py.Dataset)}, dict(f["parameters"].attrs)
@@ -56,12 +56,13 @@ def test_layout_and_free_body(tmp_path):
     exact = free_body_frequency([2.0, 1.0, 2.0 / 3.0], [math.cos(1.1), 0.0, math.sin(1.1)])
     for i in (0, 3):
         assert abs(d["frequency"][i] - exact) <= 1e-10 * exact, (d["frequency"][i], exact)
-    diff, _ = table(out, "frequencies/diffusion")
+    diff, _ = table(out, "frequency_diffusion")
     assert [s.decode() for s in diff["observable"]] == ["angular_momentum_1", "angular_momentum_2", "gamma_3"]
     for c in ("frequency", "frequency_first_half", "frequency_second_half", "relative_change",
               "log10_relative_change"):
         assert diff[c].shape == (3,), c
     assert diff["log10_relative_change"][0] < -9
+    assert np.all(d["diffusion"][:3] == diff["log10_relative_change"][0])  # the contract's /frequencies/diffusion
     with open(str(tmp_path / "fb.csv")) as f:
         assert f.readline().strip().split(",")[:5] == ["observable", "term", "frequency", "amplitude", "phase"]
 
@@ -73,7 +74,7 @@ def test_default_observables_and_threads(tmp_path):
         out = str(tmp_path / f"lt{threads}.h5")
         lgi("frequencies", "--scene", LAGRANGE, "--t-end", "50", "--terms", "2", "--threads", threads, "--out", out,
             "--quiet")
-        runs.append((table(out, "frequencies")[0], table(out, "frequencies/diffusion")))
+        runs.append((table(out, "frequencies")[0], table(out, "frequency_diffusion")))
     (d1, (diff, p)), (d2, (diff2, _)) = runs
     assert len(diff["observable"]) == 9 and p["scheme"] == "split-symmetric@kahan-li8" and p["output_dt"] == "0.01"
     for k in ("frequency", "amplitude", "phase"):

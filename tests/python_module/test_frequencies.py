@@ -27,7 +27,7 @@ def test_frequencies_match_the_command(lgi_exe, tmp_path):
             assert np.array_equal(r["frequencies"][k], f["frequencies"][k][()]), k
         assert r["frequencies"]["observable"] == [s.decode() for s in f["frequencies/observable"][()]]
         for k in ("frequency", "frequency_first_half", "frequency_second_half", "relative_change", "mean"):
-            assert np.array_equal(r["diffusion"][k], f["frequencies/diffusion"][k][()]), k
+            assert np.array_equal(r["diffusion"][k], f["frequency_diffusion"][k][()]), k
     # The nutation frequency against the closed form's period (the return_time of `lgi actions`, method 0).
     actions = str(tmp_path / "a.h5")
     assert subprocess.run([lgi_exe, "actions", "--scene", LAGRANGE, "--out", actions, "--quiet"]).returncode == 0
