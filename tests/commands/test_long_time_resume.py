@@ -189,3 +189,18 @@ def test_signal_at_any_moment_of_a_short_run(tmp_path):
         assert published(out), (k, p.returncode)
         assert_same_files(out, ref)
     assert outcomes.get(130, 0) > 0, outcomes  # the moments reached the run itself
+
+
+def test_finish_interrupted_between_its_renames(tmp_path, references):
+    """A finish publishes the CSV, then the HDF5 file; a run killed between the two renames leaves
+    <out>.csv beside <out>.partial. --resume takes the CSV back and ends with the uninterrupted files."""
+    ref, wall = references["rkmk4"]
+    out = str(tmp_path / "run.h5")
+    if not cut(CASES["rkmk4"], out, signal.SIGKILL, 0.5 * wall, resume=False):
+        pytest.skip("the run finished before the signal")
+    csv = out[:-3] + ".csv"
+    os.rename(csv + ".partial", csv)  # the state a kill between the two renames leaves
+    r = lgi(*CASES["rkmk4"], *FLUSH, "--out", out, "--resume")
+    assert r.returncode == 0, r.stderr
+    assert "taken back" in r.stderr and not os.path.exists(out + ".partial")
+    assert_same_files(out, ref)

@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <cstdio>
+#include <iostream>
 
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
@@ -57,6 +58,12 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
   if (!hdf5::path_exists(partial))
     throw UsageError("--resume: there is no " + partial + " to resume" +
                      (hdf5::path_exists(out) ? " (" + out + " is complete)" : ""));
+  // A finish publishes <csv>.partial as <csv>, then <out>.partial as <out>: a
+  // run stopped between the two renames left <csv> and no <csv>.partial. That
+  // CSV is the run's own, so the first rename is undone and the run resumed.
+  if (!hdf5::path_exists(csv + ".partial") && hdf5::path_exists(csv) && hdf5::path_exists(partial) &&
+      std::rename(csv.c_str(), (csv + ".partial").c_str()) == 0)
+    std::cerr << "lgi: " << csv << " is taken back to " << csv << ".partial: its run's finish was interrupted\n";
   for (const std::string& p : {out, csv})
     hdf5::check_output_target(p, force);
   ResumedResults r;
