@@ -11,36 +11,10 @@
 # --gen/atlas_commands.tex.
 set -euo pipefail
 
-root="$(cd "$(dirname "$0")/.." && pwd)"
-lgi="" data="" figs="" gen="" mode=quick
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --lgi) lgi="$2"; shift ;;
-    --data) data="$2"; shift ;;
-    --figs) figs="$2"; shift ;;
-    --gen) gen="$2"; shift ;;
-    --mode) mode="$2"; shift ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
-    *) echo "paper_atlas: unknown argument '$1' (see --help)" >&2; exit 2 ;;
-  esac
-  shift
-done
-for v in lgi data figs gen; do
-  [ -n "${!v}" ] || { echo "paper_atlas: --$v is required" >&2; exit 2; }
-done
-case "$mode" in quick|full) ;; *) echo "paper_atlas: --mode must be quick or full" >&2; exit 2 ;; esac
-die() { echo "paper_atlas: $*" >&2; exit 1; }
-PY=/usr/bin/python3
-plots="$root/scripts/plots"
-scenes="$root/experiments/scenes"
-atlas="$data/atlas"
+section=atlas help_lines='2,10p'
+source "$(dirname "$0")/paper_section.sh" "$@"
+atlas="$out"
 mkdir -p "$atlas/equilibria" "$atlas/bifurcation" "$atlas/poincare" "$figs" "$gen"
-commands="$gen/atlas_commands.txt"
-: > "$commands"
-run() {  # run lgi with ARGS, recording the command line (with paths relative to the repository)
-  echo "lgi $*" | sed "s|$root/||g; s|$atlas/||g; s| --force --quiet||" >> "$commands"
-  "$lgi" "$@" --force --quiet || die "lgi $1 failed: lgi $*"
-}
 
 # Scenes of the seed's slides that are not shipped scenes: written here from shipped ones.
 # "Examples" (s = (1, 0, 0)): the non-integrable partner of the Kovalevskaya top, Richter's

@@ -11,36 +11,9 @@
 # --gen/quantum_numbers.tex, --gen/quantum_commands.tex.
 set -euo pipefail
 
-root="$(cd "$(dirname "$0")/.." && pwd)"
-lgi="" data="" figs="" gen="" mode=quick
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --lgi) lgi="$2"; shift ;;
-    --data) data="$2"; shift ;;
-    --figs) figs="$2"; shift ;;
-    --gen) gen="$2"; shift ;;
-    --mode) mode="$2"; shift ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
-    *) echo "paper_quantum: unknown argument '$1' (see --help)" >&2; exit 2 ;;
-  esac
-  shift
-done
-for v in lgi data figs gen; do
-  [ -n "${!v}" ] || { echo "paper_quantum: --$v is required" >&2; exit 2; }
-done
-case "$mode" in quick|full) ;; *) echo "paper_quantum: --mode must be quick or full" >&2; exit 2 ;; esac
-die() { echo "paper_quantum: $*" >&2; exit 1; }
-PY=/usr/bin/python3
-plots="$root/scripts/plots"
-scenes="$root/experiments/scenes"
-q="$data/quantum"
-mkdir -p "$q" "$figs" "$gen"
-commands="$gen/quantum_commands.txt"
-: > "$commands"
-run() {  # run lgi with ARGS, recording the command line (paths relative to the repository)
-  echo "lgi $*" | sed "s|$root/||g; s|$q/||g; s| --force --quiet||" >> "$commands"
-  "$lgi" "$@" --force --quiet || die "lgi $1 failed: lgi $*"
-}
+section=quantum help_lines='2,11p'
+source "$(dirname "$0")/paper_section.sh" "$@"
+q="$out"
 
 # ── the spectrum of Richter's top against hbar (m = 0, the lowest 12 levels) ─
 if [ "$mode" = quick ]; then hbars="0.2:24 0.1:30 0.05:40"; else hbars="0.2:24 0.14:28 0.1:30 0.07:36 0.05:40 0.035:50 0.025:60"; fi
