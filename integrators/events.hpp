@@ -32,31 +32,37 @@
 #include <utility>
 
 #include "integrators/scheme_interface.hpp"
+#include "integrators/state_space.hpp"
 
 namespace lgi::integrators {
 
-/// The surfaces a run watches. Evaluated once per accepted step and per
-/// root-finding iteration, never inside the stage loop.
-class EventFunctions {
+/// The surfaces a run on states S watches (state_space.hpp). Evaluated once
+/// per accepted step and per root-finding iteration, never inside the stage loop.
+template <class S>
+class BasicEventFunctions {
  public:
-  virtual ~EventFunctions() = default;
+  virtual ~BasicEventFunctions() = default;
   virtual int count() const = 0;
   /// g_i(t, x); the surface is g_i = 0.
-  virtual double value(int event, double t, const State& x) const = 0;
+  virtual double value(int event, double t, const S& x) const = 0;
   /// +1: rising crossings only, −1: falling only, 0: both.
   virtual int direction(int event) const = 0;
 };
 
 /// One located crossing.
-struct EventHit {
+template <class S>
+struct BasicEventHit {
   int event = 0;         // which surface (EventFunctions index)
   int direction = 0;     // +1 rising, −1 falling
   std::int64_t step = 0; // the accepted step it lies in (1-based, as the loop's step numbers)
   double t = 0.0;
-  State state{};
+  S state{};
   int iterations = 0;    // root-finding iterations (steps of the scheme, or evaluations of its dense output)
   double residual = 0.0; // |g| at the reported crossing
 };
+
+using EventFunctions = BasicEventFunctions<State>;  // on SO(3) × ℝ³
+using EventHit = BasicEventHit<State>;
 
 /// The sign change of one event over a step: +1 rising, −1 falling, 0 none
 /// (or not in the direction asked for).
@@ -74,11 +80,11 @@ inline int crossing_direction(double g0, double g1, int wanted) {
 /// are the event's values at both ends and x1 the state at t0 + h. Returns
 /// false if a step of the search failed (the hit then holds the bracket end
 /// reached so far).
-template <class Advance>
-bool locate_crossing(const EventFunctions& events, int i, double t0, double h, const State& x0, const State& x1,
-                     double g0, double g1, Advance&& advance, EventHit& hit) {
+template <class S, class Advance>
+bool locate_crossing(const BasicEventFunctions<S>& events, int i, double t0, double h, const S& x0, const S& x1,
+                     double g0, double g1, Advance&& advance, BasicEventHit<S>& hit) {
   double a = 0.0, b = h, fa = g0, fb = g1;
-  State xa = x0, xb = x1, xc;
+  S xa = x0, xb = x1, xc;
   int side = 0;
   const double resolution =
       4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t0), std::abs(t0 + h));

@@ -22,14 +22,11 @@ inline double cpu_now() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);  // this thread: sweeps run trajectories on several
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
-/// Whether every entry of R and Π is finite: x − x is 0 for a finite x and NaN
-/// otherwise, so the sum of the twelve differences is 0 exactly when all are
-/// (one branch a step instead of twelve).
-inline bool finite_state(const State& s) {
-  double z = 0.0;
-  for (int i = 0; i < 9; ++i) z += s.R.data()[i] - s.R.data()[i];
-  for (int i = 0; i < 3; ++i) z += s.Pi.data()[i] - s.Pi.data()[i];
-  return z == 0.0;
+/// Whether every entry of the state is finite (StateSpace<S>::finite: one
+/// branch a step instead of one per entry).
+template <class S>
+bool finite_state(const S& s) {
+  return StateSpace<S>::finite(s);
 }
 inline void record_solve(const StepStatus& st, WorkCounters& work) {
   if (st.iterations > work.newton_iterations_max) work.newton_iterations_max = st.iterations;
@@ -44,7 +41,7 @@ inline std::string failure_message(const char* what, std::int64_t step, double t
 }
 /// Two times closer than this are the same output time.
 inline double land_tolerance(double t, double span) { return 1e-12 * std::max({1.0, std::abs(t), std::abs(span)}); }
-inline bool stop_requested(const RunConfig& cfg) { return cfg.stop && cfg.stop->load(std::memory_order_relaxed); }
+inline bool stop_requested(const RunSettings& cfg) { return cfg.stop && cfg.stop->load(std::memory_order_relaxed); }
 inline void mark_interrupted(RunStats& stats, std::int64_t step, double t) {
   stats.ok = false;
   stats.interrupted = true;
@@ -52,17 +49,17 @@ inline void mark_interrupted(RunStats& stats, std::int64_t step, double t) {
 }
 /// The output times of cfg.output_times that fall on t (to land_tolerance),
 /// One sample; a scheme on Euler angles first reports its raw angles.
-template <class Scheme>
-void observe_sample(const Scheme& scheme, Observer& observer, std::int64_t step, double t, const State& s) {
+template <class Scheme, class S>
+void observe_sample(const Scheme& scheme, BasicObserver<S>& observer, std::int64_t step, double t, const S& s) {
   if constexpr (requires { scheme.euler_angles(); }) observer.observe_euler_zxz(scheme.euler_angles());
   observer.observe(step, t, s);
 }
 /// observed with state s at the output time itself; passed ones are skipped.
 /// `next` is the first output time not yet observed or skipped. Returns
 /// whether anything was observed.
-template <class Scheme>
+template <class Scheme, class S>
 bool observe_output_times(const Scheme& scheme, const std::vector<double>& times, std::size_t& next, double direction,
-                          double span, std::int64_t step, double t, const State& s, Observer& observer) {
+                          double span, std::int64_t step, double t, const S& s, BasicObserver<S>& observer) {
   const double tol = land_tolerance(t, span);
   while (next < times.size() && direction * (times[next] - t) < -tol) ++next;
   bool observed = false;
@@ -75,12 +72,12 @@ bool observe_output_times(const Scheme& scheme, const std::vector<double>& times
 /// A scheme with dense output (interpolate()): every output time in
 /// [t_start, t] is observed, interpolated inside the step and at the state s
 /// at its end (to land_tolerance). Returns whether t itself was observed.
-template <class Scheme, class Model>
+template <class Scheme, class Model, class S>
 bool observe_dense(Scheme& scheme, const Model& model, const std::vector<double>& times, std::size_t& next,
-                   double span, std::int64_t step, double t_start, double t, const State& s, Observer& observer) {
+                   double span, std::int64_t step, double t_start, double t, const S& s, BasicObserver<S>& observer) {
   const double tol = land_tolerance(t, span);
   bool at_end = false;
-  State inside;
+  S inside;
   while (next < times.size() && times[next] <= t + tol) {
     const double to = times[next++];
     if (std::abs(to - t) <= tol) {
@@ -96,10 +93,10 @@ bool observe_dense(Scheme& scheme, const Model& model, const std::vector<double>
   return at_end;
 }
 template <class Scheme, class Model>
-concept has_dense_output = requires(Scheme& s, const Model& m, State& x) { s.interpolate(m, 0.0, x); };
+concept has_dense_output = requires(Scheme& s, const Model& m, state_of<Model>& x) { s.interpolate(m, 0.0, x); };
 /// Calls the scheme's start() if it has one; its status if it returns one.
-template <class Scheme, class Model>
-StepStatus start(Scheme& scheme, const Model& model, const State& s, double t0) {
+template <class Scheme, class Model, class S>
+StepStatus start(Scheme& scheme, const Model& model, const S& s, double t0) {
   if constexpr (requires { { scheme.start(model, s, t0) } -> std::same_as<StepStatus>; }) {
     return scheme.start(model, s, t0);
   } else if constexpr (requires { scheme.start(model, s, t0); }) {
@@ -118,24 +115,25 @@ inline void mark_failed(RunStats& stats, std::string why) {
   stats.status = std::move(why);
 }
 /// The values of every event function at (t, x), into g (sized here, before the loop).
-inline void event_values(const EventFunctions& events, double t, const State& x, std::vector<double>& g) {
+template <class S>
+void event_values(const BasicEventFunctions<S>& events, double t, const S& x, std::vector<double>& g) {
   g.resize(static_cast<std::size_t>(events.count()));
   for (int i = 0; i < events.count(); ++i) g[static_cast<std::size_t>(i)] = events.value(i, t, x);
 }
 /// After an accepted step (t0, x0) → (t0 + h, x1): locates and reports the
 /// crossings in it (events.hpp) and updates g to the values at x1. Returns
 /// an empty string, or why a location step failed.
-template <class Advance>
-std::string report_crossings(const EventFunctions& events, std::vector<double>& g, double t0, double h,
-                             const State& x0, const State& x1, std::int64_t step, Advance&& advance,
-                             Observer& observer) {
+template <class S, class Advance>
+std::string report_crossings(const BasicEventFunctions<S>& events, std::vector<double>& g, double t0, double h,
+                             const S& x0, const S& x1, std::int64_t step, Advance&& advance,
+                             BasicObserver<S>& observer) {
   std::string failure;
   for (int i = 0; i < events.count(); ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double g1 = events.value(i, t0 + h, x1);
     const int d = crossing_direction(g[k], g1, events.direction(i));
     if (d != 0 && failure.empty()) {
-      EventHit hit;
+      BasicEventHit<S> hit;
       hit.event = i;
       hit.direction = d;
       hit.step = step;
@@ -150,7 +148,8 @@ std::string report_crossings(const EventFunctions& events, std::vector<double>& 
   return failure;
 }
 template <class Scheme, class Model>
-concept has_fixed_step = requires(Scheme& s, const Model& m, State& x, WorkCounters& w) { s.step(m, x, 0.0, 0.0, w); };
+concept has_fixed_step =
+    requires(Scheme& s, const Model& m, state_of<Model>& x, WorkCounters& w) { s.step(m, x, 0.0, 0.0, w); };
 /// A scheme that keeps the attitude itself along a run (the preprocessed DMV
 /// on a free body: a quaternion, cayley_quaternion.hpp). The loop steps it
 /// with step_keeping_attitude(), which leaves s.R as it was, and has it
@@ -162,14 +161,14 @@ concept keeps_attitude = requires(Scheme& c, const Scheme& k, const Model& m, St
   k.write_attitude(x);
 };
 /// The loop's step: step(), or step_keeping_attitude() for a scheme that keeps the attitude.
-template <class Scheme, class Model>
-StepStatus loop_step(Scheme& scheme, const Model& model, State& s, double t, double h, WorkCounters& work) {
+template <class Scheme, class Model, class S>
+StepStatus loop_step(Scheme& scheme, const Model& model, S& s, double t, double h, WorkCounters& work) {
   if constexpr (keeps_attitude<Scheme, Model>) return scheme.step_keeping_attitude(model, s, t, h, work);
   else return scheme.step(model, s, t, h, work);
 }
 /// One step of the fixed-step loop, its solve recorded in the work counters.
-template <class Scheme, class Model>
-StepStatus recorded_step(Scheme& scheme, const Model& model, State& s, double t, double h, WorkCounters& work) {
+template <class Scheme, class Model, class S>
+StepStatus recorded_step(Scheme& scheme, const Model& model, S& s, double t, double h, WorkCounters& work) {
   const StepStatus st = loop_step(scheme, model, s, t, h, work);
   record_solve(st, work);
   return st;
@@ -179,10 +178,10 @@ StepStatus recorded_step(Scheme& scheme, const Model& model, State& s, double t,
 /// retry_halving). Records every attempt: each failed solve counts as a
 /// Newton failure and its redone step as a rejected step. Returns the
 /// status of the last attempt (not converged if the halvings ran out).
-template <class Scheme, class Model>
-StepStatus step_with_halving(Scheme& scheme, const Model& model, State& s, double t, double h, int halvings,
+template <class Scheme, class Model, class S>
+StepStatus step_with_halving(Scheme& scheme, const Model& model, S& s, double t, double h, int halvings,
                              WorkCounters& work) {
-  const State before = s;
+  const S before = s;
   const StepStatus st = loop_step(scheme, model, s, t, h, work);
   record_solve(st, work);
   if (st.converged || halvings <= 0) return st;
@@ -197,12 +196,13 @@ StepStatus step_with_halving(Scheme& scheme, const Model& model, State& s, doubl
 /// crossings (report_crossings) by steps of the scheme as it was before the
 /// step, taken as the run's are (with the same halving retries). Returns why
 /// a location step failed, or an empty string.
-template <class Scheme, class Model>
-std::string fixed_step_crossings(Scheme& scheme, const Scheme& scheme_before, const Model& model, const RunConfig& cfg,
-                                 std::vector<double>& g, double t_start, double t, const State& x_before, State& s,
-                                 std::int64_t step, Observer& observer, WorkCounters& work) {
+template <class Scheme, class Model, class S>
+std::string fixed_step_crossings(Scheme& scheme, const Scheme& scheme_before, const Model& model,
+                                 const BasicRunConfig<S>& cfg, std::vector<double>& g, double t_start, double t,
+                                 const S& x_before, S& s, std::int64_t step, BasicObserver<S>& observer,
+                                 WorkCounters& work) {
   if constexpr (keeps_attitude<Scheme, Model>) scheme.write_attitude(s);
-  auto advance = [&](double theta, State& x) {
+  auto advance = [&](double theta, S& x) {
     Scheme copy = scheme_before;
     x = x_before;
     const bool stepped = cfg.retry_halving > 0
@@ -252,9 +252,9 @@ concept has_observable_state = requires(const Scheme& c, const Model& m, const S
 /// times, else every save_every-th step and the final one), then the stop
 /// flag. Returns true if the run ends here, interrupted, with its last state
 /// observed once (Observer::on_stop() first).
-template <class Scheme, class Model>
-bool observe_due(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
-                 double t_start, double t, bool final_step, bool stopping, const State& s, Observer& observer,
+template <class Scheme, class Model, class S>
+bool observe_due(Scheme& scheme, const Model& model, const RunSettings& cfg, OutputCursor& out, std::int64_t k,
+                 double t_start, double t, bool final_step, bool stopping, const S& s, BasicObserver<S>& observer,
                  RunStats& stats) {
   if (stopping) observer.on_stop();
   bool observed = false;
@@ -274,12 +274,13 @@ bool observe_due(Scheme& scheme, const Model& model, const RunConfig& cfg, Outpu
 }
 /// The observable state a loop formed last, and after which step (the run's
 /// final state reuses it when no step came after: one processor less).
+template <class S>
 struct FormedObservable {
-  State x;
+  S x;
   std::int64_t step = -1;
 };
 /// Whether observe_due will observe after step k at t.
-inline bool sample_due(const RunConfig& cfg, const OutputCursor& out, std::int64_t k, double t, bool final_step,
+inline bool sample_due(const RunSettings& cfg, const OutputCursor& out, std::int64_t k, double t, bool final_step,
                        bool stopping) {
   return stopping || (out.times ? out.output_time_due(t) : final_step || out.multiple_due(k, cfg.save_every));
 }
@@ -287,10 +288,10 @@ inline bool sample_due(const RunConfig& cfg, const OutputCursor& out, std::int64
 /// sample is due (it costs a processor: processed_composition.hpp), and kept
 /// in `formed`; a scheme that keeps the attitude writes it into s then
 /// (keeps_attitude: not the ensemble's const scheme, whose lanes' states are formed).
-template <class Scheme, class Model>
-bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, OutputCursor& out, std::int64_t k,
-                  double t_start, double t, bool final_step, State& s, Observer& observer, RunStats& stats,
-                  FormedObservable* formed = nullptr) {
+template <class Scheme, class Model, class S>
+bool observe_step(Scheme& scheme, const Model& model, const RunSettings& cfg, OutputCursor& out, std::int64_t k,
+                  double t_start, double t, bool final_step, S& s, BasicObserver<S>& observer, RunStats& stats,
+                  FormedObservable<S>* formed = nullptr) {
   const bool stopping = !final_step && stop_requested(cfg);
   if constexpr (keeps_attitude<Scheme, Model>) {
     if (sample_due(cfg, out, k, t, final_step, stopping)) scheme.write_attitude(s);
@@ -305,14 +306,15 @@ bool observe_step(Scheme& scheme, const Model& model, const RunConfig& cfg, Outp
   }
 }
 /// The checkpoint the run resumes from (RunConfig::checkpoints), or null.
-inline const LoopCheckpoint* resume_point(const RunConfig& cfg) {
+template <class S>
+const BasicLoopCheckpoint<S>* resume_point(const BasicRunConfig<S>& cfg) {
   return cfg.checkpoints ? cfg.checkpoints->resume_from : nullptr;
 }
 /// Sets the run's state, step count, work counters and the scheme's memory
 /// from checkpoint c. False (the run failed, with the reason) if the scheme
 /// cannot be resumed or refuses the memory.
-template <class Scheme, class Model, bool Adaptive>
-bool resume(Scheme& scheme, const LoopCheckpoint& c, State& s, RunStats& stats) {
+template <class Scheme, class Model, bool Adaptive, class S>
+bool resume(Scheme& scheme, const BasicLoopCheckpoint<S>& c, S& s, RunStats& stats) {
   if constexpr (!resumable_scheme<Scheme, Model, Adaptive>()) {
     mark_failed(stats, "cannot resume: the scheme keeps memory between steps that it does not save");
     return false;
@@ -337,22 +339,22 @@ inline void skip_output_times(OutputCursor& out, double t) {
 }
 /// Offers the checkpoint after accepted step `step` (not the run's last) to
 /// RunConfig::checkpoints, every `every` steps, if the scheme can be resumed.
-template <class Scheme, class Model, bool Adaptive>
-void offer_checkpoint(const Scheme& scheme, const RunConfig& cfg, std::int64_t step, double t, double h,
-                      const State& s, const RunStats& stats) {
+template <class Scheme, class Model, bool Adaptive, class S>
+void offer_checkpoint(const Scheme& scheme, const BasicRunConfig<S>& cfg, std::int64_t step, double t, double h,
+                      const S& s, const RunStats& stats) {
   if constexpr (resumable_scheme<Scheme, Model, Adaptive>()) {
-    Checkpoints* c = cfg.checkpoints;
+    BasicCheckpoints<S>* c = cfg.checkpoints;
     if (c == nullptr || c->every < 1 || step % c->every != 0 || !c->due(step)) return;
-    LoopCheckpoint point{.step = step, .t = t, .h = h, .state = s, .work = stats.work, .memory = {}};
+    BasicLoopCheckpoint<S> point{.step = step, .t = t, .h = h, .state = s, .work = stats.work, .memory = {}};
     if constexpr (keeps_attitude<Scheme, Model>) scheme.write_attitude(point.state);
     if constexpr (saves_step_memory<Scheme>) scheme.save_memory(point.memory);
     c->save(point);
   }
 }
 /// The initial sample, and the run's failure if the scheme refused to start.
-template <class Scheme>
-void observe_start(const Scheme& scheme, const StepStatus& started, double t0, OutputCursor& out, const State& s,
-                   Observer& observer, RunStats& stats) {
+template <class Scheme, class S>
+void observe_start(const Scheme& scheme, const StepStatus& started, double t0, OutputCursor& out, const S& s,
+                   BasicObserver<S>& observer, RunStats& stats) {
   if (out.times) observe_output_times(scheme, *out.times, out.next, out.direction, out.span, 0, t0, s, observer);
   else observe_sample(scheme, observer, 0, t0, s);
   if (started.refused) mark_failed(stats, refusal_message(scheme, 0, t0));

@@ -11,6 +11,10 @@
 #include "integrators/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
 
+namespace lgi::system {
+struct CardanTop;
+}  // namespace lgi::system
+
 namespace lgi::integrators {
 
 /// Runs a scheme on a scene's model from the given state. Dispatches on the
@@ -18,6 +22,12 @@ namespace lgi::integrators {
 using RunFunction = RunStats (*)(const system::AnyModel& model, State& state, const RunConfig& cfg,
                                  Observer& observer);
 
+/// Runs a scheme of T³ × ℝ³ on a Cardan top (integrators/torus/torus_registry.hpp).
+using CardanRunFunction = RunStats (*)(const system::CardanTop& model, system::TorusState& state,
+                                       const TorusRunConfig& cfg, TorusObserver& observer);
+
+/// One scheme, on either state space: `run` for SO(3) × ℝ³, or (support
+/// cardan_only) `run_cardan` for T³ × ℝ³; the other is null.
 struct SchemeInfo {
   std::string name;
   int order = 0;              // 0: not applicable (exact)
@@ -34,6 +44,10 @@ struct SchemeInfo {
   bool locates_events = true;
   /// A run can be resumed from a checkpoint (RunConfig::checkpoints; scheme_interface.hpp, "Resume").
   bool resumable = false;
+  CardanRunFunction run_cardan = nullptr;
+  /// The fixed-step loop on the scheme's step(): for an adaptive scheme, its
+  /// propagated solution on a fixed grid (order checks); otherwise run_cardan.
+  CardanRunFunction run_cardan_fixed = nullptr;
 };
 
 const std::vector<SchemeInfo>& scheme_registry();
@@ -58,6 +72,13 @@ void add_implicit_schemes(std::vector<SchemeInfo>& registry);           // rkmk-
 void add_baseline_schemes(std::vector<SchemeInfo>& registry);           // COORDS/STEPPER (Boost.Odeint)
 /// nullptr if no scheme has that name.
 const SchemeInfo* find_scheme(std::string_view name);
+/// The schemes of T³ × ℝ³ (the Cardan top; registry_cardan.cpp): records of
+/// the same kind, with support cardan_only and run_cardan set.
+const std::vector<SchemeInfo>& cardan_scheme_registry();
+/// nullptr if no scheme of T³ × ℝ³ has that name.
+const SchemeInfo* find_cardan_scheme(std::string_view name);
+/// The state space a scheme runs on: "SO(3) x R^3" or "T^3 x R^3".
+const char* state_space_name(const SchemeInfo& scheme);
 /// Empty if the scheme can run on the model, else the reason it cannot.
 std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model);
 /// Empty if a scheme with this support can run on the model, else what it

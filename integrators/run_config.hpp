@@ -18,11 +18,12 @@ namespace lgi::integrators {
 /// for bit those of an uninterrupted one): the step count, t, the state, the
 /// work counters, the adaptive loop's next trial step and the scheme's
 /// memory between steps (scheme_interface.hpp, "Resume").
-struct LoopCheckpoint {
+template <class S>
+struct BasicLoopCheckpoint {
   std::int64_t step = 0;
   double t = 0.0;
   double h = 0.0;  // adaptive runs: the next trial step; fixed-step runs: unused (0)
-  State state{};
+  S state{};
   WorkCounters work{};
   std::vector<double> memory;  // Scheme::save_memory(); empty for a scheme without memory
 };
@@ -34,18 +35,22 @@ struct LoopCheckpoint {
 /// the checkpoint to save(). Schemes that cannot be resumed
 /// (resumable_scheme) are never asked. save() may throw: the run ends with
 /// the exception.
-class Checkpoints {
+template <class S>
+class BasicCheckpoints {
  public:
-  virtual ~Checkpoints() = default;
+  virtual ~BasicCheckpoints() = default;
   virtual bool due(std::int64_t step) = 0;
-  virtual void save(const LoopCheckpoint& checkpoint) = 0;
+  virtual void save(const BasicLoopCheckpoint<S>& checkpoint) = 0;
   std::int64_t every = 4096;  // steps between two calls of due() (>= 1)
   /// If set: the run starts from this checkpoint instead of t0 (start() is
   /// still called with the run's initial state, the state passed to the
   /// run, and the initial state is not observed again). A scheme that
   /// cannot be resumed, or a memory it refuses, fails the run.
-  const LoopCheckpoint* resume_from = nullptr;
+  const BasicLoopCheckpoint<S>* resume_from = nullptr;
 };
+
+using LoopCheckpoint = BasicLoopCheckpoint<State>;  // on SO(3) × ℝ³
+using Checkpoints = BasicCheckpoints<State>;
 
 /// Where a crossing inside an adaptive step is located (events.hpp).
 enum class EventLocation {
@@ -58,7 +63,9 @@ enum class EventLocation {
   step_map,
 };
 
-struct RunConfig {
+/// What a run is asked for, whatever its state space (RunConfig adds the
+/// state-typed events and checkpoints).
+struct RunSettings {
   double t0 = 0.0;
   double t_end = 0.0;
   double dt = 0.0;            // fixed step, or the first trial step of an adaptive scheme (0: automatic)
@@ -71,9 +78,6 @@ struct RunConfig {
   /// If set: read once per accepted step; true ends the run after that step
   /// with status "interrupted by signal at step K, t = T" (top of this file).
   const std::atomic<bool>* stop = nullptr;
-  /// If set: crossings of these surfaces are located and passed to
-  /// Observer::on_event() (top of this file).
-  const EventFunctions* events = nullptr;
   /// How an adaptive run locates them (fixed-step runs: always the step map).
   EventLocation event_location = EventLocation::dense_output;
   /// Read the thread CPU clock at the start and end (RunStats::cpu_seconds).
@@ -86,16 +90,37 @@ struct RunConfig {
   bool chart_guards = true;
   /// Adaptive runs: this many rejections in a row end the run (not ok).
   std::int64_t max_consecutive_rejections = 1000;
-  /// If set: checkpoints are offered to it, and a run may resume from one (Checkpoints).
-  Checkpoints* checkpoints = nullptr;
 };
 
-/// Receives the samples of a run. Called once per saved step (never inside
-/// the stage loop), so a virtual call costs nothing measurable.
-class Observer {
+/// A run on states S (state_space.hpp): its settings, and the events and
+/// checkpoints, which see the state.
+template <class S>
+struct BasicRunConfig : RunSettings {
+  /// If set: crossings of these surfaces are located and passed to
+  /// Observer::on_event() (top of stepper_loop.hpp).
+  const BasicEventFunctions<S>* events = nullptr;
+  /// If set: checkpoints are offered to it, and a run may resume from one (Checkpoints).
+  BasicCheckpoints<S>* checkpoints = nullptr;
+};
+
+/// A run on states S with these settings, and no events or checkpoints yet.
+template <class S>
+BasicRunConfig<S> run_config_with(const RunSettings& settings) {
+  BasicRunConfig<S> cfg;
+  static_cast<RunSettings&>(cfg) = settings;
+  return cfg;
+}
+
+using RunConfig = BasicRunConfig<State>;                    // on SO(3) × ℝ³
+using TorusRunConfig = BasicRunConfig<system::TorusState>;  // on T³ × ℝ³ (the Cardan top)
+
+/// Receives the samples of a run on states S. Called once per saved step
+/// (never inside the stage loop), so a virtual call costs nothing measurable.
+template <class S>
+class BasicObserver {
  public:
-  virtual ~Observer() = default;
-  virtual void observe(std::int64_t step, double t, const State& s) = 0;
+  virtual ~BasicObserver() = default;
+  virtual void observe(std::int64_t step, double t, const S& s) = 0;
   /// Schemes that integrate Euler angles call this right before observe()
   /// with the raw integrated angles (unwrapped), for /particles/body/euler_zxz.
   virtual void observe_euler_zxz(const lie::EulerZXZ& /*angles*/) {}
@@ -105,14 +130,20 @@ class Observer {
   /// from this that the run is ending anyway.
   virtual void on_stop() {}
   /// A located crossing of RunConfig::events, before the observe() of its step.
-  virtual void on_event(const EventHit& /*hit*/) {}
+  virtual void on_event(const BasicEventHit<S>& /*hit*/) {}
 };
 
+using Observer = BasicObserver<State>;                    // on SO(3) × ℝ³
+using TorusObserver = BasicObserver<system::TorusState>;  // on T³ × ℝ³
+
 /// An observer that keeps nothing.
-class NullObserver final : public Observer {
+template <class S>
+class BasicNullObserver final : public BasicObserver<S> {
  public:
-  void observe(std::int64_t, double, const State&) override {}
+  void observe(std::int64_t, double, const S&) override {}
 };
+
+using NullObserver = BasicNullObserver<State>;
 
 struct RunStats {
   std::int64_t steps = 0;

@@ -50,6 +50,7 @@
 #include <vector>
 
 #include "integrators/scheme_facts.hpp"
+#include "integrators/state_space.hpp"
 #include "integrators/system/rigid_body.hpp"
 
 namespace lgi::integrators {
@@ -107,10 +108,11 @@ concept declared_memoryless = requires { requires Scheme::memoryless_steps; };
 template <class Scheme>
 concept has_base_scheme = requires { typename Scheme::base_scheme_type; };
 template <class Scheme, class Model>
-concept const_step = requires(const Scheme& c, const Model& m, State& x, WorkCounters& w) { c.step(m, x, 0.0, 0.0, w); };
+concept const_step =
+    requires(const Scheme& c, const Model& m, state_of<Model>& x, WorkCounters& w) { c.step(m, x, 0.0, 0.0, w); };
 template <class Scheme, class Model>
 concept const_attempt =
-    requires(const Scheme& c, const Model& m, State& x, WorkCounters& w) { c.attempt(m, x, 0.0, 0.0, w); };
+    requires(const Scheme& c, const Model& m, state_of<Model>& x, WorkCounters& w) { c.attempt(m, x, 0.0, 0.0, w); };
 }  // namespace detail
 
 /// Whether the fixed-step (Adaptive: the adaptive) loop can resume Scheme on

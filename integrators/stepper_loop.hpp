@@ -6,6 +6,13 @@
 // converge, a step the scheme refused, a collapsing adaptive step, too many
 // rejections in a row) and the CPU clock. It knows no file format.
 //
+// State spaces: the loop is a template on the state type S (state_space.hpp):
+// system::State on SO(3) × ℝ³, system::TorusState on T³ × ℝ³ (the Cardan
+// top, docs/cardan.md §7), one compiled loop per (scheme, model, state).
+// RunConfig, Observer, EventFunctions, EventHit and LoopCheckpoint are the
+// SO(3) instances of BasicRunConfig<S>, BasicObserver<S>, ...; TorusRunConfig
+// and TorusObserver the T³ ones. Everything below holds on both.
+//
 // Output times (RunConfig::output_times): observe exactly at these times and
 // nowhere else. Fixed-step runs keep their grid t0 + k dt
 // (no step is shortened) and observe the output times that coincide with a
@@ -86,8 +93,9 @@ namespace lgi::integrators {
 /// computed, not accumulated); the last step is clipped to t_end. If
 /// t_end < t0 the run goes backward in time with steps of −dt (used to check
 /// the symmetry Φ₋ₕ ∘ Φₕ = id through the registry).
-template <class Scheme, class Model>
-RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const RunConfig& cfg, Observer& observer) {
+template <class Scheme, class Model, class S>
+RunStats integrate_fixed(Scheme& scheme, const Model& model, S& s, const BasicRunConfig<S>& cfg,
+                         BasicObserver<S>& observer) {
   RunStats stats;
   const double cpu0 = cfg.cpu_clock ? detail::cpu_now() : 0.0;
   const StepStatus started = detail::start(scheme, model, s, cfg.t0);
@@ -98,7 +106,7 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
   detail::OutputCursor out{.times = cfg.output_times, .direction = direction, .span = cfg.t_end - cfg.t0};
   double t = cfg.t0;
   std::int64_t first = 0;
-  if (const LoopCheckpoint* from = detail::resume_point(cfg); from && !started.refused) {
+  if (const BasicLoopCheckpoint<S>* from = detail::resume_point(cfg); from && !started.refused) {
     first = n;  // unless the resume succeeds
     if (detail::resume<Scheme, Model, false>(scheme, *from, s, stats)) first = from->step, t = from->t;
     detail::skip_output_times(out, t);
@@ -106,7 +114,7 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
   }
   if (!grid_problem.empty()) detail::mark_failed(stats, grid_problem);  // never a success with no steps
-  const EventFunctions* events = cfg.events;
+  const BasicEventFunctions<S>* events = cfg.events;
   if constexpr (detail::has_observable_state<Scheme, Model>) {
     if (events && stats.ok) {  // between outputs the loop never holds the trajectory's state
       detail::mark_failed(stats, "events are not located by a processed composition: use a composition "
@@ -115,9 +123,9 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
     }
   }
   std::vector<double> g;
-  detail::FormedObservable formed;      // for a scheme with an observable state
+  detail::FormedObservable<S> formed;   // for a scheme with an observable state
   std::optional<Scheme> scheme_before;  // with events: the scheme as it was before the step
-  State x_before;
+  S x_before;
   if (events) detail::event_values(*events, t, s, g);
   for (std::int64_t k = first; k < n; ++k) {
     const double t_next = k + 1 == n ? cfg.t_end : cfg.t0 + direction * static_cast<double>(k + 1) * cfg.dt;
@@ -175,8 +183,9 @@ RunStats integrate_fixed(Scheme& scheme, const Model& model, State& s, const Run
 /// precision, or after RunConfig::max_consecutive_rejections rejections in a
 /// row. A scheme with dense output (interpolate()) is not shortened to land
 /// on output times: they are interpolated inside its steps.
-template <class Scheme, class Model>
-RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const RunConfig& cfg, Observer& observer) {
+template <class Scheme, class Model, class S>
+RunStats integrate_adaptive(Scheme& scheme, const Model& model, S& s, const BasicRunConfig<S>& cfg,
+                            BasicObserver<S>& observer) {
   constexpr bool dense = detail::has_dense_output<Scheme, Model>;
   RunStats stats;
   const double cpu0 = cfg.cpu_clock ? detail::cpu_now() : 0.0;
@@ -187,14 +196,14 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
   double t = cfg.t0;
   double h = 0.0;
   std::int64_t k = 0, rejected_in_a_row = 0;
-  if (const LoopCheckpoint* from = detail::resume_point(cfg); from && !started.refused) {
+  if (const BasicLoopCheckpoint<S>* from = detail::resume_point(cfg); from && !started.refused) {
     if (detail::resume<Scheme, Model, true>(scheme, *from, s, stats)) t = from->t, h = from->h, k = from->step;
     detail::skip_output_times(out, t);
   } else {
     detail::observe_start(scheme, started, cfg.t0, out, s, observer, stats);
     if (stats.ok && span > 0.0) h = cfg.dt > 0.0 ? std::min(cfg.dt, span) : scheme.initial_step(model, s, t, span);
   }
-  const EventFunctions* events = cfg.events;
+  const BasicEventFunctions<S>* events = cfg.events;
   std::vector<double> g;
   std::optional<Scheme> scheme_before;  // with events on the step map: the scheme as it was before the attempt
   bool on_interpolant = false;           // with events: located on the dense output
@@ -210,7 +219,7 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
     }
     const bool last = t + h >= target || (target - (t + h)) < land;
     const double h_try = last ? target - t : h;
-    const State before = s;
+    const S before = s;
     if (events && !on_interpolant) scheme_before.emplace(scheme);
     const AdaptiveStatus a = scheme.attempt(model, s, t, h_try, stats.work);
     detail::record_solve(a.solve, stats.work);
@@ -244,7 +253,7 @@ RunStats integrate_adaptive(Scheme& scheme, const Model& model, State& s, const 
       // says (a step no longer than an accepted one): step(), the forced
       // attempt. A scheme without step() can only offer its accepted
       // attempts, so a rejected trial there ends the search.
-      auto advance = [&](double theta, State& x) {
+      auto advance = [&](double theta, S& x) {
         if constexpr (dense) {
           if (on_interpolant) {
             scheme.interpolate(model, t_start + theta, x);

@@ -70,7 +70,7 @@ TEST_CASE("A Cardan relative equilibrium with massive rings turns rigidly about 
   const system::CardanTop top = general_top(true);
   const auto rows = experiments::cardan_equilibria_at(top, 1.0);
   REQUIRE(rows.size() >= 4);
-  const auto& dp54 = *integrators::torus::find_torus_scheme("cardan-dp54");
+  const auto& dp54 = *integrators::find_cardan_scheme("cardan-dp54");
   int checked = 0;
   for (const CardanEquilibrium& e : rows) {
     system::TorusState x{e.q, top.mass_matrix(e.q) * lie::Vec3(e.omega, 0.0, 0.0)};

@@ -68,7 +68,7 @@ TEST_CASE("massless rings, vertical axis: the Cardan top is the SO(3) heavy top"
          {std::tuple{"cardan-dp54", 0.0, 1e-12, 1e-9}, std::tuple{"cardan-rk4", 1e-3, 0.0, 1e-7},
           std::tuple{"cardan-midpoint", 1e-3, 0.0, 1e-3}}) {
       system::TorusState x = p.x0;
-      REQUIRE(testing::run_torus(*integrators::torus::find_torus_scheme(scheme), p.top, x, t_end, dt, tol).ok);
+      REQUIRE(testing::run_torus(*integrators::find_cardan_scheme(scheme), p.top, x, t_end, dt, tol).ok);
       const lie::SO3xR3 b = p.top.body_state(x);
       const double gap = std::max(attitude_gap(b.R, ref.R), (b.Pi - ref.Pi).norm() / ref.Pi.norm());
       const double so3_gap =
@@ -99,7 +99,7 @@ TEST_CASE("gimbal lock: massless rings blow the Cardan rates up, massive rings k
     system::TorusState x = x0;
     testing::KeepSamples all(true);
     const integrators::RunStats st =
-        testing::run_torus(*integrators::torus::find_torus_scheme("cardan-dp54"), top, x, t_end, 0.0, 1e-10, &all);
+        testing::run_torus(*integrators::find_cardan_scheme("cardan-dp54"), top, x, t_end, 0.0, 1e-10, &all);
     const bool massive_rings = std::string(label) == "massive rings";
     if (massive_rings) REQUIRE(st.ok);  // massless: reported, whatever happens at the lock
     double min_sin = 1.0, max_rate = 0.0, min_dt = 1e300;
@@ -120,7 +120,7 @@ TEST_CASE("gimbal lock: massless rings blow the Cardan rates up, massive rings k
 }
 
 TEST_CASE("the outer angle's momentum: an integral for a vertical axis, not for a tilted one", "[cardan][heavy_top]") {
-  const auto& scheme = *integrators::torus::find_torus_scheme("cardan-midpoint");
+  const auto& scheme = *integrators::find_cardan_scheme("cardan-midpoint");
   for (double tilt : {0.0, 0.3}) {
     const system::CardanTop top = testing::cardan_test_top(tilt);
     system::TorusState x = testing::cardan_test_initial(top);

@@ -1,12 +1,8 @@
-// Every scheme on T³ × ℝ³ (integrators/torus/torus_registry.hpp) shows the
-// order its facts state and conserves what they claim, on the Cardan top of
+// Every scheme on T³ × ℝ³ (integrators/registry_cardan.cpp) conserves what
+// its facts claim (its order: tests/test_stated_orders.cpp), on the Cardan top of
 // tests/support/cardan_problems.hpp (massive rings, off-axis centres: H is
 // not separable). As test_stated_orders.cpp and test_scheme_properties.cpp
 // do for the SO(3) registry:
-//  - order: error at t = 2 against cardan-rk4 with h = 5e-5 (an error below
-//    1e-13), the step ladder of test_stated_orders.cpp, slope of the five
-//    finest points above 1e-12 within ±0.2 of the stated order (an adaptive scheme through its
-//    fixed step, the propagated solution);
 //  - symmetric: Φ₋ₕ ∘ Φₕ = id to 1e-12;
 //  - symplectic: the step map's Jacobian A (central differences, 1e-6)
 //    satisfies AᵀSA = S to 1e-7;
@@ -21,69 +17,29 @@
 #include "support/convergence.hpp"
 
 using namespace lgi;
-using integrators::torus::torus_scheme_registry;
-using integrators::torus::TorusSchemeInfo;
+using integrators::cardan_scheme_registry;
+using integrators::SchemeInfo;
 
 namespace {
 
-constexpr double floor_error = 1e-12;  // the reference's error is below 1e-13
-
-system::TorusState reference(const system::CardanTop& top, double t_end) {
-  system::TorusState x = testing::cardan_test_initial(top);
-  testing::run_torus(*integrators::torus::find_torus_scheme("cardan-rk4"), top, x, t_end, 5e-5);
-  return x;
-}
-
-system::TorusState one_step(const TorusSchemeInfo& s, const system::CardanTop& top, system::TorusState x, double h) {
-  integrators::RunConfig cfg;
+system::TorusState one_step(const SchemeInfo& s, const system::CardanTop& top, system::TorusState x, double h) {
+  integrators::TorusRunConfig cfg;
   cfg.t_end = h;
   cfg.dt = std::abs(h);
   if (h < 0.0) cfg.t_end = h;
   cfg.cpu_clock = false;
   testing::KeepSamples keep;
-  s.run_fixed(top, x, cfg, keep);
+  s.run_cardan_fixed(top, x, cfg, keep);
   return x;
 }
 
 }  // namespace
 
-TEST_CASE("every T^3 scheme shows its stated order on the Cardan top", "[cardan][order][generic]") {
-  const system::CardanTop top = testing::cardan_test_top(0.5);
-  const double t_end = 2.0;
-  const system::TorusState ref = reference(top, t_end);
-  REQUIRE(torus_scheme_registry().size() >= 4);
-  for (const TorusSchemeInfo& s : torus_scheme_registry()) {
-    // As test_stated_orders.cpp: h_k = 0.2 r^k, r = max(10^(-1/(2p)), 1/2),
-    // down to the floor or h = 1e-3; the five finest points above the floor.
-    const double r = std::max(std::pow(10.0, -1.0 / (2.0 * s.order)), 0.5);
-    std::vector<testing::ConvergencePoint> pts;
-    for (double h = 0.2; h >= 1e-3; h *= r) {
-      system::TorusState x = testing::cardan_test_initial(top);
-      // An adaptive scheme: its propagated solution on the fixed grid h (run_fixed).
-      integrators::RunConfig cfg;
-      cfg.t_end = t_end;
-      cfg.dt = h;
-      cfg.cpu_clock = false;
-      testing::KeepSamples keep;
-      REQUIRE(s.run_fixed(top, x, cfg, keep).ok);
-      const double err = testing::state_distance(x, ref);
-      if (err <= floor_error) break;
-      pts.push_back({h, err});
-    }
-    if (pts.size() > 5) pts.erase(pts.begin(), pts.end() - 5);
-    const testing::SlopeFit fit = testing::fitted_slope(pts, floor_error);
-    testing::report_slope(s.name, "cardan top (tilt 0.5, massive rings)", fit, pts);
-    INFO(s.name << " states order " << s.order);
-    REQUIRE(fit.points >= 3);
-    CHECK(std::abs(fit.slope - s.order) <= 0.2);
-  }
-}
-
 TEST_CASE("every symmetric T^3 scheme is symmetric and every symplectic one symplectic", "[cardan][generic]") {
   const system::CardanTop top = testing::cardan_test_top(0.5);
   const system::TorusState x0 = testing::cardan_test_initial(top);
   const double h = 0.05;
-  for (const TorusSchemeInfo& s : torus_scheme_registry()) {
+  for (const SchemeInfo& s : cardan_scheme_registry()) {
     if (s.properties.adaptive) continue;  // an adaptive step is not a map of the state alone
     INFO(s.name);
     if (s.properties.symmetric) {
@@ -109,7 +65,7 @@ TEST_CASE("every symmetric T^3 scheme is symmetric and every symplectic one symp
 }
 
 TEST_CASE("every T^3 scheme conserves what it claims", "[cardan][generic]") {
-  for (const TorusSchemeInfo& s : torus_scheme_registry()) {
+  for (const SchemeInfo& s : cardan_scheme_registry()) {
     INFO(s.name);
     const double tol = s.properties.adaptive ? 1e-8 : 0.0;
     {  // energy, tilted axis
@@ -141,8 +97,8 @@ TEST_CASE("every T^3 scheme conserves what it claims", "[cardan][generic]") {
 
 TEST_CASE("cardan-dp54 meets its tolerance and its error falls with it", "[cardan][adaptive]") {
   const system::CardanTop top = testing::cardan_test_top(0.5);
-  const system::TorusState ref = reference(top, 2.0);
-  const TorusSchemeInfo& s = *integrators::torus::find_torus_scheme("cardan-dp54");
+  const system::TorusState ref = testing::cardan_reference(top, 2.0);
+  const SchemeInfo& s = *integrators::find_cardan_scheme("cardan-dp54");
   double previous = 1.0;
   for (double tol : {1e-6, 1e-8, 1e-10}) {
     system::TorusState x = testing::cardan_test_initial(top);
@@ -154,5 +110,55 @@ TEST_CASE("cardan-dp54 meets its tolerance and its error falls with it", "[carda
     CHECK(err <= 100.0 * tol);
     CHECK(err < previous);
     previous = err;
+  }
+}
+
+namespace {
+
+/// p2 = 0: the turning points of the inner ring (both directions).
+class InnerTurns final : public integrators::BasicEventFunctions<system::TorusState> {
+ public:
+  int count() const override { return 1; }
+  double value(int, double, const system::TorusState& x) const override { return x.p(1); }
+  int direction(int) const override { return 0; }
+};
+
+class KeepHits final : public integrators::TorusObserver {
+ public:
+  void observe(std::int64_t, double, const system::TorusState& x) override { last = x; }
+  void on_event(const integrators::BasicEventHit<system::TorusState>& hit) override { hits.push_back(hit); }
+  system::TorusState last;
+  std::vector<integrators::BasicEventHit<system::TorusState>> hits;
+};
+
+}  // namespace
+
+TEST_CASE("every T^3 scheme runs events on the one loop: crossings located, the run unchanged", "[cardan][events]") {
+  const system::CardanTop top = testing::cardan_test_top(0.5);
+  const InnerTurns turns;
+  for (const SchemeInfo& s : cardan_scheme_registry()) {
+    INFO(s.name);
+    integrators::TorusRunConfig cfg;
+    cfg.t_end = 5.0;
+    cfg.dt = 0.01;
+    cfg.tol = 1e-10;
+    cfg.cpu_clock = false;
+    system::TorusState plain = testing::cardan_test_initial(top), with = plain;
+    KeepHits none, kept;
+    const integrators::RunStats a = s.run_cardan(top, plain, cfg, none);
+    cfg.events = &turns;
+    const integrators::RunStats b = s.run_cardan(top, with, cfg, kept);
+    REQUIRE(a.ok);
+    REQUIRE(b.ok);
+    CHECK(a.steps == b.steps);
+    CHECK(system::stack(plain) == system::stack(with));  // bit for bit: events only look
+    REQUIRE(!kept.hits.empty());
+    double t_before = 0.0;
+    for (const auto& hit : kept.hits) {
+      CHECK(std::abs(hit.state.p(1)) <= 1e-9 * (1.0 + hit.state.p.norm()));
+      CHECK(hit.residual == std::abs(hit.state.p(1)));
+      CHECK(hit.t > t_before);
+      t_before = hit.t;
+    }
   }
 }

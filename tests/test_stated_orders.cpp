@@ -18,6 +18,12 @@
 // asymptotic ones. A step the scheme refuses (a Cayley step of π or
 // more) counts as "too coarse" and is left out.
 //
+// The schemes of T³ × ℝ³ (the Cardan top, integrators/registry_cardan.cpp)
+// are measured on the Cardan top of tests/support/cardan_problems.hpp (tilted
+// outer axis, massive rings: H not separable) at t = 2, with the same step
+// ladder and fit, within ±0.2 of the stated order; an adaptive one through
+// its propagated solution at fixed steps (run_cardan_fixed).
+//
 // The same free body and driven top check every embedded pair of the
 // adaptive RKMK schemes at fixed steps (integrators::RkmkPairs; orders 5, 6,
 // 8), and every adaptive Lie-group scheme's error against its tolerance.
@@ -34,6 +40,7 @@
 #include "integrators/registry.hpp"
 #include "integrators/rkmk_adaptive.hpp"
 #include "integrators/system/free_body_exact.hpp"
+#include "support/cardan_problems.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
 #include "support/registered_run.hpp"
@@ -163,6 +170,39 @@ TEST_CASE("every fixed-step scheme shows the order lgi schemes states, with and 
       INFO(s.name << " states order " << s.order_with_torque << " with torque but was not run with one");
       CHECK(tested_torque[s.name] > 0);
     }
+  }
+}
+
+TEST_CASE("every T^3 scheme shows its stated order on the Cardan top", "[order][generic][cardan]") {
+  const system::CardanTop top = testing::cardan_test_top(0.5);
+  const double t_end = 2.0;
+  const system::TorusState ref = testing::cardan_reference(top, t_end);
+  constexpr double floor_error = 1e-12;  // the reference's error is below 1e-13
+  REQUIRE(integrators::cardan_scheme_registry().size() >= 4);
+  for (const integrators::SchemeInfo& s : integrators::cardan_scheme_registry()) {
+    // As above: h_k = 0.2 r^k, r = max(10^(-1/(2p)), 1/2),
+    // down to the floor or h = 1e-3; the five finest points above the floor.
+    const double r = std::max(std::pow(10.0, -1.0 / (2.0 * s.order)), 0.5);
+    std::vector<testing::ConvergencePoint> pts;
+    for (double h = 0.2; h >= 1e-3; h *= r) {
+      system::TorusState x = testing::cardan_test_initial(top);
+      // An adaptive scheme: its propagated solution on the fixed grid h (run_cardan_fixed).
+      integrators::TorusRunConfig cfg;
+      cfg.t_end = t_end;
+      cfg.dt = h;
+      cfg.cpu_clock = false;
+      testing::KeepSamples keep;
+      REQUIRE(s.run_cardan_fixed(top, x, cfg, keep).ok);
+      const double err = testing::state_distance(x, ref);
+      if (err <= floor_error) break;
+      pts.push_back({h, err});
+    }
+    if (pts.size() > 5) pts.erase(pts.begin(), pts.end() - 5);
+    const testing::SlopeFit fit = testing::fitted_slope(pts, floor_error);
+    testing::report_slope(s.name, "cardan top (tilt 0.5, massive rings)", fit, pts);
+    INFO(s.name << " states order " << s.order);
+    REQUIRE(fit.points >= 3);
+    CHECK(std::abs(fit.slope - s.order) <= 0.2);
   }
 }
 

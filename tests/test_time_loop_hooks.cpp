@@ -112,7 +112,7 @@ const system::FreeBody model{};
 TEST_CASE("time loop: a refused step ends the run at the last accepted state", "[time-loop]") {
   WallScheme scheme{.wall = 0.35};
   State s = at_rest();
-  RunConfig cfg{.t0 = 0.0, .t_end = 1.0, .dt = 0.1};
+  RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .dt = 0.1}};
   Recorder rec;
   const auto stats = integrators::integrate_fixed(scheme, model, s, cfg, rec);
   CHECK_FALSE(stats.ok);
@@ -126,7 +126,7 @@ TEST_CASE("time loop: a refused step ends the run at the last accepted state", "
 TEST_CASE("time loop: a refused start fails the run after the initial sample", "[time-loop]") {
   WallScheme scheme{.wall = 10.0, .refuse_start = true};
   State s = at_rest();
-  RunConfig cfg{.t0 = 0.0, .t_end = 1.0, .dt = 0.1};
+  RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .dt = 0.1}};
   Recorder rec;
   const auto stats = integrators::integrate_fixed(scheme, model, s, cfg, rec);
   CHECK_FALSE(stats.ok);
@@ -139,7 +139,7 @@ TEST_CASE("time loop: a refused start fails the run after the initial sample", "
 TEST_CASE("time loop: too many consecutive rejections end an adaptive run", "[time-loop]") {
   StubbornScheme scheme;
   State s = at_rest();
-  RunConfig cfg{.t0 = 0.0, .t_end = 1.0, .tol = 1e-8};
+  RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .tol = 1e-8}};
   cfg.max_consecutive_rejections = 50;
   Recorder rec;
   const auto stats = integrators::integrate_adaptive(scheme, model, s, cfg, rec);
@@ -152,7 +152,7 @@ TEST_CASE("time loop: dense output observes output times inside steps", "[time-l
   DenseScheme scheme;
   State s = at_rest();
   const std::vector<double> times{0.0, 0.25, 0.5, 0.6, 0.95, 1.0};
-  RunConfig cfg{.t0 = 0.0, .t_end = 1.0, .tol = 1e-8};
+  RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .tol = 1e-8}};
   cfg.output_times = &times;
   Recorder rec;
   const auto stats = integrators::integrate_adaptive(scheme, model, s, cfg, rec);

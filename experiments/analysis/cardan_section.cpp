@@ -8,16 +8,12 @@
 #include "experiments/analysis/cardan_equilibria.hpp"
 #include "experiments/analysis/seeded_random.hpp"
 #include "experiments/errors/exit_status.hpp"
-#include "integrators/loop_support.hpp"
-#include "integrators/torus/torus_explicit.hpp"
-#include "integrators/torus/torus_implicit.hpp"
+#include "integrators/registry.hpp"
 #include "integrators/torus/torus_tangent_flow.hpp"
 
 namespace lgi::experiments {
 namespace {
 
-using integrators::StepStatus;
-using integrators::WorkCounters;
 using system::TorusState;
 constexpr double pi = std::numbers::pi;
 constexpr std::uint64_t draw_stream = 0x5ec7104ULL, tangent_stream = 0x7a1e5cULL;
@@ -45,91 +41,101 @@ CardanCrossing crossing_at(const system::CardanTop& top, const TorusState& x, do
   return c;
 }
 
-/// θ in (0, 1] where factor `which` of the step map from `before` vanishes
-/// (Illinois regula falsi; M. Dowell, P. Jarratt, BIT 11 (1971) 168), and the state there.
-template <class Scheme>
-double locate(const Scheme& scheme, const system::CardanTop& top, const TorusState& before, double t, double h,
-              int which, TorusState& at) {
-  WorkCounters scratch;
-  auto value = [&](double theta, TorusState& x) {
-    x = before;
-    Scheme copy = scheme;
-    copy.step(top, x, t, theta * h, scratch);
-    return factor(top, x, which);
-  };
-  double lo = 0.0, hi = 1.0, f_lo = factor(top, before, which), f_hi = value(1.0, at);
-  int side = 0;
-  for (int it = 0; it < 100 && hi - lo > 4e-16; ++it) {
-    const double theta = f_hi != f_lo ? std::clamp(hi - f_hi * (hi - lo) / (f_hi - f_lo), lo, hi) : 0.5 * (lo + hi);
-    TorusState x;
-    const double f = value(theta, x);
-    if (f == 0.0) return at = x, theta;
-    if ((f > 0.0) == (f_hi > 0.0)) {
-      hi = theta, f_hi = f;
-      if (side == 1) f_lo *= 0.5;
-      side = 1;
+/// The section's two factors as the loop's event functions (integrators/events.hpp):
+/// event 0 is q̇2 = 0, event 1 sin q2 = 0, both directions.
+class SectionFactors final : public integrators::BasicEventFunctions<TorusState> {
+ public:
+  explicit SectionFactors(const system::CardanTop& top) : top_(top) {}
+  int count() const override { return 2; }
+  double value(int event, double /*t*/, const TorusState& x) const override { return factor(top_, x, event); }
+  int direction(int /*event*/) const override { return 0; }
+
+ private:
+  const system::CardanTop& top_;
+};
+
+/// Keeps the orbit's errors and crossings from the loop's samples (one a
+/// step) and located events. A crossing's direction is the sign of the change
+/// of S over its step, known at the step's sample; the crossings of one step
+/// are kept in time order. More than max_crossings set `stop`, which ends the
+/// run after that step.
+class SectionObserver final : public integrators::TorusObserver {
+ public:
+  SectionObserver(const system::CardanTop& top, const CardanOrbitRequest& r, CardanOrbit& o, std::atomic<bool>& stop)
+      : top_(top), r_(r), o_(o), stop_(stop) {}
+
+  void on_event(const integrators::BasicEventHit<TorusState>& hit) override { step_hits_.push_back(hit); }
+  void observe(std::int64_t step, double /*t*/, const TorusState& x) override {
+    if (truncated_) return;  // the step after the last one kept (the loop reads the stop flag then)
+    if (step == 0) {
+      H0_ = top_.energy(x), p10_ = x.p(0);
+      // Errors relative to max(|H0|, T0), T0 the kinetic energy: H0 may be 0 on a level set.
+      energy_scale_ = std::max({std::abs(H0_), 0.5 * x.p.dot(top_.velocity(x)), 1e-300});
     } else {
-      lo = theta, f_lo = f;
-      if (side == -1) f_hi *= 0.5;
-      side = -1;
+      o_.max_energy_error = std::max(o_.max_energy_error, std::abs(top_.energy(x) - H0_) / energy_scale_);
+      o_.max_momentum_error =
+          std::max(o_.max_momentum_error, std::abs(x.p(0) - p10_) / std::max(std::abs(p10_), 1e-300));
+      keep_crossings(x);
     }
+    last_ = x;
   }
-  value(hi, at);
-  return hi;
-}
+  /// The state of the last step kept: not a failed step's, nor one after the crossings ran over.
+  const TorusState& last() const { return last_; }
+  bool truncated() const { return truncated_; }
 
-bool changes_sign(double a, double b) { return (a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0); }
+ private:
+  void keep_crossings(const TorusState& x) {
+    const int direction = section_value(top_, x) > section_value(top_, last_) ? 1 : -1;
+    std::sort(step_hits_.begin(), step_hits_.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
+    for (const auto& hit : step_hits_) {
+      if (static_cast<std::int64_t>(o_.crossings.size()) >= r_.max_crossings) {
+        truncated_ = true;
+        stop_.store(true, std::memory_order_relaxed);
+        break;
+      }
+      o_.crossings.push_back(crossing_at(top_, hit.state, hit.t, hit.event, direction));
+    }
+    step_hits_.clear();
+  }
 
-template <class Scheme>
+  const system::CardanTop& top_;
+  const CardanOrbitRequest& r_;
+  CardanOrbit& o_;
+  std::atomic<bool>& stop_;
+  std::vector<integrators::BasicEventHit<TorusState>> step_hits_;
+  TorusState last_{};
+  double H0_ = 0.0, p10_ = 0.0, energy_scale_ = 1.0;
+  bool truncated_ = false;
+};
+
+/// The orbit on the one time loop (integrators/stepper_loop.hpp), its
+/// crossings located by the loop's events on the scheme's step map.
 void integrate_orbit(const system::CardanTop& top, const CardanOrbitRequest& r, CardanOrbit& o) {
-  Scheme scheme;
-  WorkCounters work;
-  TorusState x = o.initial;
-  // Errors relative to max(|H0|, T0), T0 the kinetic energy: H0 may be 0 on a level set.
-  const double H0 = top.energy(x), p10 = x.p(0);
-  const double energy_scale = std::max({std::abs(H0), 0.5 * x.p.dot(top.velocity(x)), 1e-300});
   if (std::string why = integrators::fixed_step_grid_problem(0.0, r.t_end, r.dt); !why.empty()) {
     o.status = 1;  // never a finished orbit with no steps
     o.reason = std::move(why);
     return;
   }
-  const std::int64_t n = integrators::fixed_step_count(r.t_end, r.dt);
-  double t = 0.0;
-  for (std::int64_t k = 0; k < n; ++k) {
-    const double t_next = k + 1 == n ? r.t_end : static_cast<double>(k + 1) * r.dt;
-    const TorusState before = x;
-    const StepStatus st = scheme.step(top, x, t, t_next - t, work);
-    o.steps = k + 1;
-    if (!st.converged || !(x.q.allFinite() && x.p.allFinite())) {
-      o.status = 1;
-      o.reason = (st.converged ? "state became non-finite at t = " : "implicit solve did not converge at t = ") +
-                 std::to_string(t_next);
-      x = before;
-      break;
-    }
-    o.max_energy_error = std::max(o.max_energy_error, std::abs(top.energy(x) - H0) / energy_scale);
-    o.max_momentum_error = std::max(o.max_momentum_error, std::abs(x.p(0) - p10) / std::max(std::abs(p10), 1e-300));
-    const int direction = section_value(top, x) > section_value(top, before) ? 1 : -1;
-    std::vector<CardanCrossing> found;
-    for (int which = 0; which < 2; ++which)
-      if (changes_sign(factor(top, before, which), factor(top, x, which))) {
-        TorusState at;
-        const double theta = locate(scheme, top, before, t, t_next - t, which, at);
-        found.push_back(crossing_at(top, at, t + theta * (t_next - t), which, direction));
-      }
-    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
-    for (const auto& c : found) {
-      if (static_cast<std::int64_t>(o.crossings.size()) >= r.max_crossings) {
-        o.status = 3;
-        o.reason = "more than " + std::to_string(r.max_crossings) + " crossings (--max-events)";
-        break;
-      }
-      o.crossings.push_back(c);
-    }
-    t = t_next;
-    if (o.status == 3) break;
+  const SectionFactors factors(top);
+  std::atomic<bool> stop{false};
+  SectionObserver observer(top, r, o, stop);
+  integrators::TorusRunConfig cfg;
+  cfg.t_end = r.t_end;
+  cfg.dt = r.dt;
+  cfg.cpu_clock = false;
+  cfg.events = &factors;
+  cfg.stop = &stop;
+  TorusState x = o.initial;
+  const integrators::RunStats stats = integrators::find_cardan_scheme(r.scheme)->run_cardan(top, x, cfg, observer);
+  o.steps = stats.steps;
+  if (observer.truncated()) {
+    o.status = 3;
+    o.reason = "more than " + std::to_string(r.max_crossings) + " crossings (--max-events)";
+  } else if (!stats.ok) {
+    o.status = 1;
+    o.reason = stats.status;
   }
-  o.final = x;
+  o.final = observer.last();
 }
 
 }  // namespace
@@ -178,9 +184,7 @@ CardanOrbit cardan_orbit(const system::CardanTop& top, const TorusState& x0, con
   CardanOrbit o;
   o.initial = x0;
   const double cpu0 = integrators::detail::cpu_now();
-  if (r.scheme == "cardan-midpoint") integrate_orbit<integrators::torus::TorusMidpoint>(top, r, o);
-  else if (r.scheme == "cardan-dg") integrate_orbit<integrators::torus::TorusDiscreteGradient>(top, r, o);
-  else integrate_orbit<integrators::torus::TorusRk4>(top, r, o);
+  integrate_orbit(top, r, o);
   if (r.indicators) cardan_orbit_indicators(top, x0, r.t_end, r.dt, r.seed, index, o.lyapunov, o.megno);
   o.cpu_seconds = integrators::detail::cpu_now() - cpu0;
   return o;

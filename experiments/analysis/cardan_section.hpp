@@ -24,9 +24,9 @@
 // ½ uᵀ S u = h − U_ℓ(r), S the Schur complement of M₁₁ in M, and
 // q̇1 = (ℓ − M₁₂ q̇2 − M₁₃ q̇3)/M₁₁ (so p1 = ℓ). Seeded per orbit.
 //
-// Crossings are located on the scheme's own step map, as the SO(3) events
-// (integrators/events.hpp): Illinois regula falsi on θ for steps θh from
-// the state before the crossing.
+// The orbits run on the one time loop (integrators/stepper_loop.hpp), and
+// the crossings of the two factors are its events (integrators/events.hpp),
+// located on the scheme's own step map by the loop's root finder.
 #include <atomic>
 #include <cstdint>
 #include <string>

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/output_grid.hpp"
 
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
@@ -18,7 +19,6 @@
 namespace lgi::experiments {
 namespace {
 
-using integrators::torus::TorusSchemeInfo;
 
 constexpr std::size_t cardan_series = 6;  // cardan_angle_1..3, cardan_momentum_1..3
 
@@ -31,7 +31,7 @@ TrajectoryLayout cardan_layout() {
 }
 
 /// Samples → the H5MD writer; keeps the energy and p1 errors for the summary line.
-class CardanObserver final : public integrators::torus::TorusObserver {
+class CardanObserver final : public integrators::TorusObserver {
  public:
   CardanObserver(const system::CardanTop& top, TrajectoryWriter* writer) : top_(top), writer_(writer) {}
 
@@ -78,7 +78,24 @@ class CardanObserver final : public integrators::torus::TorusObserver {
 }  // namespace
 
 bool is_cardan_scene(const system::Scene& scene) { return scene.suspension.has_value(); }
-bool is_cardan_scheme(const std::string& name) { return integrators::torus::find_torus_scheme(name) != nullptr; }
+bool is_cardan_scheme(const std::string& name) { return integrators::find_cardan_scheme(name) != nullptr; }
+
+const integrators::SchemeInfo& scheme_for_scene(const system::Scene& scene, const std::string& name,
+                                                const std::string& flag) {
+  const integrators::SchemeInfo* torus = integrators::find_cardan_scheme(name);
+  if (!is_cardan_scene(scene)) {
+    if (torus)
+      throw UsageError(flag + ": " + name + " runs on Cardan scenes only (its state is T^3 x R^3; scene " +
+                       scene.file + " has no [suspension], its state is SO(3) x R^3)");
+    return scheme_by_name(name, flag);
+  }
+  if (!torus) {
+    (void)scheme_by_name(name, flag);  // an unknown name: that error, with the nearest names
+    throw UsageError(flag + ": " + name + " runs on SO(3) x R^3 scenes only (scene " + scene.file +
+                     " is a Cardan top, state on T^3 x R^3): use cardan-midpoint, cardan-dg, cardan-rk4 or cardan-dp54");
+  }
+  return *torus;
+}
 
 int simulate_cardan(const system::Scene& scene, const std::string& scheme_name, const SimulationRequest& request) {
   SimulationOutcome outcome;
@@ -102,34 +119,34 @@ int simulate_cardan(const system::Scene& scene, const std::string& scheme_name, 
 
 SimulationOutcome run_cardan_simulation(const system::Scene& scene, const std::string& scheme_name,
                                         const SimulationRequest& request, const std::atomic<bool>* stop) {
-  const TorusSchemeInfo* torus = integrators::torus::find_torus_scheme(scheme_name);
-  if (!is_cardan_scene(scene))
-    throw UsageError("--scheme: " + scheme_name + " runs on Cardan scenes only (its state is T^3 x R^3; scene " +
-                     scene.file + " has no [suspension], its state is SO(3) x R^3)");
-  if (!torus)
-    throw UsageError("--scheme: " + scheme_name + " runs on SO(3) x R^3 scenes only (scene " + scene.file +
-                     " is a Cardan top, state on T^3 x R^3): use cardan-midpoint, cardan-dg, cardan-rk4 or cardan-dp54");
-  const integrators::SchemeInfo& info = *std::find_if(
-      torus_scheme_infos().begin(), torus_scheme_infos().end(), [&](const auto& i) { return i.name == torus->name; });
-  integrators::RunConfig cfg = simulation_config(request, scene, info);
+  const integrators::SchemeInfo& info = scheme_for_scene(scene, scheme_name, "--scheme");
+  // The settings as for every scheme; the run on T³ × ℝ³ through the one loop.
+  const integrators::RunConfig settings = simulation_config(request, scene, info);
+  integrators::TorusRunConfig cfg = integrators::run_config_with<system::TorusState>(settings);
   cfg.stop = stop;
-  if (cfg.retry_halving > 0) throw UsageError("--retry-halving: not available for the Cardan schemes");
+  std::vector<double> times;  // --output-dt's sample times, which cfg points to
+  if (request.output_dt) {
+    times = output_grid(cfg.t0, cfg.t_end, *request.output_dt);
+    cfg.output_times = &times;
+  }
   const system::CardanTop top = cardan_top(scene);
   std::optional<TrajectoryWriter> writer;
   if (!request.out.empty()) {
-    const ResultAttributes run = run_parameters(scene, info, cfg, request.command_line);
+    const ResultAttributes run = run_parameters(scene, info, settings, request.command_line);
     Provenance prov{run.text, run.number, run.integer};
     prov.integer_attributes["save_every"] = cfg.save_every;
+    if (request.output_dt) prov.number_attributes["output_dt"] = *request.output_dt;
+    if (cfg.retry_halving > 0) prov.integer_attributes["retry_halving"] = cfg.retry_halving;
     writer.emplace(request.out, request.force, cardan_layout(), prov);
   }
   CardanObserver observer(top, writer ? &*writer : nullptr);
   system::TorusState state = scene.cardan_initial;
   SimulationOutcome outcome;
-  outcome.stats = torus->run(top, state, cfg, observer);
+  outcome.stats = info.run_cardan(top, state, cfg, observer);
   if (outcome.stats.interrupted) outcome.stats.status = integrators::interrupted_status;
   outcome.diagnostics = diagnostics_of_run(outcome.stats, 0.0);
   outcome.error_summary = observer.summary();
-  close_simulation(outcome, torus->name, scene.file, writer ? &*writer : nullptr);
+  close_simulation(outcome, info.name, scene.file, writer ? &*writer : nullptr);
   return outcome;
 }
 

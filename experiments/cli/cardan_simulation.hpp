@@ -1,7 +1,7 @@
 #pragma once
 // `lgi simulate` on a scene with a [suspension] table (the Cardan top,
-// docs/cardan.md): the T³ scheme runs on the torus loop
-// (integrators/torus/torus_loop.hpp) and the trajectory is written in the
+// docs/cardan.md): the T³ scheme runs on the one time loop
+// (integrators/stepper_loop.hpp, on system::TorusState) and the trajectory is written in the
 // same H5MD layout as every other run (experiments/OUTPUT.md): the body's
 // attitude R(q) as a quaternion, its Π = J E(q) q̇ and Ω = E(q) q̇, the
 // energy (the whole mechanism's H, rings included), and six scalar
@@ -20,6 +20,12 @@ namespace lgi::experiments {
 bool is_cardan_scene(const system::Scene& scene);
 /// Whether `name` is a registered T³ scheme.
 bool is_cardan_scheme(const std::string& name);
+/// The scheme named `name` for this scene: a T³ scheme on a Cardan scene,
+/// an SO(3) scheme on any other. A scheme of the other state space is a
+/// UsageError (exit 2) naming both state spaces; an unknown name is
+/// scheme_by_name's error. `flag` names the option in the message.
+const integrators::SchemeInfo& scheme_for_scene(const system::Scene& scene, const std::string& name,
+                                                const std::string& flag);
 
 /// `lgi simulate` for a Cardan scene or a T³ scheme: runs, prints the
 /// summary line (unless quiet) and returns the exit status.

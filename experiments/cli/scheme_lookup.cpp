@@ -4,7 +4,6 @@
 #include <cstddef>
 
 #include "experiments/errors/exit_status.hpp"
-#include "integrators/torus/torus_registry.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -45,29 +44,10 @@ struct Candidate {
 
 }  // namespace
 
-const std::vector<integrators::SchemeInfo>& torus_scheme_infos() {
-  static const std::vector<integrators::SchemeInfo> infos = [] {
-    std::vector<integrators::SchemeInfo> out;
-    for (const auto& s : integrators::torus::torus_scheme_registry()) {
-      integrators::SchemeInfo info;
-      info.name = s.name;
-      info.order = s.order;
-      info.family = s.family;
-      info.properties = s.properties;
-      info.reference = s.reference;
-      info.notes = s.notes;
-      info.support = integrators::SceneSupport::cardan_only;
-      out.push_back(std::move(info));
-    }
-    return out;
-  }();
-  return infos;
-}
-
 std::vector<const integrators::SchemeInfo*> listed_schemes() {
   std::vector<const integrators::SchemeInfo*> out;
   for (const auto& s : integrators::scheme_registry()) out.push_back(&s);
-  for (const auto& s : torus_scheme_infos()) out.push_back(&s);
+  for (const auto& s : integrators::cardan_scheme_registry()) out.push_back(&s);
   return out;
 }
 
@@ -96,9 +76,9 @@ std::vector<std::string> nearest_scheme_names(std::string_view typed) {
 const integrators::SchemeInfo& scheme_by_name(std::string_view typed, std::string_view flag) {
   if (const integrators::SchemeInfo* s = integrators::find_scheme(typed)) return *s;
   // A scheme of the other state space exists: say so instead of suggesting its own name.
-  if (integrators::torus::find_torus_scheme(std::string(typed)) != nullptr)
-    throw UsageError(std::string(flag) + ": " + std::string(typed) +
-                     " runs on Cardan scenes only (its state is T^3 x R^3); this command's scenes have state SO(3) x R^3");
+  if (const integrators::SchemeInfo* s = integrators::find_cardan_scheme(typed))
+    throw UsageError(std::string(flag) + ": " + s->name + " runs on Cardan scenes only (its state is " +
+                     integrators::state_space_name(*s) + "); this command's scenes have state SO(3) x R^3");
   std::string message = std::string(flag) + ": unknown scheme '" + std::string(typed) + "'";
   const std::vector<std::string> near = nearest_scheme_names(typed);
   for (std::size_t i = 0; i < near.size(); ++i)

@@ -14,11 +14,6 @@ namespace lgi::experiments {
 /// Lie-group schemes and two baselines; empty if nothing is close.
 std::vector<std::string> nearest_scheme_names(std::string_view typed);
 
-/// The T³ schemes of the Cardan top (integrators/torus/torus_registry.hpp)
-/// as SO(3) registry records (support cardan_only, no run function): for the
-/// catalogues and the shared settings rules.
-const std::vector<integrators::SchemeInfo>& torus_scheme_infos();
-
 /// Every scheme `lgi schemes` and lgi.schemes() list: the SO(3) registry,
 /// then the T³ schemes.
 std::vector<const integrators::SchemeInfo*> listed_schemes();

@@ -43,11 +43,7 @@ SimulationRequest request_of(const SimulateOptions& o) {
 
 int simulate(const SimulateOptions& o) {
   const system::Scene scene = read_scene(o.scene);
-  if (is_cardan_scene(scene) || is_cardan_scheme(o.scheme)) {
-    if (o.output_dt)
-      throw UsageError("--output-dt: not available for a Cardan top on T^3 (docs/cardan.md); give --save-every");
-    return simulate_cardan(scene, o.scheme, request_of(o));
-  }
+  if (is_cardan_scene(scene) || is_cardan_scheme(o.scheme)) return simulate_cardan(scene, o.scheme, request_of(o));
   const integrators::SchemeInfo& scheme = scheme_by_name(o.scheme, "--scheme");
   const SimulationRequest request = request_of(o);
   const integrators::RunConfig cfg = simulation_config(request, scene, scheme);

@@ -26,6 +26,7 @@
 
 #include "lie/so3.hpp"
 #include "lie/product_state.hpp"
+#include "integrators/system/torus_state.hpp"
 
 namespace lgi::system {
 
@@ -45,11 +46,6 @@ struct SuspensionParameters {
   Vec3 inner_center = Vec3::Zero();     // the inner ring's, in its frame
 };
 
-/// A state on T³ × ℝ³: the Cardan angles (unwrapped) and their conjugate momenta.
-struct TorusState {
-  Vec3 q = Vec3::Zero();
-  Vec3 p = Vec3::Zero();
-};
 
 inline Vec6 stack(const TorusState& s) {
   Vec6 x;
@@ -60,6 +56,7 @@ inline TorusState unstack(const Vec6& x) { return {x.head<3>(), x.tail<3>()}; }
 
 /// The Cardan top's model: M(q), V(q), H and the canonical field (eq. (7)).
 struct CardanTop {
+  using state_type = TorusState;  // the time loop's state (integrators/state_space.hpp)
   Mat3 J = Mat3::Identity();  // the body's inertia about the fixed point
   double mass = 0.0;          // the body's
   Vec3 chi = Vec3::Zero();    // the body's centre of mass, body frame

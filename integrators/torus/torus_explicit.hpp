@@ -23,6 +23,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "integrators/scheme_interface.hpp"
 #include "integrators/system/cardan.hpp"
@@ -124,6 +126,15 @@ class TorusDp54 {
     if (a.accepted) s = system::unstack(x1);
     else ++work.rejected_steps;
     return a;
+  }
+
+  /// Resume (scheme_interface.hpp): the controller remembers whether the last
+  /// attempt was rejected (no growth right after a rejection).
+  void save_memory(std::vector<double>& out) const { out.push_back(last_rejected_ ? 1.0 : 0.0); }
+  bool restore_memory(std::span<const double> in) {
+    if (in.size() != 1 || (in[0] != 0.0 && in[0] != 1.0)) return false;
+    last_rejected_ = in[0] == 1.0;
+    return true;
   }
 
  private:

@@ -31,7 +31,7 @@ inline system::TorusState cardan_test_initial(const system::CardanTop& top) {
 }
 
 /// Keeps every sample (or only the last one).
-class KeepSamples final : public integrators::torus::TorusObserver {
+class KeepSamples final : public integrators::TorusObserver {
  public:
   explicit KeepSamples(bool all = false) : all_(all) {}
   void observe(std::int64_t, double t, const system::TorusState& s) override {
@@ -46,18 +46,31 @@ class KeepSamples final : public integrators::torus::TorusObserver {
   bool all_;
 };
 
+/// The T³ scheme named `name` (its registry entry).
+inline const integrators::SchemeInfo& cardan_scheme(const char* name) {
+  return *integrators::find_cardan_scheme(name);
+}
+
 /// Runs a registered T³ scheme from x0 over [0, t_end]: fixed step dt, or
 /// the adaptive control with tol. Returns the statistics; x0 becomes the final state.
-inline integrators::RunStats run_torus(const integrators::torus::TorusSchemeInfo& scheme,
-                                       const system::CardanTop& top, system::TorusState& x, double t_end, double dt,
-                                       double tol = 0.0, integrators::torus::TorusObserver* observer = nullptr) {
-  integrators::RunConfig cfg;
+inline integrators::RunStats run_torus(const integrators::SchemeInfo& scheme, const system::CardanTop& top,
+                                       system::TorusState& x, double t_end, double dt, double tol = 0.0,
+                                       integrators::TorusObserver* observer = nullptr) {
+  integrators::TorusRunConfig cfg;
   cfg.t_end = t_end;
   cfg.dt = dt;
   cfg.tol = tol;
   cfg.cpu_clock = false;
   KeepSamples last;
-  return scheme.run(top, x, cfg, observer ? *observer : last);
+  return scheme.run_cardan(top, x, cfg, observer ? *observer : last);
+}
+
+/// The state at t_end from cardan_test_initial: cardan-rk4 with h = 5e-5
+/// (an error below 1e-13 at t_end = 2).
+inline system::TorusState cardan_reference(const system::CardanTop& top, double t_end) {
+  system::TorusState x = cardan_test_initial(top);
+  run_torus(cardan_scheme("cardan-rk4"), top, x, t_end, 5e-5);
+  return x;
 }
 
 inline double state_distance(const system::TorusState& a, const system::TorusState& b) {
