@@ -29,8 +29,11 @@
 #include <optional>
 #include <sstream>
 
+#include "experiments/analysis/cardan_invariants.hpp"
+#include "experiments/cli/cardan_simulation.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
+#include "experiments/commands/long_time/long_time_observer.hpp"
 #include "experiments/commands/long_time/long_time_resume.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -43,6 +46,7 @@
 #include "experiments/io/output_timing.hpp"
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scene_reader.hpp"
+#include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/registry.hpp"
 #include "integrators/system/invariants.hpp"
@@ -65,194 +69,10 @@ struct LongTimeOptions {
   std::string command_line;
 };
 
-/// The sample steps: 0, round(10^(j/N)) for j = 0, 1, ... (each taken once),
-/// and the last step (known for fixed-step runs; adaptive runs add it after
-/// the run).
-class SampleSchedule {
- public:
-  SampleSchedule(int per_decade, std::int64_t last) : per_decade_(per_decade), last_(last) {}
-  std::int64_t first() const { return 0; }
-  std::int64_t last() const { return last_; }
-  /// The next sample step after `step`.
-  std::int64_t next(std::int64_t step) {
-    for (;;) {
-      const double x = std::round(std::pow(10.0, static_cast<double>(j_) / per_decade_));
-      if (x > 9.0e18) return std::numeric_limits<std::int64_t>::max();
-      const auto k = static_cast<std::int64_t>(x);
-      if (k > step) return last_ > 0 ? std::min(k, last_) : k;
-      ++j_;
-    }
-  }
-
- private:
-  int per_decade_;
-  std::int64_t last_;  // <= 0: unknown
-  long j_ = 0;
-};
-
-/// A progress bar on stderr with the time left, shown once the run is
-/// expected to take more than about a second.
-class Progress {
- public:
-  explicit Progress(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-  /// fraction in [0, 1].
-  void update(double fraction, std::int64_t step) {
-    if (!enabled_ || !(fraction > 0.0)) return;
-    const auto now = std::chrono::steady_clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (!shown_) {
-      if (elapsed < 0.25 || elapsed / fraction < 1.0) return;
-      shown_ = true;
-    } else if (std::chrono::duration<double>(now - last_draw_).count() < 0.2) {
-      return;
-    }
-    last_draw_ = now;
-    const double left = elapsed / fraction - elapsed;
-    constexpr int width = 30;
-    const int filled = std::clamp(static_cast<int>(fraction * width), 0, width);
-    std::string bar(static_cast<std::size_t>(filled), '=');
-    bar.resize(width, ' ');
-    std::fprintf(stderr, "\r\033[K[%s] %5.1f%%  step %lld  %s left", bar.c_str(), 100.0 * fraction,
-                 static_cast<long long>(step), duration(left).c_str());
-    std::fflush(stderr);
-  }
-  void done() {
-    if (shown_) {
-      std::fprintf(stderr, "\r\033[K");
-      std::fflush(stderr);
-    }
-  }
-
- private:
-  static std::string duration(double s) {
-    char buf[32];
-    if (s < 10) std::snprintf(buf, sizeof buf, "%.1f s", s);
-    else if (s < 60) std::snprintf(buf, sizeof buf, "%.0f s", s);
-    else if (s < 3600) std::snprintf(buf, sizeof buf, "%d min %02d s", static_cast<int>(s / 60), static_cast<int>(s) % 60);
-    else std::snprintf(buf, sizeof buf, "%d h %02d min", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
-    return buf;
-  }
-  bool enabled_;
-  bool shown_ = false;
-  std::chrono::steady_clock::time_point start_, last_draw_;
-};
-
-class LongTimeObserver final : public integrators::Observer {
- public:
-  LongTimeObserver(const system::SceneInvariants& invariants, ResultsFile& file, std::vector<std::string> names,
-                   int per_decade, std::int64_t last_step, double t0, double t_end, Progress& progress)
-      : invariants_(invariants),
-        file_(file),
-        names_(std::move(names)),
-        schedule_(per_decade, last_step),
-        last_step_(last_step),
-        t0_(t0),
-        t_end_(t_end),
-        progress_(progress),
-        current_(names_.size(), 0.0),
-        window_max_(names_.size(), 0.0),
-        run_max_(names_.size(), 0.0),
-        per_decade_(per_decade) {
-    next_sample_ = schedule_.first();
-  }
-
-  void observe(std::int64_t step, double t, const system::State& s) override {
-    const system::InvariantValues v = invariants_.evaluate(s);
-    if (!have_initial_) {
-      initial_ = v;
-      have_initial_ = true;
-    }
-    invariants_.errors(initial_, v, current_);
-    for (std::size_t i = 0; i < current_.size(); ++i)
-      if (!(window_max_[i] >= current_[i])) window_max_[i] = current_[i];
-    step_ = step;
-    time_ = t;
-    emitted_ = false;
-    if (step >= next_sample_) {
-      emit();
-      next_sample_ = schedule_.next(step);
-    }
-    if ((step & 4095) == 0) [[unlikely]]
-      housekeeping();
-    // A run ended by RunConfig::stop observes its final state right after
-    // on_stop(): that state is the last sample.
-    if (stopping_ && !emitted_) [[unlikely]]
-      emit();
-  }
-  void on_stop() override { stopping_ = true; }
-
-  /// Rows are flushed with the checkpoints (LongTimeCheckpoints), not here.
-  void flush_with_checkpoints() { checkpointing_ = true; }
-  /// A resumed run: where the run was at checkpoint c, whose initial state was `initial`.
-  void resume_at(const RunCheckpoint& c, const system::State& initial) {
-    initial_ = invariants_.evaluate(initial);
-    have_initial_ = true;
-    window_max_ = c.window_max;
-    run_max_ = c.run_max;
-    step_ = c.loop.step;
-    time_ = c.loop.t;
-    emitted_ = true;
-    schedule_ = SampleSchedule(per_decade_, schedule_.last());
-    next_sample_ = schedule_.next(step_);
-  }
-  /// The command's part of a checkpoint.
-  void fill(RunCheckpoint& c) const {
-    c.window_max = window_max_;
-    c.run_max = run_max_;
-  }
-
-  /// Emits a row for the last observed step unless it is already a sample.
-  void finish() {
-    if (step_ >= 0 && !emitted_) emit();
-  }
-  std::int64_t last_observed_step() const { return step_; }
-  double last_observed_time() const { return time_; }
-  const std::vector<double>& current() const { return current_; }
-  const std::vector<double>& run_max() const { return run_max_; }
-
- private:
-  void emit() {
-    ResultRow row = file_.row();
-    row.set("step", step_);
-    row.set("time", time_);
-    for (std::size_t i = 0; i < names_.size(); ++i) {
-      row.set(names_[i], current_[i]);
-      row.set(names_[i] + "_window_max", window_max_[i]);
-      run_max_[i] = std::max(run_max_[i], window_max_[i]);
-      window_max_[i] = 0.0;
-    }
-    file_.append(row);
-    emitted_ = true;
-  }
-  void housekeeping() {
-    if (!checkpointing_) file_.flush_if_due();
-    const double fraction = last_step_ > 0 ? static_cast<double>(step_) / static_cast<double>(last_step_)
-                                           : (time_ - t0_) / (t_end_ - t0_);
-    progress_.update(fraction, step_);
-  }
-
-  const system::SceneInvariants& invariants_;
-  ResultsFile& file_;
-  std::vector<std::string> names_;  // the error columns, e.g. "energy_error"
-  SampleSchedule schedule_;
-  std::int64_t last_step_;
-  double t0_, t_end_;
-  Progress& progress_;
-  bool have_initial_ = false;
-  system::InvariantValues initial_{};
-  std::vector<double> current_, window_max_, run_max_;
-  std::int64_t next_sample_ = 0;
-  std::int64_t step_ = -1;
-  double time_ = 0.0;
-  bool emitted_ = false;
-  bool stopping_ = false;
-  bool checkpointing_ = false;
-  int per_decade_;
-};
-
 /// The one parseable line (and the files written) of a finished run.
+template <class Observer>
 void print_summary(const std::string& scheme, const Diagnostics& diag, double t_final,
-                   const std::vector<std::string>& names, const LongTimeObserver& observer, const ResultsFile& file) {
+                   const std::vector<std::string>& names, const Observer& observer, const ResultsFile& file) {
   std::ostringstream line;
   line << "scheme=" << scheme << " steps=" << diag.steps << " samples=" << file.rows()
        << " cpu_seconds=" << format_sci(diag.cpu_seconds) << " output_seconds=" << format_sci(diag.output_seconds)
@@ -276,7 +96,7 @@ ResultAttributes long_time_diagnostics(const integrators::RunStats& stats, doubl
 
 /// The checks that need no scene (CommandLine::parse runs them first).
 void check_long_time_flags(const LongTimeOptions& o) {
-  (void)scheme_by_name(o.scheme, "--scheme");
+  if (!is_cardan_scheme(o.scheme)) (void)scheme_by_name(o.scheme, "--scheme");  // a T^3 scheme: checked with its scene
   if (o.samples < 1) throw UsageError("--samples: must be >= 1 (samples per decade of steps)");
   check_work_limit("--samples", o.samples, max_samples_per_decade, "samples per decade");
   if (!(o.flush_seconds > 0.0) || !std::isfinite(o.flush_seconds))
@@ -285,9 +105,11 @@ void check_long_time_flags(const LongTimeOptions& o) {
 }
 
 /// The results file: new, or (--resume) reopened at its last checkpoint.
-ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene,
-                            const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
-                            std::int64_t last_step, const std::vector<Column>& columns, std::size_t error_columns) {
+template <class S>
+ResumedResults<S> open_results(const LongTimeOptions& o, const system::Scene& scene,
+                               const integrators::SchemeInfo& scheme, const integrators::RunConfig& cfg,
+                               std::int64_t last_step, const std::vector<Column>& columns,
+                               std::size_t error_columns) {
   ResultsFileOptions options;
   options.table = "series";
   options.flush_interval_seconds = o.flush_seconds;
@@ -296,7 +118,7 @@ ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene
     if (!scheme.resumable)
       throw UsageError("--resume: scheme '" + scheme.name +
                        "' keeps memory between steps that lgi cannot save yet; run it again without --resume");
-    ResumedResults r = reopen_for_resume(o.out, o.force, columns, options, fingerprint, error_columns);
+    ResumedResults<S> r = reopen_for_resume<S>(o.out, o.force, columns, options, fingerprint, error_columns);
     if (!r.file) {
       if (!o.quiet)
         std::cerr << "lgi: " << o.out << ".partial holds no checkpoint (a run killed as it started): starting "
@@ -304,7 +126,7 @@ ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene
       LongTimeOptions fresh = o;
       fresh.resume = false;
       fresh.force = true;  // the partial files are replaced; the finished ones were checked above
-      return open_results(fresh, scene, scheme, cfg, last_step, columns, error_columns);
+      return open_results<S>(fresh, scene, scheme, cfg, last_step, columns, error_columns);
     }
     // An intact checkpoint of this run lies inside it (a damaged one cannot pass its hash, but says so here too).
     if (const auto& c = r.checkpoint;
@@ -320,7 +142,7 @@ ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene
                 << '\n';
     return r;
   }
-  ResumedResults r;
+  ResumedResults<S> r;
   r.file = std::make_unique<ResultsFile>(o.out, o.force, columns, options);
   ResultAttributes params = run_parameters(scene, scheme, cfg, o.command_line);
   params.text["subcommand"] = "long-time";
@@ -330,21 +152,12 @@ ResumedResults open_results(const LongTimeOptions& o, const system::Scene& scene
   return r;
 }
 
-int long_time(const LongTimeOptions& o) {
-  const system::Scene scene = read_scene(o.scene);
-  refuse_cardan_scene(scene, "long-time");
-  const integrators::SchemeInfo* scheme = &scheme_by_name(o.scheme, "--scheme");
-  check_long_time_flags(o);
-  // The command line, then the scene's [run] (step_settings.hpp).
-  integrators::RunConfig cfg = resolve_run_config({o.dt, o.tol, o.t_end}, scene, *scheme, /*allow_zero_t_end=*/false);
-  cfg.save_every = 1;
-  const std::int64_t last_step =
-      scheme->properties.adaptive ? 0 : integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt);
-  const system::AnyModel model = system::make_model(scene);
-  if (const std::string why = integrators::unsupported_reason(*scheme, model); !why.empty())
-    throw RunError(why + "; scene " + scene.file + " is not one");
-  const system::SceneInvariants invariants(scene, model);
-
+/// The run after its settings are resolved, on states S: `run(state, cfg,
+/// observer)` runs the scheme on the scene's model from `initial`.
+template <class S, class Invariants, class Run>
+int run_long_time(const LongTimeOptions& o, const system::Scene& scene, const integrators::SchemeInfo& scheme,
+                  const integrators::RunConfig& settings, std::int64_t last_step, const Invariants& invariants,
+                  const S& initial, Run&& run) {
   std::vector<std::string> names;  // the error columns, e.g. "energy_error"
   for (const auto& n : invariants.error_names()) names.push_back(n + "_error");
   std::vector<Column> columns = {{"step", ColumnType::integer, ""}, {"time", ColumnType::real, "s"}};
@@ -355,40 +168,41 @@ int long_time(const LongTimeOptions& o) {
   // signal only sets the flag: the loop stops at a step boundary, and one
   // that comes after the last step lets the files be finished (exit 0).
   const InterruptGuard interrupt_guard;
-  ResumedResults opened = open_results(o, scene, *scheme, cfg, last_step, columns, names.size());
+  ResumedResults<S> opened = open_results<S>(o, scene, scheme, settings, last_step, columns, names.size());
   ResultsFile& file = *opened.file;
-  const std::optional<RunCheckpoint>& from = opened.checkpoint;
+  const std::optional<BasicRunCheckpoint<S>>& from = opened.checkpoint;
 
   Progress progress(!o.quiet && ::isatty(STDERR_FILENO) == 1);
-  LongTimeObserver observer(invariants, file, names, o.samples, last_step, cfg.t0, cfg.t_end, progress);
-  OutputTimingObserver timed(observer);
+  LongTimeObserver<S, Invariants> observer(invariants, file, names, o.samples, last_step, settings.t0,
+                                           settings.t_end, progress);
+  BasicOutputTimingObserver<S> timed(observer);
   const double cpu_before = from ? from->cpu_seconds : 0.0, output_before = from ? from->output_seconds : 0.0;
   const double cpu_start = integrators::detail::cpu_now();
-  LongTimeCheckpoints checkpoints(
+  LongTimeCheckpoints<S> checkpoints(
       file, o.flush_seconds,
-      [&](RunCheckpoint& c) {
+      [&](BasicRunCheckpoint<S>& c) {
         observer.fill(c);
         const double cpu_run = integrators::detail::cpu_now() - cpu_start;
         c.cpu_seconds = cpu_before + cpu_run;
         c.output_seconds = output_before + timed.output_cpu_seconds(cpu_run);
       },
       opened.next_sequence);
-  if (scheme->resumable) {
+  integrators::BasicRunConfig<S> cfg = integrators::run_config_with<S>(settings);
+  if (scheme.resumable) {
     cfg.checkpoints = &checkpoints;
     observer.flush_with_checkpoints();
   }
   if (from) {
     checkpoints.resume_from = &from->loop;
-    observer.resume_at(*from, scene.initial);
+    observer.resume_at(*from, initial);
   }
 
-  system::State state = scene.initial;
+  S state = initial;
   integrators::RunStats stats;
   bool interrupted = false;
   {
-    integrators::RunConfig c = cfg;
-    c.stop = &interrupt_requested;  // every loop (the baselines' too) ends cleanly, with its statistics
-    stats = scheme->run(model, state, c, timed);
+    cfg.stop = &interrupt_requested;  // every loop (the baselines' too) ends cleanly, with its statistics
+    stats = run(state, cfg, timed);
     if (stats.interrupted) {  // reported as before, with the loop's own statistics
       interrupted = true;
       stats.status = integrators::interrupted_status;
@@ -403,15 +217,43 @@ int long_time(const LongTimeOptions& o) {
   const ResultAttributes diag_attributes = long_time_diagnostics(stats, output_seconds, file.rows(), diag);
   if (!stats.ok) {
     file.abandon(diag_attributes);
-    std::cerr << "lgi: " << scheme->name << " on " << scene.file << ": " << stats.status
+    std::cerr << "lgi: " << scheme.name << " on " << scene.file << ": " << stats.status
               << (interrupted ? " at step " + std::to_string(stats.steps) : std::string())
               << "; results so far kept in " << file.partial_path() << " and " << file.csv_partial_path()
-              << (scheme->resumable ? " (--resume goes on from the last checkpoint)" : "") << '\n';
+              << (scheme.resumable ? " (--resume goes on from the last checkpoint)" : "") << '\n';
     return interrupted ? interrupted_exit_status() : exit_run_failed;
   }
   file.finish(diag_attributes);
-  if (!o.quiet) print_summary(scheme->name, diag, stats.t_final, names, observer, file);
+  if (!o.quiet) print_summary(scheme.name, diag, stats.t_final, names, observer, file);
   return exit_ok;
+}
+
+int long_time(const LongTimeOptions& o) {
+  const system::Scene scene = read_scene(o.scene);
+  // A Cardan scene runs a scheme of T^3 x R^3, any other one of SO(3) x R^3 (cardan_simulation.hpp).
+  const integrators::SchemeInfo& scheme = scheme_for_scene(scene, o.scheme, "--scheme");
+  check_long_time_flags(o);
+  // The command line, then the scene's [run] (step_settings.hpp).
+  integrators::RunConfig settings =
+      resolve_run_config({o.dt, o.tol, o.t_end}, scene, scheme, /*allow_zero_t_end=*/false);
+  settings.save_every = 1;
+  const std::int64_t last_step =
+      scheme.properties.adaptive ? 0 : integrators::fixed_step_count(settings.t_end - settings.t0, settings.dt);
+  if (is_cardan_scene(scene)) {
+    const system::CardanTop top = cardan_top(scene);
+    const CardanInvariants invariants(top);
+    return run_long_time(o, scene, scheme, settings, last_step, invariants, scene.cardan_initial,
+                         [&](system::TorusState& x, const integrators::TorusRunConfig& cfg,
+                             integrators::TorusObserver& observer) { return scheme.run_cardan(top, x, cfg, observer); });
+  }
+  const system::AnyModel model = system::make_model(scene);
+  if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
+    throw RunError(why + "; scene " + scene.file + " is not one");
+  const system::SceneInvariants invariants(scene, model);
+  return run_long_time(o, scene, scheme, settings, last_step, invariants, scene.initial,
+                       [&](system::State& x, const integrators::RunConfig& cfg, integrators::Observer& observer) {
+                         return scheme.run(model, x, cfg, observer);
+                       });
 }
 
 }  // namespace

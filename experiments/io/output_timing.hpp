@@ -21,13 +21,15 @@
 
 namespace lgi::experiments {
 
-class OutputTimingObserver final : public integrators::Observer {
+/// On states S (integrators/state_space.hpp).
+template <class S>
+class BasicOutputTimingObserver final : public integrators::BasicObserver<S> {
  public:
   /// The run's wall clock starts here: construct it just before the loop.
-  explicit OutputTimingObserver(integrators::Observer& inner)
+  explicit BasicOutputTimingObserver(integrators::BasicObserver<S>& inner)
       : inner_(inner), run_start_(std::chrono::steady_clock::now()) {}
 
-  void observe(std::int64_t step, double t, const system::State& s) override {
+  void observe(std::int64_t step, double t, const S& s) override {
     const Clock clock(wall_seconds_);
     inner_.observe(step, t, s);
   }
@@ -35,7 +37,7 @@ class OutputTimingObserver final : public integrators::Observer {
     const Clock clock(wall_seconds_);
     inner_.observe_euler_zxz(angles);
   }
-  void on_event(const integrators::EventHit& hit) override {
+  void on_event(const integrators::BasicEventHit<S>& hit) override {
     const Clock clock(wall_seconds_);
     inner_.on_event(hit);
   }
@@ -63,9 +65,11 @@ class OutputTimingObserver final : public integrators::Observer {
     double& total_;
     std::chrono::steady_clock::time_point start_;
   };
-  integrators::Observer& inner_;
+  integrators::BasicObserver<S>& inner_;
   std::chrono::steady_clock::time_point run_start_;
   double wall_seconds_ = 0.0;
 };
+
+using OutputTimingObserver = BasicOutputTimingObserver<system::State>;
 
 }  // namespace lgi::experiments

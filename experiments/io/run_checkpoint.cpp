@@ -76,15 +76,18 @@ class Reader {
 
 }  // namespace
 
-std::vector<unsigned char> encode_checkpoint(const RunCheckpoint& c, std::uint64_t sequence) {
+template <class S>
+std::vector<unsigned char> encode_checkpoint(const BasicRunCheckpoint<S>& c, std::uint64_t sequence) {
+  using Space = integrators::StateSpace<S>;
   Writer p;
-  const integrators::LoopCheckpoint& l = c.loop;
+  const integrators::BasicLoopCheckpoint<S>& l = c.loop;
   p.put(c.rows);
   p.put(l.step);
   p.put(l.t);
   p.put(l.h);
-  for (int i = 0; i < 9; ++i) p.put(l.state.R.data()[i]);
-  for (int i = 0; i < 3; ++i) p.put(l.state.Pi(i));
+  double state[Space::dimension];
+  Space::write(l.state, state);
+  for (double x : state) p.put(x);
   p.put(l.work.rhs_evaluations);
   p.put(l.work.rejected_steps);
   p.put(l.work.newton_iterations_max);
@@ -109,8 +112,10 @@ std::vector<unsigned char> encode_checkpoint(const RunCheckpoint& c, std::uint64
   return slot.bytes;
 }
 
-std::optional<std::pair<RunCheckpoint, std::uint64_t>> decode_checkpoint(std::span<const unsigned char> slot,
-                                                                         std::size_t error_columns) {
+template <class S>
+std::optional<std::pair<BasicRunCheckpoint<S>, std::uint64_t>> decode_checkpoint(std::span<const unsigned char> slot,
+                                                                                 std::size_t error_columns) {
+  using Space = integrators::StateSpace<S>;
   if (slot.size() < header_bytes || std::memcmp(slot.data(), magic, 8) != 0) return std::nullopt;
   Reader h(slot.subspan(8, 24));
   std::uint64_t sequence = 0, length = 0, hash = 0;
@@ -120,12 +125,13 @@ std::optional<std::pair<RunCheckpoint, std::uint64_t>> decode_checkpoint(std::sp
   if (sequence == 0 || length > slot.size() - header_bytes) return std::nullopt;
   const auto payload = slot.subspan(header_bytes, static_cast<std::size_t>(length));
   if (slot_hash(sequence, length, payload) != hash) return std::nullopt;
-  RunCheckpoint c;
-  integrators::LoopCheckpoint& l = c.loop;
+  BasicRunCheckpoint<S> c;
+  integrators::BasicLoopCheckpoint<S>& l = c.loop;
   Reader p(payload);
   bool ok = p.get(c.rows) && p.get(l.step) && p.get(l.t) && p.get(l.h);
-  for (int i = 0; i < 9 && ok; ++i) ok = p.get(l.state.R.data()[i]);
-  for (int i = 0; i < 3 && ok; ++i) ok = p.get(l.state.Pi(i));
+  double state[Space::dimension] = {};
+  for (std::size_t i = 0; i < Space::dimension && ok; ++i) ok = p.get(state[i]);
+  Space::read(state, l.state);
   ok = ok && p.get(l.work.rhs_evaluations) && p.get(l.work.rejected_steps) && p.get(l.work.newton_iterations_max) &&
        p.get(l.work.newton_failures) && p.get(c.cpu_seconds) && p.get(c.output_seconds) && p.get_all(c.window_max);
   if (!ok || c.window_max.size() != error_columns) return std::nullopt;
@@ -136,17 +142,32 @@ std::optional<std::pair<RunCheckpoint, std::uint64_t>> decode_checkpoint(std::sp
   return std::pair{std::move(c), sequence};
 }
 
-std::optional<RunCheckpoint> newest_checkpoint(std::span<const unsigned char> record, std::size_t error_columns,
-                                               std::int64_t max_rows, std::uint64_t& next_sequence) {
-  std::optional<std::pair<RunCheckpoint, std::uint64_t>> best;
+template <class S>
+std::optional<BasicRunCheckpoint<S>> newest_checkpoint(std::span<const unsigned char> record,
+                                                       std::size_t error_columns, std::int64_t max_rows,
+                                                       std::uint64_t& next_sequence) {
+  std::optional<std::pair<BasicRunCheckpoint<S>, std::uint64_t>> best;
   next_sequence = 1;
   for (std::size_t at = 0; at + checkpoint_slot_bytes <= record.size(); at += checkpoint_slot_bytes) {
-    auto c = decode_checkpoint(record.subspan(at, checkpoint_slot_bytes), error_columns);
+    auto c = decode_checkpoint<S>(record.subspan(at, checkpoint_slot_bytes), error_columns);
     if (c && c->second < UINT64_MAX) next_sequence = std::max(next_sequence, c->second + 1);
     if (c && c->first.rows <= max_rows && (!best || c->second > best->second)) best = std::move(c);
   }
   if (!best) return std::nullopt;
   return std::move(best->first);
 }
+
+// The two state spaces a long run is checkpointed on.
+template std::vector<unsigned char> encode_checkpoint(const RunCheckpoint&, std::uint64_t);
+template std::vector<unsigned char> encode_checkpoint(const TorusRunCheckpoint&, std::uint64_t);
+template std::optional<std::pair<RunCheckpoint, std::uint64_t>> decode_checkpoint<system::State>(
+    std::span<const unsigned char>, std::size_t);
+template std::optional<std::pair<TorusRunCheckpoint, std::uint64_t>> decode_checkpoint<system::TorusState>(
+    std::span<const unsigned char>, std::size_t);
+template std::optional<RunCheckpoint> newest_checkpoint<system::State>(std::span<const unsigned char>, std::size_t,
+                                                                      std::int64_t, std::uint64_t&);
+template std::optional<TorusRunCheckpoint> newest_checkpoint<system::TorusState>(std::span<const unsigned char>,
+                                                                                std::size_t, std::int64_t,
+                                                                                std::uint64_t&);
 
 }  // namespace lgi::experiments

@@ -6,7 +6,9 @@ byte for byte, and the same /diagnostics counters. The cases cover a
 fixed-step scheme without memory (rkmk4), an adaptive one that carries its
 FSAL stage and controller state (rkmk-dp54), one whose start() sets up
 from the initial state (split-exact) and one that carries compensated sums
-and the history of its Newton predictor (dmv-pre10); one run is killed twice. A scheme that
+and the history of its Newton predictor (dmv-pre10), and on a Cardan scene
+(state on T^3 x R^3) a fixed-step scheme (cardan-rk4) and the adaptive
+cardan-dp54 with its controller's memory; one run is killed twice. A scheme that
 cannot be resumed, a missing partial file and changed arguments are refused
 with exit 2 and one line."""
 import os
@@ -23,6 +25,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SCENES = os.path.join(ROOT, "experiments", "scenes")
 FREE = os.path.join(SCENES, "free_body_hlw.toml")
 TOP = os.path.join(SCENES, "heavy_top_trindade_1.toml")
+CARDAN = os.path.join(SCENES, "cardan_euler_tilted.toml")  # state on T^3 x R^3 (docs/cardan.md section 7)
 FLUSH = ["--flush-seconds", "0.1"]  # checkpoints every 0.1 s (and every 4096 steps at most)
 
 CASES = {
@@ -30,6 +33,9 @@ CASES = {
     "rkmk-dp54": ["--scene", TOP, "--scheme", "rkmk-dp54", "--tol", "1e-12", "--t-end", "300", "--samples", "40"],
     "split-exact": ["--scene", TOP, "--scheme", "split-exact", "--dt", "1e-3", "--t-end", "150"],
     "dmv-pre10": ["--scene", FREE, "--scheme", "dmv-pre10", "--dt", "1e-4", "--t-end", "1000", "--samples", "40"],
+    "cardan-rk4": ["--scene", CARDAN, "--scheme", "cardan-rk4", "--dt", "1e-3", "--t-end", "400", "--samples", "40"],
+    "cardan-dp54": ["--scene", CARDAN, "--scheme", "cardan-dp54", "--tol", "1e-12", "--t-end", "2000",
+                    "--samples", "40"],
 }
 RNG = random.Random(1515)  # fixed seed: the same moments on every run
 # (case, signals, fractions of the uninterrupted run's wall time at which they are sent)
@@ -39,6 +45,9 @@ RUNS += [("rkmk-dp54", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]),
          ("rkmk4", [signal.SIGKILL, signal.SIGKILL], [RNG.uniform(0.2, 0.4), RNG.uniform(0.2, 0.4)]),
          ("rkmk-dp54", [signal.SIGINT], [RNG.uniform(0.25, 0.7)]),
          ("dmv-pre10", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)])]
+# Cardan scenes, the same loop on T^3 x R^3: a fixed step, and the adaptive pair with its controller's memory.
+RUNS += [("cardan-rk4", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)]),
+         ("cardan-dp54", [signal.SIGKILL], [RNG.uniform(0.25, 0.7)])]
 COUNTERS = ["steps", "rejected_steps", "rhs_evaluations", "newton_iterations_max", "newton_failures", "samples",
             "t_final", "status"]
 

@@ -51,7 +51,8 @@ void create_resume_record(ResultsFile& file, const std::string& fingerprint) {
   file.create_record(resume_group, record_name, 2 * checkpoint_slot_bytes);
 }
 
-ResumedResults reopen_for_resume(const std::string& out, bool force, const std::vector<Column>& columns,
+template <class S>
+ResumedResults<S> reopen_for_resume(const std::string& out, bool force, const std::vector<Column>& columns,
                                  const ResultsFileOptions& options, const std::string& fingerprint,
                                  std::size_t error_columns) {
   const std::string partial = out + ".partial", csv = results_csv_path(out);
@@ -66,7 +67,7 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
     std::cerr << "lgi: " << csv << " is taken back to " << csv << ".partial: its run's finish was interrupted\n";
   for (const std::string& p : {out, csv})
     hdf5::check_output_target(p, force);
-  ResumedResults r;
+  ResumedResults<S> r;
   if (const std::string why = hdf5::inspect_in_child(partial); !why.empty())
     throw OutputFileError("cannot resume results '" + partial + "': " + why + " (damaged); remove it");
   bool readable = false;
@@ -87,27 +88,31 @@ ResumedResults reopen_for_resume(const std::string& out, bool force, const std::
   r.file = std::make_unique<ResultsFile>(out, force, columns, options, ResultsFile::Reopen{});
   if (r.file->text_attribute(resume_group, "fingerprint") != fingerprint)  // changed since it was read
     throw OutputFileError("cannot resume results '" + partial + "': its fingerprint cannot be read (damaged)");
-  r.checkpoint = newest_checkpoint(r.file->read_record(resume_group, record_name), error_columns, r.file->rows(),
+  r.checkpoint = newest_checkpoint<S>(r.file->read_record(resume_group, record_name), error_columns, r.file->rows(),
                                    r.next_sequence);
   r.file->keep_rows(r.checkpoint ? r.checkpoint->rows : 0);
   return r;
 }
 
-LongTimeCheckpoints::LongTimeCheckpoints(ResultsFile& file, double interval_seconds,
-                                         std::function<void(RunCheckpoint&)> fill, std::uint64_t next_sequence)
+template <class S>
+LongTimeCheckpoints<S>::LongTimeCheckpoints(ResultsFile& file, double interval_seconds,
+                                            std::function<void(BasicRunCheckpoint<S>&)> fill,
+                                            std::uint64_t next_sequence)
     : file_(file),
       interval_(interval_seconds),
       fill_(std::move(fill)),
       sequence_(next_sequence),
       last_(std::chrono::steady_clock::now()) {}
 
-bool LongTimeCheckpoints::due(std::int64_t /*step*/) {
+template <class S>
+bool LongTimeCheckpoints<S>::due(std::int64_t /*step*/) {
   return std::chrono::steady_clock::now() - last_ >= interval_;
 }
 
-void LongTimeCheckpoints::save(const integrators::LoopCheckpoint& checkpoint) {
+template <class S>
+void LongTimeCheckpoints<S>::save(const integrators::BasicLoopCheckpoint<S>& checkpoint) {
   file_.flush();  // the rows first: a checkpoint never counts rows that are not in the file
-  RunCheckpoint c;
+  BasicRunCheckpoint<S> c;
   c.rows = file_.rows();
   c.loop = checkpoint;
   fill_(c);
@@ -116,5 +121,16 @@ void LongTimeCheckpoints::save(const integrators::LoopCheckpoint& checkpoint) {
   ++sequence_;
   last_ = std::chrono::steady_clock::now();
 }
+
+// The two state spaces a long run is checkpointed on.
+template ResumedResults<system::State> reopen_for_resume<system::State>(const std::string&, bool,
+                                                                        const std::vector<Column>&,
+                                                                        const ResultsFileOptions&, const std::string&,
+                                                                        std::size_t);
+template ResumedResults<system::TorusState> reopen_for_resume<system::TorusState>(
+    const std::string&, bool, const std::vector<Column>&, const ResultsFileOptions&, const std::string&,
+    std::size_t);
+template class LongTimeCheckpoints<system::State>;
+template class LongTimeCheckpoints<system::TorusState>;
 
 }  // namespace lgi::experiments

@@ -35,13 +35,15 @@ std::string long_time_fingerprint(const system::Scene& scene, const integrators:
 /// Writes /resume (fingerprint, empty checkpoint record) into a new results file.
 void create_resume_record(ResultsFile& file, const std::string& fingerprint);
 
-/// The results file of a run to resume and the checkpoint it goes on from
-/// (none: from step 0, every row dropped). No file: the partial file holds no
-/// fingerprint (a run killed in its first moments, or made by an lgi without
-/// checkpoints): nothing in it can be continued, and the run starts anew.
+/// The results file of a run on states S to resume and the checkpoint it
+/// goes on from (none: from step 0, every row dropped). No file: the partial
+/// file holds no fingerprint (a run killed in its first moments, or made by
+/// an lgi without checkpoints): nothing in it can be continued, and the run
+/// starts anew.
+template <class S>
 struct ResumedResults {
   std::unique_ptr<ResultsFile> file;
-  std::optional<RunCheckpoint> checkpoint;
+  std::optional<BasicRunCheckpoint<S>> checkpoint;
   std::uint64_t next_sequence = 1;  // of the next checkpoint: above every one in the file
 };
 /// Checks the fingerprint of <out>.partial (read-only: a refused file is left
@@ -49,23 +51,25 @@ struct ResumedResults {
 /// rows up to the newest checkpoint. Throws
 /// UsageError (--resume: no partial file, an existing output without
 /// --force, another run's file) or OutputFileError (a damaged file).
-ResumedResults reopen_for_resume(const std::string& out, bool force, const std::vector<Column>& columns,
+template <class S>
+ResumedResults<S> reopen_for_resume(const std::string& out, bool force, const std::vector<Column>& columns,
                                  const ResultsFileOptions& options, const std::string& fingerprint,
                                  std::size_t error_columns);
 
 /// Offers the loop's checkpoints to the results file (top of this file).
 /// `fill` adds the command's part: the error maxima, CPU and output seconds.
-class LongTimeCheckpoints final : public integrators::Checkpoints {
+template <class S>
+class LongTimeCheckpoints final : public integrators::BasicCheckpoints<S> {
  public:
-  LongTimeCheckpoints(ResultsFile& file, double interval_seconds, std::function<void(RunCheckpoint&)> fill,
+  LongTimeCheckpoints(ResultsFile& file, double interval_seconds, std::function<void(BasicRunCheckpoint<S>&)> fill,
                       std::uint64_t next_sequence);
   bool due(std::int64_t step) override;
-  void save(const integrators::LoopCheckpoint& checkpoint) override;
+  void save(const integrators::BasicLoopCheckpoint<S>& checkpoint) override;
 
  private:
   ResultsFile& file_;
   std::chrono::duration<double> interval_;
-  std::function<void(RunCheckpoint&)> fill_;
+  std::function<void(BasicRunCheckpoint<S>&)> fill_;
   std::uint64_t sequence_;
   std::chrono::steady_clock::time_point last_;
 };
