@@ -76,12 +76,15 @@ class SectionObserver final : public integrators::TorusObserver {
       o_.max_momentum_error =
           std::max(o_.max_momentum_error, std::abs(x.p(0) - p10_) / std::max(std::abs(p10_), 1e-300));
       keep_crossings(x);
+      if (truncated_) truncated_at_ = step;
     }
     last_ = x;
   }
   /// The state of the last step kept: not a failed step's, nor one after the crossings ran over.
   const TorusState& last() const { return last_; }
   bool truncated() const { return truncated_; }
+  /// The step whose crossings ran over (the run itself takes one step more).
+  std::int64_t truncated_at() const { return truncated_at_; }
 
  private:
   void keep_crossings(const TorusState& x) {
@@ -105,6 +108,7 @@ class SectionObserver final : public integrators::TorusObserver {
   std::vector<integrators::BasicEventHit<TorusState>> step_hits_;
   TorusState last_{};
   double H0_ = 0.0, p10_ = 0.0, energy_scale_ = 1.0;
+  std::int64_t truncated_at_ = 0;
   bool truncated_ = false;
 };
 
@@ -129,6 +133,7 @@ void integrate_orbit(const system::CardanTop& top, const CardanOrbitRequest& r, 
   const integrators::RunStats stats = integrators::find_cardan_scheme(r.scheme)->run_cardan(top, x, cfg, observer);
   o.steps = stats.steps;
   if (observer.truncated()) {
+    o.steps = observer.truncated_at();
     o.status = 3;
     o.reason = "more than " + std::to_string(r.max_crossings) + " crossings (--max-events)";
   } else if (!stats.ok) {
