@@ -51,6 +51,22 @@ TEST_CASE("The libration basis is the unique one with Maslov indices (2, 2) and 
   CHECK_FALSE(libration_basis(t, mu).ok);
 }
 
+TEST_CASE("The symmetry classes of the Kovalevskaya EBK levels are those of the exact levels", "[quantum][ebk]") {
+  // In harmonic order the lowest levels are (0, 0), (1, 0), (0, 1), (2, 0), (1, 1) at hbar = 0.2.
+  const lgi::system::Scene scene = lgi::testing::shipped_scene("kovalevskaya");
+  const std::pair<int, int> order[] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}};
+  for (const int m : {0, 1, 2}) {
+    QuantumSettings s;
+    s.hbar = 0.1, s.m = m, s.jmax = 24, s.levels = 5;
+    const QuantumSpectrum q = quantum_spectrum(quantum_top_of(scene), s);
+    for (int i = 0; i < 5; ++i) {
+      INFO("m = " << m << ", level " << i);
+      CHECK(q.levels[static_cast<std::size_t>(i)].parity ==
+            kovalevskaya_ebk_class(q, m, order[i].first, order[i].second));
+    }
+  }
+}
+
 TEST_CASE("EBK levels of the Kovalevskaya top lie within O(hbar^2) of the exact ones", "[quantum][ebk]") {
   const lgi::system::Scene scene = lgi::testing::shipped_scene("kovalevskaya");
   const double hbar = 0.2;

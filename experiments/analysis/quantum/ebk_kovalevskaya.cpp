@@ -136,7 +136,9 @@ KovalevskayaEbkLevel kovalevskaya_ebk_level(const system::Scene& scene, double h
 }
 
 int kovalevskaya_ebk_class(const QuantumSpectrum& q, int m, int n_slow, int n_fast) {
-  const int c2_odd = (n_slow + n_fast) % 2;
+  // Near the hanging position the body's c axis is the space vertical (reversed), so C₂ about it is
+  // the rotation by π about the vertical, e^{−iπm}, times the oscillators' parity.
+  const int c2_odd = (n_slow + n_fast + std::abs(m)) % 2;
   if (m != 0) return c2_odd;
   // The frame's axis 2 in scene body coordinates: along e3 the slow mode moves Γ, along e2 the fast one.
   const bool slow_flips = std::abs(q.top.frame(2, 1)) > std::abs(q.top.frame(1, 1));

@@ -47,7 +47,7 @@ KovalevskayaEbkLevel kovalevskaya_ebk_level(const system::Scene& scene, double h
                                             int n_fast, const KovalevskayaEbkOptions& options);
 
 /// The symmetry class (QuantumSpectrum::parity_classes) of the level (n_slow, n_fast) of a
-/// Kovalevskaya spectrum: C₂ about the centre-of-mass axis is (−1)^(n_slow + n_fast), and at
+/// Kovalevskaya spectrum: C₂ about the centre-of-mass axis is (−1)^(n_slow + n_fast + m), and at
 /// m = 0 the reflection U is (−1)^n of the mode whose Γ moves along the frame's axis 2.
 int kovalevskaya_ebk_class(const QuantumSpectrum& spectrum, int m, int n_slow, int n_fast);
 
