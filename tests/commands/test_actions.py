@@ -4,6 +4,8 @@
  - the Euler top's energy surface: every row has H(G, I_l) = h (checked through the
    free body's energy range: G^2/(2 J_max) <= h <= G^2/(2 J_min)), |l| <= G, omega_l < 0;
  - the Lagrange energy surface: I_theta >= 0 and the plot script draws it;
+ - the Kovalevskaya torus of a level (h, l, k) (--k): found on the level, Maslov indices (2, 4),
+   its libration actions near the harmonic ones;
  - bad flags exit 2 with one line naming the flag."""
 import os
 import subprocess
@@ -81,6 +83,27 @@ def test_failed_torus_has_reason_and_nan_actions(tmp_path):
     t = tori(out)
     assert list(t["ok"]) == [0] and list(t["reason"]) == [4]
     assert np.all(np.isnan(t["actions"][:, 1:])) and np.all(np.isnan(t["frequencies"]))
+
+
+def test_kovalevskaya_torus_of_a_level(tmp_path):
+    # Near the hanging position (h = -1 + w_s I_s + w_f I_f, k = 1 - 2 w_s I_s with I_s = I_f = 0.05):
+    # the section cuts the slow swing, cycle b = slow + fast (docs/actions.md section 5).
+    out = str(tmp_path / "k.h5")
+    r = lgi("actions", "--scene", KOVALEVSKAYA, "--h", "-0.91464", "--l", "0", "--k", "0.92929", "--crossings", "100",
+            "--harmonics", "16", "--out", out)
+    assert "maslov=(2, 4)" in r.stdout and "ok=1" in r.stdout, r.stdout
+    t = tori(out)
+    assert abs(t["k"][0] - 0.92929) < 1e-9 and abs(t["h"][0] + 0.91464) < 1e-9
+    assert list(t["maslov"][0]) == [2, 4]
+    slow, fast = t["libration_actions"][0]
+    assert abs(slow - 0.05) < 0.005 and abs(fast - 0.05) < 0.005, (slow, fast)
+    for args, flag in [(["--k", "0.9", "--h", "-0.9"], "--k"), (["--k", "0.9"], "--k")]:
+        r = lgi("actions", "--scene", KOVALEVSKAYA, *args, "--out", out + "x", check=False)
+        assert r.returncode == 2 and flag in r.stderr and r.stderr.count("\n") == 1, (args, r.stderr)
+    r = lgi("actions", "--scene", LAGRANGE, "--h", "2", "--l", "0", "--k", "0.9", "--out", out + "x", check=False)
+    assert r.returncode == 2 and "--k" in r.stderr and "Kovalevskaya" in r.stderr
+    r = lgi("actions", "--scene", KOVALEVSKAYA, "--h", "-0.9", "--l", "0", "--k", "5", "--out", out + "x", check=False)
+    assert r.returncode == 2 and "no point" in r.stderr
 
 
 def test_bad_flags(tmp_path):
