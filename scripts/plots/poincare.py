@@ -26,7 +26,10 @@ p1 is an integral, else h and the orbits' initial p1).
 --periodic marks the orbits of an `lgi periodic` file (experiments/PERIODIC.md)
 at the section's l, of each family the one nearest h within --periodic-h-tol,
 where they cross the section (periodic_crossings.py): open circles elliptic,
-red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate.
+red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate; where
+the file has /manifolds (lgi periodic --manifolds) of an orbit drawn, the
+section points of its unstable manifold are drawn in red and of its stable
+manifold in blue.
 """
 import os
 import sys
@@ -137,9 +140,31 @@ def mark_periodic(ax, par, path, args):
         if points[kind]:
             x, y = np.array(points[kind]).T
             ax.plot(x, y, marker, ls="none", mfc=face, mec=edge, ms=6, mew=0.9, zorder=5, label=label)
+    draw_manifolds(ax, args.periodic, table, rows, richter)
     print(f"poincare.py: {path}: {len(rows)} periodic orbit(s) of {args.periodic} within "
           f"{c.num(args.periodic_h_tol)} of h = {c.num(h)} at l = {c.num(l)}", file=sys.stderr)
     return len(rows)
+
+
+MANIFOLD_COLOURS = {"unstable": ("tab:red", "unstable manifold"), "stable": ("tab:blue", "stable manifold")}
+
+
+def draw_manifolds(ax, path, table, rows, richter):
+    """The /manifolds points of the orbits in `rows` (positions in /periodic), if the file has them."""
+    with c.h5py.File(path, "r") as f:
+        if "manifolds" not in f:
+            return
+        m = {k: f["manifolds"][k][()] for k in ("family", "index", "branch", "phi", "theta", "sheet")}
+    branch = np.array([b.decode() if isinstance(b, bytes) else b for b in m["branch"]])
+    keep = np.zeros(len(branch), dtype=bool)
+    for r in rows:
+        keep |= (m["family"] == table["family"][r]) & (m["index"] == table["index"][r])
+    for name, (colour, label) in MANIFOLD_COLOURS.items():
+        sel = keep & (branch == name)
+        if not np.any(sel):
+            continue
+        y = np.where(m["sheet"][sel] > 0, m["theta"][sel], 2 * np.pi - m["theta"][sel]) if richter else m["theta"][sel]
+        ax.scatter(m["phi"][sel], y, s=1.2, color=colour, linewidths=0, zorder=4, label=label)
 
 
 def region_boundary(ax, par):
