@@ -103,8 +103,8 @@ std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vect
       failures.push_back(seed.failure);
       continue;
     }
-    const Invariants inv = euler_poisson_invariants(body, seed.x);
-    const auto f = continue_family(body, seed.x, seed.period, inv.value(0), l, direction, family, s, failures);
+    const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
+    const auto f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
     for (const auto& r : f) family = std::max(family, r.family + 1);
     rows.insert(rows.end(), f.begin(), f.end());
   }

@@ -87,6 +87,7 @@ std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const Poincare
                          std::to_string(f.gamma.size()) + " - 1)");
       const auto k = static_cast<std::size_t>(r);
       SectionSeed s;
+      s.h = f.h;
       s.x << f.angular_momentum[k], f.gamma[k];
       s.label = "poincare row " + std::to_string(k);
       seeds.push_back(s);
@@ -103,6 +104,7 @@ std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const Poincare
     if (!section_state(body, sec.axis, f.l, f.h, gamma, static_cast<int>(v[2]), Pi))
       throw UsageError("--poincare-point: '" + p + "' has no state on the section at the file's (l, h)");
     SectionSeed s;
+    s.h = f.h;
     s.x << Pi, gamma;
     s.label = "poincare point (" + p + ")";
     seeds.push_back(s);

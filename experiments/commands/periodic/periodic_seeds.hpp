@@ -4,6 +4,7 @@
 // (rows of a `lgi poincare` file's /events, or points (φ, ϑ, sheet) of its
 // Richter section, with the period guessed as the time of the N-th return to
 // the section in the seed's direction).
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,7 @@ struct SectionSeed {
   double period = 0.0;  // the guess; 0 if no return was found (failure says why)
   std::string label;    // "row 12", "point (phi, theta, sheet)"
   std::string failure;
+  double h = NAN;       // the level of the orbit sought (NaN: H at x)
 };
 
 /// The section of a poincare file (kind and axis).
