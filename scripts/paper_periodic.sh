@@ -71,10 +71,15 @@ with open(sys.argv[3], "w") as f:
         f.write("%r,%r,%d\n" % (pe, te + d, se))
     for d in (-0.02, 0.02, 0.005):
         f.write("%r,%r,%d\n" % (ph + d, th, sh))
-print(repr(h), *("%r,%r,%d" % s for s in seeds))
+# The figure's window: about the two orbits' crossings on the hyperbolic one's sheet.
+y = lambda ph, th, sh: th if sh > 0 else 2 * np.pi - th
+ys = [y(*seeds[0]), y(*seeds[1])] if seeds[1][2] == seeds[0][2] else [y(*seeds[0])]
+xs = [seeds[0][0], seeds[1][0]] if seeds[1][2] == seeds[0][2] else [seeds[0][0]]
+zoom = "%.3f:%.3f:%.3f:%.3f" % (min(xs) - 0.9, max(xs) + 0.9, min(ys) - 0.6, max(ys) + 0.6)
+print(repr(h), *("%r,%r,%d" % s for s in seeds), zoom)
 PYEOF
 ) || die "picking the fold pair failed"
-read -r hstar seed_hyp seed_ell <<< "$pick"
+read -r hstar seed_hyp seed_ell zoom <<< "$pick"
 run poincare --scene "$scene" --l 3 --h "$hstar" --seeds "$p/section_seeds.csv" --t-end "$t_end" --threads 2 \
   --out "$p/section_l3.h5"
 run periodic --scene "$scene" --seeds-from-poincare "$p/section_l3.h5" --poincare-point "$seed_hyp" \
@@ -83,7 +88,8 @@ run periodic --scene "$scene" --seeds-from-poincare "$p/section_l3.h5" --poincar
 
 # ── figures and numbers ─────────────────────────────────────────────────────
 "$PY" "$plots/periodic.py" --out "$figs" "$p/l22.h5" "$p/l3.h5" || die "periodic.py failed"
-"$PY" "$plots/poincare.py" --out "$figs" --periodic "$p/orbits_l3.h5" --periodic-h-tol 1e-9 "$p/section_l3.h5" \
+"$PY" "$plots/poincare.py" --out "$figs" --periodic "$p/orbits_l3.h5" --periodic-h-tol 1e-9 --zoom "$zoom" \
+  --dot-size 2 "$p/section_l3.h5" \
   || die "poincare.py failed"
 "$PY" - "$plots" "$gen" "$commands" "$p/l22.h5" "$p/l3.h5" "$p/orbits_l3.h5" <<'PYEOF' || die "the periodic numbers failed"
 # periodic_numbers.tex (macros for the text) and periodic_commands.tex (the runs, verbatim).

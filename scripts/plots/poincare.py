@@ -2,7 +2,7 @@
 """Poincaré sections from `lgi poincare` files (experiments/POINCARE.md: /events
 phi, theta, sheet; /sweep megno where computed).
 
-Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S]
+Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S] [--zoom X0:X1:Y0:Y1]
                    [--periodic PERIODIC.h5 [--periodic-h-tol D]] SECTION.h5 ...
 
 (MEGNO colours are drawn on a grey ground, where the chaotic orbits' yellow shows.)
@@ -29,7 +29,8 @@ where they cross the section (periodic_crossings.py): open circles elliptic,
 red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate; where
 the file has /manifolds (lgi periodic --manifolds) of an orbit drawn, the
 section points of its unstable manifold are drawn in red and of its stable
-manifold in blue.
+manifold in blue. --zoom X0:X1:Y0:Y1 draws only that window of the (phi, torus angle)
+plane (of a heavy top's section).
 """
 import os
 import sys
@@ -200,7 +201,17 @@ def main():
                    help="a file of lgi periodic: its orbits at the section's l and h marked where they cross it")
     p.add_argument("--periodic-h-tol", type=float, default=1e-2, metavar="D",
                    help="--periodic: the orbit of each family nearest h, if within D of it (default 0.01)")
+    p.add_argument("--zoom", metavar="X0:X1:Y0:Y1",
+                   help="draw only this window of the section (phi from X0 to X1, the vertical axis from Y0 to Y1)")
     args = p.parse_args()
+    zoom = None
+    if args.zoom:
+        try:
+            zoom = [float(v) for v in args.zoom.split(":")]
+        except ValueError:
+            zoom = []
+        if len(zoom) != 4 or not all(np.isfinite(zoom)) or not (zoom[0] < zoom[1] and zoom[2] < zoom[3]):
+            c.die(f"--zoom: '{args.zoom}': expected X0:X1:Y0:Y1, four numbers with X0 < X1 and Y0 < Y1")
     if not args.files:
         c.die("give at least one file written by lgi poincare")
     if not (args.periodic_h_tol >= 0 and np.isfinite(args.periodic_h_tol)):
@@ -239,6 +250,9 @@ def main():
             ax.set_ylabel("angle of $\\Pi$ from the axis")
         if args.periodic:
             mark_periodic(ax, par, path, args)
+        if zoom:
+            ax.set_xlim(zoom[0], zoom[1])
+            ax.set_ylim(zoom[2], zoom[3])
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="lower right", fontsize=6.5)
         seeds = " (orbits from --seeds)" if par.get("seeds_file") else ""
