@@ -3,7 +3,8 @@
    under /periodic with their shapes, the CSV beside it; every family's first
    period is 2*pi/omega to 1e-6; residuals <= 1e-10; four multipliers at 1
    to 1e-8 on first orbits, their product 1 to 1e-8; stability and event texts from the contract;
- - --seed-file: a seed from that file's last orbit is found again;
+ - --seed-file: a seed from that file's last orbit is found again; continued in l
+   (--continue-in l) its h is held and l steps down from 3;
  - --seeds-from-poincare: on a section of Richter's top at the h of an elliptic
    orbit, the centre of its island (the mean of one orbit's crossings around
    it) converges to that orbit: same period to 1e-8, elliptic, its point on
@@ -65,6 +66,18 @@ def test_families_of_a_general_top(tmp_path):
     with h5py.File(out2, "r") as f:
         assert abs(f["periodic/period"][0] - t["period"][-1]) <= 1e-8
         assert f["periodic/residual"][0] <= 1e-10
+
+    # The same seed continued in l at fixed h: h held, l moving down from 3, the same records.
+    out3 = str(tmp_path / "l.h5")
+    lgi("periodic", "--scene", GENERAL, "--l", "3", "--seed-file", seed, "--continue-in", "l", "--l-step", "-0.01",
+        "--steps", "2", "--no-events", "--out", out3, "--quiet")
+    with h5py.File(out3, "r") as f:
+        g = {k: f["periodic"][k][()] for k in f["periodic"]}
+        assert f["parameters"].attrs["continue_in"] == "l"
+    assert len(g["l"]) == 3 and np.all(g["h"] == g["h"][0]) and g["l"][0] == 3.0
+    assert np.all(np.diff(g["l"]) < 0) and abs(g["l"][1] - 2.99) <= 1e-12
+    assert np.all(g["residual"] <= 1e-10)
+    assert abs(g["period"][0] - t["period"][-1]) <= 1e-8
 
 
 def test_seeds_from_a_poincare_section(tmp_path):
