@@ -332,6 +332,21 @@ else
 fi
 say "quantum done ($(( $(date +%s) - t_start )) s)"
 
+# ── periodic orbits (paper/sections/periodic.tex) ───────────────────────────
+if has_sub periodic && has_sub poincare; then
+  "$root/scripts/paper_periodic.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_periodic.sh failed"; }
+else
+  for n in periodic_period_l22 periodic_period_l3 poincare_section_l3; do
+    missing_note "$n" "This \\texttt{lgi} lacks periodic or poincare: no data."
+  done
+  echo '\lginote{This \texttt{lgi} lacks periodic or poincare: no data.}' > "$gen/periodic_commands.tex"
+  printf '\\newcommand{\\%s}{?}\n' PerAFamilies PerAOrbits PerAFolds PerADoublings PerAFirstPeriod PerAResidual \
+    PerAProduct PerBFamilies PerBOrbits PerBFolds PerBDoublings PerBFirstPeriod PerBResidual PerBProduct PerSecH \
+    PerSecHypT PerSecEllT PerSecLambda PerSecReturns PerSecPoints > "$gen/periodic_numbers.tex"
+fi
+say "periodic done ($(( $(date +%s) - t_start )) s)"
+
 # ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
 bench="$(dirname "$lgi")/lgi_bench"
 rm -f "$gen/benchmarks.tex"
