@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tests/ensemble_test_support.hpp"
+#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/rkmk.hpp"
@@ -199,11 +200,38 @@ TEST_CASE("the chaos indicators in lanes are the scalar loop's bit for bit", "[e
 }
 
 TEST_CASE("a spring scene has no tangent lanes and steps in the Eigen form", "[ensemble][tangent]") {
-  const system::AnyModel model = system::make_model(shipped("stiff_damped_spring"));
+  const system::Scene scene = shipped("stiff_damped_spring");
+  const system::AnyModel model = system::make_model(scene);
   std::string why;
   CHECK_FALSE(ensemble::ensemble_model(model, &why));
   CHECK(why.find("spring") != std::string::npos);
   CHECK_FALSE(ensemble::TangentEnsemble::make(model, ensemble::Isa::baseline));
-  const bool eigen_form = ensemble::with_tangent_step(model, [](auto&&) { return true; });
-  CHECK(eigen_form);
+  State x = scene.initial, y = scene.initial;
+  Mat6 V = random_vectors(7), W = V;
+  ensemble::with_tangent_step(model, [&](auto step) {
+    step(x, V, 0.0, 0.01);
+    return 0;
+  });
+  integrators::tangent_step(std::get<system::SceneModel>(model), y, W, 0.0, 0.01);
+  CHECK((same_bits(x, y) && same_mat(V, W)));
+}
+
+TEST_CASE("tangent lanes allocate nothing", "[ensemble][tangent][allocations]") {
+  const system::Scene scene = shipped("kovalevskaya");
+  const system::AnyModel model = system::make_model(scene);
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    auto e = ensemble::TangentEnsemble::make(model, isa, 6);
+    auto one = ensemble::TangentEnsemble::make(model, isa);
+    REQUIRE(e);
+    REQUIRE(one);
+    for (int l = 0; l < e->lanes(); ++l) {
+      e->set_lane(l, scene.initial, random_vectors(1));
+      one->set_lane(l, scene.initial, Vec6(random_vectors(1).col(0)));
+    }
+    integrators::ChaosIndicators out[ensemble::max_lanes];
+    const long before = experiments::verification::counted_allocations();
+    for (int k = 0; k < 100; ++k) e->step(k * 0.01, 0.01);
+    one->chaos_indicators(0.0, 10.0, 0.01, nullptr, {out, static_cast<std::size_t>(one->lanes())});
+    CHECK(experiments::verification::counted_allocations() == before);
+  }
 }
