@@ -8,6 +8,7 @@
 #include "experiments/analysis/tangent_loops.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/trajectory_observer.hpp"
+#include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/system/model.hpp"
 #include "integrators/torus/torus_tangent_flow.hpp"
 
@@ -15,12 +16,6 @@ namespace lgi::experiments {
 
 namespace {
 
-template <class Model>
-std::array<double, 6> spectrum_of(const Model& model, system::State x, double t_end, double dt) {
-  return spectrum_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(model, x, V, t, h); },
-                       [&] { return x.Pi.allFinite(); }, integrators::Mat6::Identity(), t_end, dt,
-                       &interrupt_requested);
-}
 
 /// The fields every indicator run shares, from the loop's result.
 StateIndicators from_loop(const integrators::ChaosIndicators& r, const IndicatorSettings& s) {
@@ -61,13 +56,13 @@ bool lyapunov_converged(double lyapunov, double last_half, double rtol) {
 StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                                  std::int64_t index) {
   const system::AnyModel model = system::make_model(scene);
-  const integrators::ChaosIndicators r = std::visit(
-      [&](const auto& m) {
-        system::State x = x0;
-        return integrators::chaos_indicators(m, x, initial_tangent(s.seed, index), 0.0, s.t_end, s.dt,
-                                             &interrupt_requested);
-      },
-      model);
+  const integrators::ChaosIndicators r = integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    integrators::Vec6 v = initial_tangent(s.seed, index);
+    return integrators::accumulate_chaos_indicators([&](double t, double h, integrators::Vec6& w) { step(x, w, t, h); },
+                                                    [&] { return x.Pi.allFinite(); }, v, 0.0, s.t_end, s.dt,
+                                                    &interrupt_requested);
+  });
   StateIndicators out = from_loop(r, s);
   if (s.spectrum) {
     out.spectrum = lyapunov_spectrum(scene, x0, s.t_end, s.dt);
@@ -83,20 +78,23 @@ StateIndicators state_indicators(const system::Scene& scene, const system::State
 GaliCurves gali_curves(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                        std::int64_t index) {
   const system::AnyModel model = system::make_model(scene);
-  return std::visit(
-      [&](const auto& m) {
-        system::State x = x0;
-        return gali_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(m, x, V, t, h); },
-                         [&] { return x.Pi.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s),
-                         s.t_end, s.dt, &interrupt_requested);
-      },
-      model);
+  return integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    return gali_loop([&](double t, double h, integrators::Mat6& V) { step(x, V, t, h); },
+                     [&] { return x.Pi.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s),
+                     s.t_end, s.dt, &interrupt_requested);
+  });
 }
 
 std::array<double, 6> lyapunov_spectrum(const system::Scene& scene, const system::State& x0, double t_end,
                                         double dt) {
   const system::AnyModel model = system::make_model(scene);
-  return std::visit([&](const auto& m) { return spectrum_of(m, x0, t_end, dt); }, model);
+  return integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    return spectrum_loop([&](double t, double h, integrators::Mat6& V) { step(x, V, t, h); },
+                         [&] { return x.Pi.allFinite(); }, integrators::Mat6::Identity(), t_end, dt,
+                         &interrupt_requested);
+  });
 }
 
 StateIndicators cardan_state_indicators(const system::Scene& scene, const system::TorusState& x0,

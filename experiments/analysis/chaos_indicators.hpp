@@ -4,7 +4,9 @@
 // the largest Lyapunov exponent over the run and over its second half (the
 // convergence estimate), MEGNO ⟨Y⟩, and on request the full spectrum.
 // The state and its tangent vector(s) are integrated together by
-// integrators/tangent_flow.hpp (RKMK4 on SO(3) × ℝ³ × ℝ⁶).
+// integrators/tangent_flow.hpp (RKMK4 on SO(3) × ℝ³ × ℝ⁶), in the scalar form
+// of its SIMD-lane kernel where the model has one
+// (integrators/ensemble/tangent_ensemble.hpp, with_tangent_step).
 //
 // Spectrum: six tangent vectors, the columns of V (from the identity), are
 // advanced with the state and re-orthonormalised after every step by modified
