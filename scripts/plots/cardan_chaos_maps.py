@@ -38,9 +38,13 @@ def main():
             threshold = float(f["chaos_map"].attrs.get("threshold", 3.0))
         frac = np.where(m["status"] == 0, m["chaotic_fraction"], np.nan)
         ax.grid(False)
-        image = ax.pcolormesh(edges(m["vary"]), edges(m["h"]), frac.T, cmap="magma", vmin=0, vmax=1,
+        image = ax.pcolormesh(edges(m["vary"]), edges(m["h"]), frac.T, cmap="viridis", vmin=0, vmax=1,
                               shading="flat")
-        ax.plot(m["vary"], m["h_min"], "--", color="0.3", lw=1.0)
+        ax.plot(edges(m["vary"])[[0, -1]] if np.ptp(m["h_min"]) == 0 else m["vary"],
+                [m["h_min"][0]] * 2 if np.ptp(m["h_min"]) == 0 else m["h_min"], "--", color="tab:red", lw=1.4,
+                label="least potential")
+        if i == 0:
+            ax.legend(fontsize=7, loc="upper left")
         ax.set_xlim(edges(m["vary"])[0], edges(m["vary"])[-1])
         ax.set_ylim(edges(m["h"])[0], edges(m["h"])[-1])
         ax.set_xlabel("frame tilt $\\alpha$ (rad)")
