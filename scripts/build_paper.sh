@@ -346,6 +346,19 @@ else
     PerSecHypT PerSecEllT PerSecLambda PerSecReturns PerSecPoints > "$gen/periodic_numbers.tex"
 fi
 say "periodic done ($(( $(date +%s) - t_start )) s)"
+# ── three degrees of freedom (paper/sections/three_dof.tex) ──────────────────
+if has_sub chaos-map && has_sub frequencies && has_sub indicators; then
+  "$root/scripts/paper_3dof.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_3dof.sh failed"; }
+else
+  for n in three_dof_maps three_dof_frequency_map three_dof_gali; do
+    missing_note "$n" "This \\texttt{lgi} lacks chaos-map, frequencies or indicators: no data."
+  done
+  echo '\lginote{This \texttt{lgi} lacks chaos-map, frequencies or indicators: no data.}' > "$gen/three_dof_commands.tex"
+  grep -o '\\Tdof[A-Za-z]*' "$paper/sections/three_dof.tex" | sort -u \
+    | sed 's/.*/\\newcommand{&}{?}/' > "$gen/three_dof_numbers.tex"
+fi
+say "three degrees of freedom done ($(( $(date +%s) - t_start )) s)"
 
 # ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
 bench="$(dirname "$lgi")/lgi_bench"
