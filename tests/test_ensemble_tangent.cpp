@@ -16,6 +16,8 @@
 
 #include "tests/ensemble_test_support.hpp"
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "experiments/analysis/chaos_indicators.hpp"
+#include "experiments/analysis/poincare_section.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/rkmk.hpp"
@@ -233,5 +235,31 @@ TEST_CASE("tangent lanes allocate nothing", "[ensemble][tangent][allocations]") 
     for (int k = 0; k < 100; ++k) e->step(k * 0.01, 0.01);
     one->chaos_indicators(0.0, 10.0, 0.01, nullptr, {out, static_cast<std::size_t>(one->lanes())});
     CHECK(experiments::verification::counted_allocations() == before);
+  }
+}
+
+TEST_CASE("lgi indicators and chaos-map batches in lanes are their states one at a time", "[ensemble][tangent]") {
+  const system::Scene scene = shipped("kovalevskaya");
+  const std::vector<State> x0 = initial_states(scene.initial, 19, 3u);
+  experiments::IndicatorSettings s;
+  s.t_end = 2.0, s.dt = 0.01, s.seed = 5;
+  std::vector<experiments::StateIndicators> lanes(x0.size());
+  std::vector<experiments::OrbitIndicators> orbits(x0.size());
+  std::vector<std::int64_t> index;
+  for (std::size_t k = 0; k < x0.size(); ++k) index.push_back(static_cast<std::int64_t>(7 + k));
+  for (const ensemble::Isa isa : ensemble::available_isas()) {
+    INFO(ensemble::isa_name(isa));
+    experiments::state_indicators(scene, x0, s, 7, isa, lanes);
+    experiments::orbit_indicators(scene, x0, s.t_end, s.dt, s.seed, index, isa, orbits);
+    for (std::size_t k = 0; k < x0.size(); ++k) {
+      const experiments::StateIndicators one = experiments::state_indicators(scene, x0[k], s, index[k]);
+      const experiments::OrbitIndicators orbit =
+          experiments::orbit_indicators(scene, x0[k], s.t_end, s.dt, s.seed, index[k]);
+      const double a[5] = {lanes[k].lyapunov, lanes[k].lyapunov_last_half, lanes[k].megno, orbits[k].lyapunov,
+                           orbits[k].megno};
+      const double b[5] = {one.lyapunov, one.lyapunov_last_half, one.megno, orbit.lyapunov, orbit.megno};
+      CHECK(lgi::ensemble_test::same_bits(a, b, 5));
+      CHECK(lanes[k].converged == one.converged);
+    }
   }
 }

@@ -53,16 +53,11 @@ bool lyapunov_converged(double lyapunov, double last_half, double rtol) {
   return std::isfinite(scale) && std::abs(last_half - lyapunov) <= rtol * scale;
 }
 
-StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
-                                 std::int64_t index) {
-  const system::AnyModel model = system::make_model(scene);
-  const integrators::ChaosIndicators r = integrators::ensemble::with_tangent_step(model, [&](auto step) {
-    system::State x = x0;
-    integrators::Vec6 v = initial_tangent(s.seed, index);
-    return integrators::accumulate_chaos_indicators([&](double t, double h, integrators::Vec6& w) { step(x, w, t, h); },
-                                                    [&] { return x.Pi.allFinite(); }, v, 0.0, s.t_end, s.dt,
-                                                    &interrupt_requested);
-  });
+namespace {
+
+/// λ and ⟨Y⟩ from the loop's result r, then the spectrum and GALI as asked.
+StateIndicators with_extras(const integrators::ChaosIndicators& r, const system::Scene& scene, const system::State& x0,
+                            const IndicatorSettings& s, std::int64_t index) {
   StateIndicators out = from_loop(r, s);
   if (s.spectrum) {
     out.spectrum = lyapunov_spectrum(scene, x0, s.t_end, s.dt);
@@ -73,6 +68,45 @@ StateIndicators state_indicators(const system::Scene& scene, const system::State
     out.ok = out.ok && finite_curves(out.gali);
   }
   return out;
+}
+
+}  // namespace
+
+StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
+                                 std::int64_t index) {
+  const system::AnyModel model = system::make_model(scene);
+  const integrators::ChaosIndicators r = integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    integrators::Vec6 v = initial_tangent(s.seed, index);
+    return integrators::accumulate_chaos_indicators([&](double t, double h, integrators::Vec6& w) { step(x, w, t, h); },
+                                                    [&] { return x.Pi.allFinite(); }, v, 0.0, s.t_end, s.dt,
+                                                    &interrupt_requested);
+  });
+  return with_extras(r, scene, x0, s, index);
+}
+
+void state_indicators(const system::Scene& scene, std::span<const system::State> x0, const IndicatorSettings& s,
+                      std::int64_t first_index, std::optional<integrators::ensemble::Isa> isa,
+                      std::span<StateIndicators> out) {
+  const system::AnyModel model = system::make_model(scene);
+  std::optional<integrators::ensemble::TangentEnsemble> e;
+  if (isa) e = integrators::ensemble::TangentEnsemble::make(model, *isa);
+  const auto index = [&](std::size_t k) { return first_index + static_cast<std::int64_t>(k); };
+  std::size_t first = 0;
+  while (first < x0.size()) {
+    if (!e) {
+      out[first] = state_indicators(scene, x0[first], s, index(first));
+      ++first;
+      continue;
+    }
+    const std::size_t n = std::min(x0.size() - first, static_cast<std::size_t>(e->lanes()));
+    for (std::size_t l = 0; l < n; ++l)
+      e->set_lane(static_cast<int>(l), x0[first + l], initial_tangent(s.seed, index(first + l)));
+    integrators::ChaosIndicators r[integrators::ensemble::max_lanes];
+    e->chaos_indicators(0.0, s.t_end, s.dt, &interrupt_requested, {r, n});
+    for (std::size_t l = 0; l < n; ++l) out[first + l] = with_extras(r[l], scene, x0[first + l], s, index(first + l));
+    first += n;
+  }
 }
 
 GaliCurves gali_curves(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,

@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <span>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +32,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/state_file.hpp"
 #include "experiments/io/table_file.hpp"
+#include "integrators/ensemble/ensemble.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -190,11 +192,16 @@ int run_indicators(const IndicatorsOptions& o) {
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   const auto start = std::chrono::steady_clock::now();
   std::vector<StateIndicators> results(states.size());
+  // A task is up to max_lanes states, whose λ and ⟨Y⟩ run together in SIMD lanes (the same bits; docs/ensemble.md).
+  constexpr std::int64_t batch = integrators::ensemble::max_lanes;
   const auto n = static_cast<std::int64_t>(states.size());
+  const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (std::int64_t i = 0; i < n; ++i)
-    results[static_cast<std::size_t>(i)] = cardan ? cardan_state_indicators(scene, scene.cardan_initial, s, i)
-                                                  : state_indicators(scene, states[static_cast<std::size_t>(i)], s, i);
+  for (std::int64_t first = 0; first < n; first += batch) {
+    const auto u = static_cast<std::size_t>(first), m = static_cast<std::size_t>(std::min(batch, n - first));
+    if (cardan) results[u] = cardan_state_indicators(scene, scene.cardan_initial, s, first);
+    else state_indicators(scene, std::span(states).subspan(u, m), s, first, isa, std::span(results).subspan(u, m));
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t failed = 0;
   for (const auto& r : results) failed += r.ok ? 0 : 1;
@@ -209,8 +216,8 @@ int run_indicators(const IndicatorsOptions& o) {
       {"converged_rule", "|lyapunov_last_half - lyapunov| <= rtol * max(|lyapunov_last_half|, |lyapunov|)"},
       {"indicators", cardan ? "RK4 on the Cardan state and its tangent (integrators/torus/torus_tangent_flow.hpp); "
                               "experiments/INDICATORS.md"
-                            : "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp); "
-                              "experiments/INDICATORS.md"},
+                            : "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp, "
+                              "integrators/ensemble/tangent_ensemble.hpp); experiments/INDICATORS.md"},
       {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)}};
   std::vector<TableColumn> columns = columns_of(states, results, s);
   if (cardan) add_cardan_columns(columns, scene.cardan_initial, states.size());
