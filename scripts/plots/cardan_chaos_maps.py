@@ -8,7 +8,7 @@ Usage: cardan_chaos_maps.py --out DIR --name NAME [--title LABEL ...] CHAOS.h5 .
 Writes DIR/NAME.{pdf,png}: one panel per file, the chaotic fraction (MEGNO above the
 file's threshold, microcanonical draws on each energy surface) over the frame tilt alpha
 and the energy h, one colour scale for all panels; cells without orbits (h at or below
-the least potential) white, the least potential dashed. --title gives each panel's label
+the least potential) white, the least potential dashed red. --title gives each panel's label
 (in the order of the files; default: the scene's name).
 """
 import numpy as np
@@ -41,10 +41,7 @@ def main():
         image = ax.pcolormesh(edges(m["vary"]), edges(m["h"]), frac.T, cmap="viridis", vmin=0, vmax=1,
                               shading="flat")
         ax.plot(edges(m["vary"])[[0, -1]] if np.ptp(m["h_min"]) == 0 else m["vary"],
-                [m["h_min"][0]] * 2 if np.ptp(m["h_min"]) == 0 else m["h_min"], "--", color="tab:red", lw=1.4,
-                label="least potential")
-        if i == 0:
-            ax.legend(fontsize=7, loc="upper left")
+                [m["h_min"][0]] * 2 if np.ptp(m["h_min"]) == 0 else m["h_min"], "--", color="tab:red", lw=1.4)
         ax.set_xlim(edges(m["vary"])[0], edges(m["vary"])[-1])
         ax.set_ylim(edges(m["h"])[0], edges(m["h"])[-1])
         ax.set_xlabel("frame tilt $\\alpha$ (rad)")
