@@ -49,7 +49,7 @@ namespace lgi::experiments {
 namespace {
 
 struct ChaosMapOptions {
-  std::string scene, out = "chaos_map.h5", l_range, h_range, measure = "liouville", vary;
+  std::string scene, out, l_range, h_range, measure = "liouville", vary;
   std::int64_t ics = 0;
   double t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;
@@ -288,7 +288,7 @@ Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context
   sub->add_option("--threshold", o->threshold, "An orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
-  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); required")->required();
   add_force_quiet_flags(*sub, *o, "Replace an existing output file");
   sub->footer(exit_status_help);
   return {sub,
