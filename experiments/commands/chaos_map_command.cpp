@@ -27,6 +27,7 @@
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/thread_count.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/chaos_map/cardan_chaos_map.hpp"
 #include "experiments/commands/chaos_map/chaos_map_cells.hpp"
@@ -138,6 +139,9 @@ std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>&
                               double dt, int threads) {
   const auto total = static_cast<std::int64_t>(cells.size()) * o.ics;
   std::vector<Orbit> orbits(static_cast<std::size_t>(total));
+  // Progress on stderr (cli/sweep_progress.hpp): in place on a terminal, else a line every 10 s.
+  SweepProgress progress(o.quiet, total, 0, "chaos-map", "orbits");
+  std::int64_t finished = 0;
 #pragma omp parallel num_threads(threads)
   {
     std::vector<double> flat;
@@ -156,8 +160,11 @@ std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>&
       } catch (const std::exception&) {  // no initial state (TrajectorySetupError): NaN indicators
       }
       r.done = !interrupt_requested;
+#pragma omp critical(chaos_map_progress)
+      progress.update(++finished, 0);
     }
   }
+  progress.finish();
   return orbits;
 }
 
