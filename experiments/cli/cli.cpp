@@ -85,6 +85,9 @@ int CommandLine::run(std::ostream& err) const {
   } catch (const UsageError& e) {
     err << "lgi: " << one_line(e.what()) << '\n';
     return exit_bad_input;
+  } catch (const OutputWriteError& e) {  // the output existed: a failed run, its .partial kept (README)
+    err << "lgi: " << one_line(e.what()) << '\n';
+    return exit_run_failed;
   } catch (const OutputFileError& e) {
     err << "lgi: " << one_line(e.what()) << '\n';
     return exit_bad_input;

@@ -27,6 +27,7 @@
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/thread_count.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/chaos_map/cardan_chaos_map.hpp"
 #include "experiments/commands/chaos_map/chaos_map_cells.hpp"
@@ -50,7 +51,7 @@ namespace lgi::experiments {
 namespace {
 
 struct ChaosMapOptions {
-  std::string scene, out = "chaos_map.h5", l_range, h_range, measure = "liouville", vary;
+  std::string scene, out, l_range, h_range, measure = "liouville", vary;
   std::int64_t ics = 0;
   double t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;
@@ -152,8 +153,12 @@ std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>&
   constexpr std::int64_t batch = integrators::ensemble::max_lanes;
   const std::int64_t per_cell = (o.ics + batch - 1) / batch;
   const auto tasks = static_cast<std::int64_t>(cells.size()) * per_cell;
-  std::vector<Orbit> orbits(static_cast<std::size_t>(static_cast<std::int64_t>(cells.size()) * o.ics));
+  const auto total = static_cast<std::int64_t>(cells.size()) * o.ics;
+  std::vector<Orbit> orbits(static_cast<std::size_t>(total));
   const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
+  // Progress on stderr (cli/sweep_progress.hpp): in place on a terminal, else a line every 10 s.
+  SweepProgress progress(o.quiet, total, 0, "chaos-map", "orbits");
+  std::int64_t finished = 0;
 #pragma omp parallel num_threads(threads)
   {
     std::vector<double> flat;
@@ -183,8 +188,12 @@ std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>&
       for (std::size_t k = 0; k < rows.size(); ++k) rows[k]->megno = ind[k].megno, rows[k]->lyapunov = ind[k].lyapunov;
       for (std::int64_t i = first; i < std::min(first + batch, o.ics); ++i)
         orbits[static_cast<std::size_t>(c * o.ics + i)].done = !interrupt_requested;
+      const std::int64_t count = std::min(first + batch, o.ics) - first;
+#pragma omp critical(chaos_map_progress)
+      progress.update(finished += count, 0);
     }
   }
+  progress.finish();
   return orbits;
 }
 
@@ -317,7 +326,7 @@ Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context
   sub->add_option("--threshold", o->threshold, "An orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
-  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); required")->required();
   add_force_quiet_flags(*sub, *o, "Replace an existing output file");
   sub->footer(exit_status_help);
   return {sub,

@@ -114,6 +114,27 @@ def test_ranks_give_identical_results(tmp_path):
             assert f["provenance"].attrs["ranks"] == np_
 
 
+@pytest.mark.skipif(not LGI_MPI, reason="lgi-mpi is not built (MPI not installed)")
+def test_mismatched_resume_under_mpi_exits_2_and_keeps_the_file(tmp_path):
+    """Issue 50: rank 0's refusal of a resume file made with another spec is exit 2 for every
+    rank (mpirun passes it on), not an MPI_Abort with 1; the file is left byte for byte."""
+    other = spec(tmp_path, MIXED.replace("seed = 7", "seed = 8"), name="other.toml")
+    out = str(tmp_path / "m.h5")
+    p = subprocess.Popen([LGI, "sweep", "--spec", spec(tmp_path, LONG_SWEEP.replace("SCENES", SCENES)), "--out", out,
+                          "--threads", "1", "--quiet"])
+    wait_part_way(p, out + ".partial")
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    before = open(out + ".partial", "rb").read()
+    env = dict(os.environ, ASAN_OPTIONS="detect_leaks=0")
+    r = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "ASAN_OPTIONS", "-np", "2", LGI_MPI,
+                        "sweep", "--spec", other, "--out", out, "--threads", "1", "--quiet", "--resume"],
+                       capture_output=True, text=True, timeout=120, env=env)
+    assert r.returncode == 2, r.stderr
+    assert "different spec" in r.stderr and "MPI_ABORT" not in r.stderr, r.stderr
+    assert open(out + ".partial", "rb").read() == before
+
+
 def test_killed_sweep_is_readable_and_resumes_bit_for_bit(tmp_path):
     s = spec(tmp_path, LONG)
     full, cut = str(tmp_path / "full.h5"), str(tmp_path / "cut.h5")
