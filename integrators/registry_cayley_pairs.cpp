@@ -30,11 +30,4 @@ void add_cayley_pairs(std::vector<SchemeInfo>& r) {
                                               "of order 9"});
 }
 
-// The pairs' stages, compiled here once (rkmk_adaptive.hpp).
-LGI_RKMK_PAIR_STAGES(, RkmkCayleyDp54);
-LGI_RKMK_PAIR_KERNELS(, RkmkCayleyVerner65);
-LGI_RKMK_PAIR_KERNELS(, RkmkCayleyDop853);
-LGI_RKMK_PAIR_KERNELS(, RkmkCayleyVerner87);
-LGI_RKMK_PAIR_KERNELS(, RkmkCayleyVerner98);
-
 }  // namespace lgi::integrators

@@ -36,9 +36,4 @@ void add_lie_group_runge_kutta_schemes(std::vector<SchemeInfo>& r) {
   add_scheme<Cf4>(r, {.name = "cf4", .family = "commutator-free", .notes = "two exponentials per step"});
 }
 
-// The pairs' stages, compiled here once (rkmk_adaptive.hpp).
-LGI_RKMK_PAIR_STAGES(, RkmkDp54);
-LGI_RKMK_PAIR_KERNELS(, RkmkVerner65);
-LGI_RKMK_PAIR_KERNELS(, RkmkDop853);
-
 }  // namespace lgi::integrators

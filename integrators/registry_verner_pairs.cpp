@@ -20,8 +20,4 @@ void add_verner_high_order_pairs(std::vector<SchemeInfo>& r) {
                                         "controller"});
 }
 
-// The pairs' stages, compiled here once (rkmk_adaptive.hpp).
-LGI_RKMK_PAIR_KERNELS(, RkmkVerner87);
-LGI_RKMK_PAIR_KERNELS(, RkmkVerner98);
-
 }  // namespace lgi::integrators

@@ -25,7 +25,6 @@
 #include <tuple>
 
 #include "integrators/rkmk_pair.hpp"
-#include "integrators/system/model.hpp"
 #include "integrators/tableaus/dop853.hpp"
 #include "integrators/tableaus/runge_kutta.hpp"
 #include "integrators/tableaus/verner65.hpp"
@@ -60,31 +59,6 @@ using RkmkCayleyVerner65 = RkmkPair<tableaus::verner65, verner65_control, Cayley
 using RkmkCayleyDop853 = RkmkPair<tableaus::dop853, dop853_control, CayleyChart>;
 using RkmkCayleyVerner87 = RkmkPair<tableaus::verner87, dop853_control, CayleyChart>;
 using RkmkCayleyVerner98 = RkmkPair<tableaus::verner98, verner98_control, CayleyChart>;
-
-// The pairs' flattened stages (run_stages, and prepare_dense for a pair with
-// dense output) on the scene's two models are compiled once, where the pair
-// is registered (LGI_RKMK_PAIR_KERNELS(, Pair) in registry_lie_group_runge_kutta.cpp,
-// registry_verner_pairs.cpp, registry_cayley_pairs.cpp); every other unit
-// calls those instances (explicit instantiation, [temp.explicit]). Each is
-// thousands of instructions over 7 to 26 stages, and the tests that step
-// every pair would otherwise compile all twenty again. Same code, same bits.
-#define LGI_RKMK_PAIR_STAGES(EXTERN, Pair)                                                   \
-  EXTERN template std::int64_t Pair::run_stages<system::FreeBody>(const system::FreeBody&); \
-  EXTERN template std::int64_t Pair::run_stages<system::SceneModel>(const system::SceneModel&)
-#define LGI_RKMK_PAIR_KERNELS(EXTERN, Pair)                                                 \
-  LGI_RKMK_PAIR_STAGES(EXTERN, Pair);                                                       \
-  EXTERN template void Pair::prepare_dense<system::FreeBody>(const system::FreeBody&);     \
-  EXTERN template void Pair::prepare_dense<system::SceneModel>(const system::SceneModel&)
-LGI_RKMK_PAIR_STAGES(extern, RkmkDp54);  // no dense output
-LGI_RKMK_PAIR_KERNELS(extern, RkmkVerner65);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkDop853);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkVerner87);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkVerner98);
-LGI_RKMK_PAIR_STAGES(extern, RkmkCayleyDp54);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkCayleyVerner65);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkCayleyDop853);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkCayleyVerner87);
-LGI_RKMK_PAIR_KERNELS(extern, RkmkCayleyVerner98);
 
 /// Every adaptive RKMK scheme, for the generic tests (tests/test_stated_orders.cpp
 /// checks that the registry has no other).

@@ -167,7 +167,7 @@ class RkmkPair {
     h_ = h;
     dense_ready_ = false;
     torque_rows_ = rkmk_pair_detail::torque_rows(model);
-    work.rhs_evaluations += run_stages(model);
+    work.rhs_evaluations += run_stages(model, std::make_index_sequence<stages>{});
 
     // The propagated solution: for an FSAL pair the last stage sits there.
     std::array<double, 3> w_new;
@@ -375,11 +375,10 @@ class RkmkPair {
   // GCC schedules and vectorises the stage chain as a whole. Same bits;
   // rkmk-dop853 on HLW's top at tol 1e-10 went from 30.8 to 27.7 µs
   // (interleaved A/B runs of lgi work-precision, docs/performance.md §2).
-  // Defined below the class, not inline, so that rkmk_adaptive.hpp can
-  // declare the registered pairs' instances extern: they are compiled once,
-  // in their registry unit, not again in every test that steps a pair.
-  template <class Model>
-  LGI_FLATTEN std::int64_t run_stages(const Model& model);
+  template <class Model, std::size_t... I>
+  LGI_FLATTEN std::int64_t run_stages(const Model& model, std::index_sequence<I...>) {
+    return (static_cast<std::int64_t>(stage<I>(model)) + ...);
+  }
 
   /// |e_ξ|² (tol M)² + |e_Π|² tol² for e = h Σ W_i k_i: 6 tol² (tol M)² E(e)²
   /// (top of this file), the numerator over the denominator all estimates share.
@@ -424,10 +423,20 @@ class RkmkPair {
 
   /// The stages past the step's (the new point for a pair without FSAL, and
   /// the dense output's extra stages), from the stored stages of the step.
-  /// Defined below the class, as run_stages.
   template <class Model>
   void prepare_dense(const Model& model)
-    requires dense;
+    requires dense
+  {
+    pending_evaluations_ += [&]<std::size_t... I>(std::index_sequence<I...>) {
+      return (static_cast<std::int64_t>(stage<stages + I>(model)) + ... + 0);
+    }(std::make_index_sequence<P::dense_stages - stages>{});
+    if constexpr (!fsal) {
+      // Stage `stages` is the new point: its K is the next step's K_1.
+      first_K_ = Vec3(k_[stages][3], k_[stages][4], k_[stages][5]);
+      first_valid_ = true;
+    }
+    dense_ready_ = true;
+  }
 
   double tol_;
   bool last_rejected_ = false;
@@ -446,29 +455,5 @@ class RkmkPair {
   unsigned torque_rows_ = 0b111u;  // the rows of a stage attitude the torque reads
   Vec3 first_K_ = Vec3::Zero();
 };
-
-template <const auto& Pair, const PairControl& Control, RkmkChart Chart>
-template <class Model>
-LGI_FLATTEN std::int64_t RkmkPair<Pair, Control, Chart>::run_stages(const Model& model) {
-  return [&]<std::size_t... I>(std::index_sequence<I...>) {
-    return (static_cast<std::int64_t>(stage<I>(model)) + ...);
-  }(std::make_index_sequence<stages>{});
-}
-
-template <const auto& Pair, const PairControl& Control, RkmkChart Chart>
-template <class Model>
-void RkmkPair<Pair, Control, Chart>::prepare_dense(const Model& model)
-  requires dense
-{
-  pending_evaluations_ += [&]<std::size_t... I>(std::index_sequence<I...>) {
-    return (static_cast<std::int64_t>(stage<stages + I>(model)) + ... + 0);
-  }(std::make_index_sequence<P::dense_stages - stages>{});
-  if constexpr (!fsal) {
-    // Stage `stages` is the new point: its K is the next step's K_1.
-    first_K_ = Vec3(k_[stages][3], k_[stages][4], k_[stages][5]);
-    first_valid_ = true;
-  }
-  dense_ready_ = true;
-}
 
 }  // namespace lgi::integrators
