@@ -220,12 +220,8 @@ say "work-precision done ($(( $(date +%s) - t_start )) s)"
 lt_files=()
 if has_sub long-time; then
   mkdir -p "$data/lt"
-  if [ "$mode" = quick ]; then
-    lt_cases=("free_body_hlw|0.1|1e3|dmv rkmk4 split-exact quat/rk4" "heavy_top_trindade_1|2e-3|20|lgvi rkmk4 simo-wong")
-  else
-    lt_cases=("free_body_hlw|0.1|1e6|dmv dmv-pre4 lgvi@suzuki4 rkmk4 cf4 rkmk-gauss4 simo-wong split-exact quat/rk4 matrix/rk4"
-              "heavy_top_trindade_1|1e-3|1e3|lgvi rkmk4 rkmk-gauss4 split-exact simo-wong quat/rk4")
-  fi
+  . "$root/scripts/long_time_cases.sh"
+  long_time_cases "$mode"
   for spec in "${lt_cases[@]}"; do
     IFS='|' read -r scene dt t_end schemes_lt <<<"$spec"
     for s in $schemes_lt; do

@@ -36,6 +36,21 @@ std::vector<double> sample_times(const IndicatorSettings& s) {
   return gali_times(gali_targets(s.t_end, s.dt, s.gali_sampling), s.t_end, s.dt);
 }
 
+/// The loop's indicators with the spectrum and the GALI curves that `s` asks for
+/// (spectrum() and gali() compute them); a non-finite one marks the run not ok.
+template <class Spectrum, class Gali>
+StateIndicators with_requested(StateIndicators out, const IndicatorSettings& s, Spectrum spectrum, Gali gali) {
+  if (s.spectrum) {
+    out.spectrum = spectrum();
+    out.ok = out.ok && std::isfinite(out.spectrum[0]);
+  }
+  if (s.gali) {
+    out.gali = gali();
+    out.ok = out.ok && finite_curves(out.gali);
+  }
+  return out;
+}
+
 }  // namespace
 
 integrators::Vec6 initial_tangent(std::uint64_t seed, std::int64_t index) {
@@ -58,16 +73,9 @@ namespace {
 /// λ and ⟨Y⟩ from the loop's result r, then the spectrum and GALI as asked.
 StateIndicators with_extras(const integrators::ChaosIndicators& r, const system::Scene& scene, const system::State& x0,
                             const IndicatorSettings& s, std::int64_t index) {
-  StateIndicators out = from_loop(r, s);
-  if (s.spectrum) {
-    out.spectrum = lyapunov_spectrum(scene, x0, s.t_end, s.dt);
-    out.ok = out.ok && std::isfinite(out.spectrum[0]);
-  }
-  if (s.gali) {
-    out.gali = gali_curves(scene, x0, s, index);
-    out.ok = out.ok && finite_curves(out.gali);
-  }
-  return out;
+  return with_requested(
+      from_loop(r, s), s, [&] { return lyapunov_spectrum(scene, x0, s.t_end, s.dt); },
+      [&] { return gali_curves(scene, x0, s, index); });
 }
 
 }  // namespace
@@ -135,26 +143,21 @@ StateIndicators cardan_state_indicators(const system::Scene& scene, const system
                                         const IndicatorSettings& s, std::int64_t index) {
   const system::CardanTop top = cardan_top(scene);
   system::TorusState x = x0;
-  StateIndicators out = from_loop(integrators::torus::torus_chaos_indicators(
-                                      top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
-                                  s);
-  if (s.spectrum) {
+  const StateIndicators loop = from_loop(integrators::torus::torus_chaos_indicators(
+                                            top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
+                                        s);
+  const auto spectrum = [&] {
     // Not from the identity: δq₁ is exactly invariant where q₁ is cyclic, and
     // would hold the first Gram–Schmidt column at λ = 0.
     system::Vec6 y = system::stack(x0);
     std::array<double, 6> unused{};
     integrators::Mat6 V = initial_deviation_vectors(s.seed, index);
     orthonormalise(V, unused);
-    out.spectrum = spectrum_loop(
+    return spectrum_loop(
         [&](double, double h, integrators::Mat6& W) { integrators::torus::torus_tangent_step(top, y, W, h); },
         [&] { return y.allFinite(); }, V, s.t_end, s.dt, &interrupt_requested);
-    out.ok = out.ok && std::isfinite(out.spectrum[0]);
-  }
-  if (s.gali) {
-    out.gali = cardan_gali_curves(scene, x0, s, index);
-    out.ok = out.ok && finite_curves(out.gali);
-  }
-  return out;
+  };
+  return with_requested(loop, s, spectrum, [&] { return cardan_gali_curves(scene, x0, s, index); });
 }
 
 GaliCurves cardan_gali_curves(const system::Scene& scene, const system::TorusState& x0, const IndicatorSettings& s,

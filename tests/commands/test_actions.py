@@ -11,34 +11,19 @@ import os
 import subprocess
 import sys
 
-import h5py
 import numpy as np
+from lgi_cli import ROOT, SCENES, columns, lgi
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENES = os.path.join(ROOT, "experiments", "scenes")
 LAGRANGE = os.path.join(SCENES, "lagrange_top_cigar.toml")
 FREE = os.path.join(SCENES, "free_body_hlw.toml")
 KOVALEVSKAYA = os.path.join(SCENES, "kovalevskaya.toml")
-
-
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
-
-
-def tori(path):
-    with h5py.File(path, "r") as f:
-        return {k: f["tori"][k][()] for k in f["tori"]}
 
 
 def test_single_lagrange_torus_closed_form_and_numerical(tmp_path):
     out = str(tmp_path / "a.h5")
     r = lgi("actions", "--scene", LAGRANGE, "--dt", "0.002", "--crossings", "200", "--out", out)
     assert r.stdout.count("method=") == 2
-    t = tori(out)
+    t = columns(out, "tori")
     assert list(t["method"]) == [0, 2] and list(t["ok"]) == [1, 1]
     (l0, L3, I_theta), (l1, Ia, Ib) = t["actions"]
     assert abs(l0 - l1) < 1e-14 * abs(l0)
@@ -54,7 +39,7 @@ def test_single_lagrange_torus_closed_form_and_numerical(tmp_path):
 def test_euler_energy_surface(tmp_path):
     out = str(tmp_path / "e.h5")
     lgi("actions", "--scene", FREE, "--h", "0.5", "--grid", "21", "--out", out, "--quiet")
-    t = tori(out)
+    t = columns(out, "tori")
     l, G, I = t["actions"].T
     assert len(l) > 300 and np.all(t["method"] == 1)
     J = np.array([2.0, 1.0, 2.0 / 3.0])
@@ -66,7 +51,7 @@ def test_euler_energy_surface(tmp_path):
 def test_lagrange_energy_surface_and_plot(tmp_path):
     out = str(tmp_path / "lag.h5")
     lgi("actions", "--scene", LAGRANGE, "--h", "2", "--grid", "25", "--out", out, "--quiet")
-    t = tori(out)
+    t = columns(out, "tori")
     assert len(t["h"]) > 50 and np.all(t["actions"][:, 2] >= 0) and np.all(t["h"] == 2.0)
     script = os.path.join(ROOT, "scripts", "plots", "actions.py")
     r = subprocess.run([sys.executable, script, "--out", str(tmp_path / "figs"), out], capture_output=True, text=True)
@@ -80,7 +65,7 @@ def test_failed_torus_has_reason_and_nan_actions(tmp_path):
     r = lgi("actions", "--scene", KOVALEVSKAYA, "--h", "2", "--l", "0", "--tori", "1", "--out", out)
     assert "torus 0 (l = 0): failed, reason 4: the section is one point" in r.stdout
     assert "1 tori on H = 2, 0 ok" in r.stdout
-    t = tori(out)
+    t = columns(out, "tori")
     assert list(t["ok"]) == [0] and list(t["reason"]) == [4]
     assert np.all(np.isnan(t["actions"][:, 1:])) and np.all(np.isnan(t["frequencies"]))
 
