@@ -301,59 +301,50 @@ plot animate.py --frames "$frames" "$data/traj/book_axis2_$lie_scheme.h5" "$data
 [ -n "$singularity_file" ] && plot singularity.py --schemes-json "$gen/schemes.json" "$singularity_file"
 wait_plots
 
-# ── the global dynamics of tops (paper/sections/tops.tex) ────────────────────
-if has_sub equilibria && has_sub bifurcation && has_sub poincare; then
-  "$root/scripts/paper_atlas.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
-    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_atlas.sh failed"; }
-else
-  for n in atlas_equilibria.tex atlas_megno.tex atlas_commands.tex; do
-    echo '\lginote{This \texttt{lgi} lacks equilibria, bifurcation or poincare: no data.}' > "$gen/$n"
+# paper_section SCRIPT "SUBCOMMANDS" "FIGURES" "NOTES": one paper section's data, figures and numbers from
+# scripts/SCRIPT, when this lgi has every subcommand it needs; else each figure and each generated .tex of NOTES
+# says what is missing, and the status is 1 so that the caller writes the section's other placeholders.
+paper_section() {
+  local script="$1" subs="$2" figures="$3" texs="$4" s n
+  local why="This \\texttt{lgi} lacks ${subs// /, }: no data."
+  for s in $subs; do
+    has_sub "$s" && continue
+    for n in $figures; do missing_note "$n" "$why"; done
+    for n in $texs; do printf '\\lginote{%s}\n' "$why" > "$gen/$n"; done
+    return 1
   done
-fi
+  "$root/scripts/$script" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/$script failed"; }
+}
+
+# ── the global dynamics of tops (paper/sections/tops.tex) ────────────────────
+paper_section paper_atlas.sh "equilibria bifurcation poincare" "" \
+  "atlas_equilibria.tex atlas_megno.tex atlas_commands.tex" || true
 say "atlas done ($(( $(date +%s) - t_start )) s)"
 
 # ── quantum tops (paper/sections/quantum.tex) ────────────────────────────────
-if has_sub quantum && has_sub chaos-map; then
-  "$root/scripts/paper_quantum.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
-    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_quantum.sh failed"; }
-else
-  for n in quantum_levels_richter quantum_ebk quantum_compare; do
-    missing_note "$n" "This \\texttt{lgi} lacks quantum or chaos-map: no data."
-  done
-  for n in quantum_compare.tex quantum_commands.tex; do
-    echo '\lginote{This \texttt{lgi} lacks quantum or chaos-map: no data.}' > "$gen/$n"
-  done
+paper_section paper_quantum.sh "quantum chaos-map" "quantum_levels_richter quantum_ebk quantum_compare" \
+  "quantum_compare.tex quantum_commands.tex" || {
   echo '\multicolumn{6}{l}{no data: this \texttt{lgi} lacks quantum} \\' > "$gen/quantum_euler_ebk.tex"
   printf '\\newcommand{\\%s}{?}\n' QLagEbkErrors QLagEbkHbars QLagEbkRatios > "$gen/quantum_numbers.tex"
-fi
+}
 say "quantum done ($(( $(date +%s) - t_start )) s)"
 
 # ── periodic orbits (paper/sections/periodic.tex) ───────────────────────────
-if has_sub periodic && has_sub poincare; then
-  "$root/scripts/paper_periodic.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
-    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_periodic.sh failed"; }
-else
-  for n in periodic_period_l22 periodic_period_l3 poincare_section_l3; do
-    missing_note "$n" "This \\texttt{lgi} lacks periodic or poincare: no data."
-  done
-  echo '\lginote{This \texttt{lgi} lacks periodic or poincare: no data.}' > "$gen/periodic_commands.tex"
+paper_section paper_periodic.sh "periodic poincare" "periodic_period_l22 periodic_period_l3 poincare_section_l3" \
+  "periodic_commands.tex" || {
   printf '\\newcommand{\\%s}{?}\n' PerAFamilies PerAOrbits PerAFolds PerADoublings PerAFirstPeriod PerAResidual \
     PerAProduct PerBFamilies PerBOrbits PerBFolds PerBDoublings PerBFirstPeriod PerBResidual PerBProduct PerSecH \
     PerSecHypT PerSecEllT PerSecLambda PerSecReturns PerSecPoints > "$gen/periodic_numbers.tex"
-fi
+}
 say "periodic done ($(( $(date +%s) - t_start )) s)"
+
 # ── three degrees of freedom (paper/sections/three_dof.tex) ──────────────────
-if has_sub chaos-map && has_sub frequencies && has_sub indicators; then
-  "$root/scripts/paper_3dof.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
-    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_3dof.sh failed"; }
-else
-  for n in three_dof_maps three_dof_frequency_map three_dof_gali; do
-    missing_note "$n" "This \\texttt{lgi} lacks chaos-map, frequencies or indicators: no data."
-  done
-  echo '\lginote{This \texttt{lgi} lacks chaos-map, frequencies or indicators: no data.}' > "$gen/three_dof_commands.tex"
+paper_section paper_3dof.sh "chaos-map frequencies indicators" \
+  "three_dof_maps three_dof_frequency_map three_dof_gali" "three_dof_commands.tex" || {
   grep -o '\\Tdof[A-Za-z]*' "$paper/sections/three_dof.tex" | sort -u \
     | sed 's/.*/\\newcommand{&}{?}/' > "$gen/three_dof_numbers.tex"
-fi
+}
 say "three degrees of freedom done ($(( $(date +%s) - t_start )) s)"
 
 # ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
