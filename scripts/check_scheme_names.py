@@ -54,6 +54,8 @@ ALLOWED = [
     ("scripts/benchmark_ratios.py", 'b["name"].startswith("ensemble/")'),
     ("scripts/benchmark_ratios.py", 'b["name"].startswith("limits/")'),
     ("scripts/benchmark_ratios.py", 'b["name"].startswith("newton/")'),
+    ("scripts/benchmark_ratios.py", 'base, isa = name.rsplit("/", 1)'),
+    ("scripts/benchmark_ratios.py", 'b["name"].startswith("tangent/")'),
     ("scripts/benchmark_ratios.py", 'b["name"].split("/", 1)'),             # SCENE/SCHEME: the scheme kept whole
     ("scripts/benchmark_ratios.py", 'name.rsplit("/", 1)[0]'),
 ]

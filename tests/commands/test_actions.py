@@ -77,7 +77,7 @@ def test_kovalevskaya_torus_of_a_level(tmp_path):
     r = lgi("actions", "--scene", KOVALEVSKAYA, "--h", "-0.91464", "--l", "0", "--k", "0.92929", "--crossings", "100",
             "--harmonics", "16", "--out", out)
     assert "maslov=(2, 4)" in r.stdout and "ok=1" in r.stdout, r.stdout
-    t = tori(out)
+    t = columns(out, "tori")
     assert abs(t["k"][0] - 0.92929) < 1e-9 and abs(t["h"][0] + 0.91464) < 1e-9
     assert list(t["maslov"][0]) == [2, 4]
     slow, fast = t["libration_actions"][0]
