@@ -4,13 +4,8 @@
 #include "integrators/registry_support.hpp"
 #include "integrators/rkmk_adaptive.hpp"
 
-// Every order condition of the pairs and of their interpolants (embedded_pairs.hpp),
-// checked in this one unit: over 21 and 26 stages it takes half a minute of
-// constant evaluation, which every unit including the tableaus would repeat.
-static_assert(lgi::tableaus::pair_checks_out<lgi::tableaus::verner87>(),
-              "Verner 8(7): a coefficient does not satisfy its order conditions");
-static_assert(lgi::tableaus::pair_checks_out<lgi::tableaus::verner98>(),
-              "Verner 9(8): a coefficient does not satisfy its order conditions");
+// The pairs' order conditions are checked in tableaus/pair_checks_verner87.cpp
+// and pair_checks_verner98.cpp, each in a unit of its own.
 
 namespace lgi::integrators {
 

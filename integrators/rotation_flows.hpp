@@ -213,22 +213,18 @@ inline void sphere_flow(State& s, double inverse_moment, double t) {
 /// `length` of Ṙ = 0, Π̇ = τ(R, Π, t) at frozen R and t. Without a damper
 /// (Π += length f, f the frozen torque) it is written here to be inlined:
 /// a step of these schemes is one chain of dependent sub-flows, and the call
-/// cost a quarter of a stage (measured); with a damper it is split-exact's.
+/// cost a quarter of a stage (measured); with a damper it is split-exact's
+/// damped_kick.
 template <class Model>
 inline void kick(const Model& model, State& s, double t, double length) {
   static_assert(Model::frozen_kick,
                 "split-axes and split-symmetric need every torque term to have a frozen kick (FrozenKickTerm)");
   if constexpr (Model::has_torque) {
-    Vec3 f = Vec3::Zero();
-    double damping = 0.0;
-    model.for_each_term([&](const auto& term) {
-      f += term.frozen_torque(s.R, t);
-      damping += term.damping();
-    });
-    if (damping == 0.0) {
-      s.Pi += length * f;
+    const SplitExact::FrozenTorque k = SplitExact::frozen_torque(model, s, t);
+    if (k.damping == 0.0) {
+      s.Pi += length * k.f;
     } else {
-      SplitExact::kick(model, s, t, length);
+      SplitExact::damped_kick(model.inertia, s, k, length);
     }
   }
 }

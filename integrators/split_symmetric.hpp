@@ -42,34 +42,23 @@ namespace lgi::integrators {
 
 class SplitSymmetric : public OuterRotationSplitting<SplitSymmetric> {
  public:
-  static constexpr SchemeFacts facts{
-      .order = 2,
-      .properties = {.symplectic = true,
-                     .symmetric = true,
-                     .conserves_momentum_norm = true,
-                     .conserves_spatial_momentum = true,
-                     .conserves_vertical_momentum = true},
-      .reference = "Touma & Wisdom, Astron. J. 107 (1994) 1189-1202 (symmetric top plus remainder); Fasso, "
-                   "J. Comput. Phys. 189 (2003) 527-538"};
+  static constexpr SchemeFacts facts = facts_with(
+      "Touma & Wisdom, Astron. J. 107 (1994) 1189-1202 (symmetric top plus remainder); Fasso, "
+      "J. Comput. Phys. 189 (2003) 527-538");
 
-  // The part between the outer rotations (outer_rotation_splitting.hpp).
+  // The part between the outer rotations, with the kicks (outer_rotation_splitting.hpp).
   template <class Model>
-  StepStatus inner(const Model& model, State& s, double t, double h, WorkCounters& work) {
-    if (!ready_) set_up(model.inertia);
+  void middle(const Model& model, State& s, double t, double h) {
     rotation_flows::kick(model, s, t, 0.5 * h);
     rotation_flows::sphere_flow(s, inverse_m_, h);
     axes_.flow(s, l_, c_l_, h);
     rotation_flows::kick(model, s, t + h, 0.5 * h);
-    work.rhs_evaluations += Model::has_torque ? 2 : 0;
-    return {};
   }
 
  private:
   friend class OuterRotationSplitting<SplitSymmetric>;
   void set_up(const system::Inertia& inertia) {
-    axes_ = rotation_flows::PrincipalAxisFlows(inertia);
-    const auto order = rotation_flows::ascending_axes(inertia.principal);
-    s_ = order[0];
+    const auto order = set_up_axes(inertia);
     l_ = order[2];
     inverse_m_ = 1.0 / inertia.principal(order[1]);
     // Exactly 0 for equal moments (the same double): that rotation is skipped.

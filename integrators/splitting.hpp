@@ -76,25 +76,41 @@ class SplitExact {
     static_assert(Model::frozen_kick,
                   "split-exact needs every torque term to be affine in Omega at frozen attitude (FrozenKickTerm)");
     if constexpr (Model::has_torque) {
-      Vec3 f = Vec3::Zero();  // the part of τ that does not depend on Π
-      double damping = 0.0;
-      model.for_each_term([&](const auto& term) {
-        f += term.frozen_torque(s.R, t);
-        damping += term.damping();
-      });
-      if (damping == 0.0) {
-        s.Pi += length * f;
+      const FrozenTorque k = frozen_torque(model, s, t);
+      if (k.damping == 0.0) {
+        s.Pi += length * k.f;
       } else {
-        const auto& in = model.inertia;
-        Vec3 pi_p = in.principal_axes.transpose() * s.Pi;
-        const Vec3 f_p = in.principal_axes.transpose() * f;
-        for (int i = 0; i < 3; ++i) {
-          const double x = -damping * length / in.principal(i);
-          pi_p(i) = std::exp(x) * pi_p(i) - std::expm1(x) * (in.principal(i) / damping) * f_p(i);
-        }
-        s.Pi = in.principal_axes * pi_p;
+        damped_kick(model.inertia, s, k, length);
       }
     }
+  }
+
+  /// τ at frozen R and t, τ = f − c Ω: the part f that does not depend on Π and
+  /// the summed damping c of the terms.
+  struct FrozenTorque {
+    Vec3 f = Vec3::Zero();
+    double damping = 0.0;
+  };
+  template <class Model>
+  static FrozenTorque frozen_torque(const Model& model, const State& s, double t) {
+    FrozenTorque k;
+    model.for_each_term([&](const auto& term) {
+      k.f += term.frozen_torque(s.R, t);
+      k.damping += term.damping();
+    });
+    return k;
+  }
+
+  /// The kick with a damper (k.damping ≠ 0): in the principal frame each
+  /// component relaxes exponentially towards I_i f_i / c.
+  static void damped_kick(const system::Inertia& in, State& s, const FrozenTorque& k, double length) {
+    Vec3 pi_p = in.principal_axes.transpose() * s.Pi;
+    const Vec3 f_p = in.principal_axes.transpose() * k.f;
+    for (int i = 0; i < 3; ++i) {
+      const double x = -k.damping * length / in.principal(i);
+      pi_p(i) = std::exp(x) * pi_p(i) - std::expm1(x) * (in.principal(i) / k.damping) * f_p(i);
+    }
+    s.Pi = in.principal_axes * pi_p;
   }
 
   /// The exact free-body flow over h (either sign). Needs start().

@@ -25,6 +25,11 @@
 // run, its steps and its crossings do not depend on whether indicators are
 // asked for.
 //
+// For the models with an ensemble kernel (all but the spring) the indicators
+// step with integrators/ensemble/tangent_kernel.hpp's form of this step: the
+// same scheme with A applied as directional derivatives (other roundings),
+// whose SIMD lanes give the same bits (docs/ensemble.md).
+//
 // Indicators, with v renormalised to |v| = 1 after every step (Euclidean norm
 // on ℝ⁶ in the scene's units) and Δₙ = ln|vₙ| the growth of step n, s the
 // time since the start:

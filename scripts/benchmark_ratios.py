@@ -30,8 +30,16 @@ the cheapest Lie-group scheme and the cheapest baseline reach the target error,
 log-log interpolated along each curve as in the paper's "cost at equal error"
 table (scripts/plots/cost_table.py), and their ratio.
 
+The tangent flow in SIMD lanes (bench_tangent_lanes.cpp, docs/ensemble.md): the chaos
+indicators' loop per trajectory, in the lanes of each instruction set over the scalar loop
+(trajectories per second per core), and that speed-up as a fraction of the instruction set's
+vector ceiling (its packed peak over the scalar peak, from limits/).
+
+--filter REGEX runs only the benchmarks it matches (Google Benchmark's --benchmark_filter),
+e.g. 'tangent/|limits/(scalar|vector)_peak' for the tangent lanes and their ceilings alone.
+
 usage: scripts/benchmark_ratios.py [--bench PATH] [--min-time S] [--processes N] [--tex FILE] [--json FILE]
-                                   [--lgi PATH] [--skip-equal-error] [--skip-long-run]
+                                   [--lgi PATH] [--skip-equal-error] [--skip-long-run] [--filter REGEX]
 """
 import argparse
 import csv
@@ -54,6 +62,31 @@ def vector_peak_line(limits):
     return ("# vector peaks: " + ", ".join(f"{isa} {v:.1f} lane operations per ns = {v / scalar:.2f} x the scalar peak"
                                           for isa, v in peaks)
             + " (the most an ensemble kernel can gain over a throughput-bound scalar loop)")
+
+
+def tangent_lines(tangents, limits):
+    """One line per tangent/<scene>/<loop>/<isa> benchmark (bench_tangent_lanes.cpp): trajectories
+    per second, the speed-up over .../scalar (the scalar loop, scalar_tangent_step) and, where
+    limits/ measured it, the fraction of that instruction set's vector ceiling (its packed peak over
+    the scalar peak, vector_peak_line). Bars (issue 52): >= 3x on AVX-512, >= 0.7 of the ceiling on AVX2."""
+    scalar = limits.get("limits/scalar_peak", {}).get("scalar_flops_per_ns")
+    lines = []
+    for name, rate in tangents.items():
+        base, isa = name.rsplit("/", 1)
+        if isa == "scalar" or base + "/scalar" not in tangents:
+            continue
+        ratio = rate / tangents[base + "/scalar"]
+        line = f"# {name}: {rate:.0f} trajectories/s, {ratio:.2f} x the scalar loop"
+        peak = limits.get("limits/vector_peak/" + isa, {}).get("lane_flops_per_ns")
+        if scalar and peak and isa != "eigen":
+            ceiling = peak / scalar
+            line += f", {ratio / ceiling:.2f} of the {isa} ceiling ({ceiling:.2f} x)"
+        if isa == "avx512":
+            line += " (bar: >= 3 x)"
+        elif isa == "avx2":
+            line += " (bar: >= 0.7 of the ceiling)"
+        lines.append(line)
+    return lines
 
 
 def tex_escape(s):
@@ -94,17 +127,18 @@ def write_tex(path, per_scene, maps, ctx):
         f.write("\n".join(lines) + "\n")
 
 
-def run_bench(bench, min_time):
+def run_bench(bench, min_time, only=None):
     """Run every benchmark of `bench` once and return its JSON report; on stderr, one
     progress line per benchmark ("benchmark_ratios: 3/52 free_body_hlw/rkmk4") as it finishes."""
-    names = subprocess.run([bench, "--benchmark_list_tests=true"], check=True, capture_output=True,
+    selection = [f"--benchmark_filter={only}"] if only else []
+    names = subprocess.run([bench, "--benchmark_list_tests=true"] + selection, check=True, capture_output=True,
                            text=True).stdout.split()
     print(f"benchmark_ratios: {len(names)} benchmarks, min time {min_time} s each", file=sys.stderr, flush=True)
     with tempfile.TemporaryDirectory(prefix="lgi_bench_") as tmp:
         report = os.path.join(tmp, "report.json")
         proc = subprocess.Popen([bench, "--benchmark_format=console", "--benchmark_color=false",
                                  f"--benchmark_out={report}", "--benchmark_out_format=json",
-                                 f"--benchmark_min_time={min_time}"],
+                                 f"--benchmark_min_time={min_time}"] + selection,
                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
         done = 0
         for line in proc.stdout:
@@ -221,8 +255,9 @@ def main():
     ap.add_argument("--lgi", default="build/release/lgi")
     ap.add_argument("--skip-equal-error", action="store_true")
     ap.add_argument("--skip-long-run", action="store_true")
+    ap.add_argument("--filter", help="only the benchmarks this regular expression matches")
     a = ap.parse_args()
-    out = run_bench(a.bench, a.min_time)
+    out = run_bench(a.bench, a.min_time, a.filter)
     data = json.loads(out)
     if a.json:
         with open(a.json, "w") as f:
@@ -230,12 +265,16 @@ def main():
     per_scene = {}
     maps = []
     ensembles = {}
+    tangents = {}
     limits = {}
     for b in data["benchmarks"]:
         if b.get("error_occurred"):
             continue  # e.g. an Euler-angle baseline on a scene that starts at its singularity
         if b["name"].startswith("ensemble/"):  # bench_ensemble.cpp: trajectories/s, scalar loop vs ensemble
             ensembles[b["name"]] = b["trajectories_per_second"]
+            continue
+        if b["name"].startswith("tangent/"):  # bench_tangent_lanes.cpp: the tangent flow, scalar loop vs lanes
+            tangents[b["name"]] = b["trajectories_per_second"]
             continue
         if b["name"].startswith("limits/"):  # bench_issue_limit.cpp: what bounds a dmv-pre10 step
             limits[b["name"]] = b
@@ -288,6 +327,9 @@ def main():
         base = name.rsplit("/", 1)[0] + "/scalar"
         if name != base and base in ensembles:
             print(f"# {name}: {rate:.0f} trajectories/s, {rate / ensembles[base]:.2f} x the scalar loop")
+    # The tangent flow in lanes (docs/ensemble.md): over the scalar loop, and as a fraction of the ceiling.
+    for line in tangent_lines(tangents, limits):
+        print(line)
     # The heavy tops' cost at equal error (the work-precision bars), from lgi work-precision.
     if not a.skip_equal_error:
         if os.path.exists(a.lgi):

@@ -220,12 +220,8 @@ say "work-precision done ($(( $(date +%s) - t_start )) s)"
 lt_files=()
 if has_sub long-time; then
   mkdir -p "$data/lt"
-  if [ "$mode" = quick ]; then
-    lt_cases=("free_body_hlw|0.1|1e3|dmv rkmk4 split-exact quat/rk4" "heavy_top_trindade_1|2e-3|20|lgvi rkmk4 simo-wong")
-  else
-    lt_cases=("free_body_hlw|0.1|1e6|dmv dmv-pre4 lgvi@suzuki4 rkmk4 cf4 rkmk-gauss4 simo-wong split-exact quat/rk4 matrix/rk4"
-              "heavy_top_trindade_1|1e-3|1e3|lgvi rkmk4 rkmk-gauss4 split-exact simo-wong quat/rk4")
-  fi
+  . "$root/scripts/long_time_cases.sh"
+  long_time_cases "$mode"
   for spec in "${lt_cases[@]}"; do
     IFS='|' read -r scene dt t_end schemes_lt <<<"$spec"
     for s in $schemes_lt; do
@@ -305,32 +301,51 @@ plot animate.py --frames "$frames" "$data/traj/book_axis2_$lie_scheme.h5" "$data
 [ -n "$singularity_file" ] && plot singularity.py --schemes-json "$gen/schemes.json" "$singularity_file"
 wait_plots
 
-# ── the global dynamics of tops (paper/sections/tops.tex) ────────────────────
-if has_sub equilibria && has_sub bifurcation && has_sub poincare; then
-  "$root/scripts/paper_atlas.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
-    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_atlas.sh failed"; }
-else
-  for n in atlas_equilibria.tex atlas_megno.tex atlas_commands.tex; do
-    echo '\lginote{This \texttt{lgi} lacks equilibria, bifurcation or poincare: no data.}' > "$gen/$n"
+# paper_section SCRIPT "SUBCOMMANDS" "FIGURES" "NOTES": one paper section's data, figures and numbers from
+# scripts/SCRIPT, when this lgi has every subcommand it needs; else each figure and each generated .tex of NOTES
+# says what is missing, and the status is 1 so that the caller writes the section's other placeholders.
+paper_section() {
+  local script="$1" subs="$2" figures="$3" texs="$4" s n
+  local why="This \\texttt{lgi} lacks ${subs// /, }: no data."
+  for s in $subs; do
+    has_sub "$s" && continue
+    for n in $figures; do missing_note "$n" "$why"; done
+    for n in $texs; do printf '\\lginote{%s}\n' "$why" > "$gen/$n"; done
+    return 1
   done
-fi
+  "$root/scripts/$script" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
+    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/$script failed"; }
+}
+
+# ── the global dynamics of tops (paper/sections/tops.tex) ────────────────────
+paper_section paper_atlas.sh "equilibria bifurcation poincare" "" \
+  "atlas_equilibria.tex atlas_megno.tex atlas_commands.tex" || true
 say "atlas done ($(( $(date +%s) - t_start )) s)"
 
 # ── quantum tops (paper/sections/quantum.tex) ────────────────────────────────
-if has_sub quantum && has_sub chaos-map; then
-  "$root/scripts/paper_quantum.sh" --lgi "$lgi" --data "$data" --figs "$figs" --gen "$gen" --mode "$mode" \
-    >>"$log" 2>&1 || { tail -5 "$log" >&2; die "scripts/paper_quantum.sh failed"; }
-else
-  for n in quantum_levels_richter quantum_ebk quantum_compare; do
-    missing_note "$n" "This \\texttt{lgi} lacks quantum or chaos-map: no data."
-  done
-  for n in quantum_compare.tex quantum_commands.tex; do
-    echo '\lginote{This \texttt{lgi} lacks quantum or chaos-map: no data.}' > "$gen/$n"
-  done
+paper_section paper_quantum.sh "quantum chaos-map" "quantum_levels_richter quantum_ebk quantum_compare" \
+  "quantum_compare.tex quantum_commands.tex" || {
   echo '\multicolumn{6}{l}{no data: this \texttt{lgi} lacks quantum} \\' > "$gen/quantum_euler_ebk.tex"
   printf '\\newcommand{\\%s}{?}\n' QLagEbkErrors QLagEbkHbars QLagEbkRatios > "$gen/quantum_numbers.tex"
-fi
+}
 say "quantum done ($(( $(date +%s) - t_start )) s)"
+
+# ── periodic orbits (paper/sections/periodic.tex) ───────────────────────────
+paper_section paper_periodic.sh "periodic poincare" "periodic_period_l22 periodic_period_l3 poincare_section_l3" \
+  "periodic_commands.tex" || {
+  printf '\\newcommand{\\%s}{?}\n' PerAFamilies PerAOrbits PerAFolds PerADoublings PerAFirstPeriod PerAResidual \
+    PerAProduct PerBFamilies PerBOrbits PerBFolds PerBDoublings PerBFirstPeriod PerBResidual PerBProduct PerSecH \
+    PerSecHypT PerSecEllT PerSecLambda PerSecReturns PerSecPoints > "$gen/periodic_numbers.tex"
+}
+say "periodic done ($(( $(date +%s) - t_start )) s)"
+
+# ── three degrees of freedom (paper/sections/three_dof.tex) ──────────────────
+paper_section paper_3dof.sh "chaos-map frequencies indicators" \
+  "three_dof_maps three_dof_frequency_map three_dof_gali" "three_dof_commands.tex" || {
+  grep -o '\\Tdof[A-Za-z]*' "$paper/sections/three_dof.tex" | sort -u \
+    | sed 's/.*/\\newcommand{&}{?}/' > "$gen/three_dof_numbers.tex"
+}
+say "three degrees of freedom done ($(( $(date +%s) - t_start )) s)"
 
 # ── benchmarks: ns per step and ratios to quat/rk4 (Google Benchmark, one run) ─
 bench="$(dirname "$lgi")/lgi_bench"

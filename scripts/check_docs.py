@@ -26,6 +26,8 @@ import re
 import subprocess
 import sys
 
+from check_report import report
+
 THIS = os.path.abspath(__file__)
 
 # Citations of files outside the repository.
@@ -185,13 +187,7 @@ def main(argv):
             continue
         n += 1
         problems += check_file(root, rel, text)
-    for p in problems:
-        print(p)
-    if problems:
-        print(f"check_docs: {len(problems)} problem(s) in {n} files", file=sys.stderr)
-        return 1
-    print(f"check_docs: {n} files clean")
-    return 0
+    return report(problems, f"check_docs: {len(problems)} problem(s) in {n} files", f"check_docs: {n} files clean")
 
 
 if __name__ == "__main__":

@@ -39,6 +39,8 @@ import os
 import re
 import sys
 
+from check_report import report
+
 THIS = os.path.abspath(__file__)
 
 LAYERS = ["errors", "io", "analysis", "cli", "commands"]
@@ -308,13 +310,8 @@ def main(argv):
         problems.append(f"{cycle[0]}:{lines[(cycle[0], cycle[1])]}: include cycle: {' -> '.join(cycle)}")
     problems += upward_calls(root, files)
     problems += defined_upward(root, files)
-    for p in problems:
-        print(p)
-    if problems:
-        print(f"check_layers: {len(problems)} violation(s) in {len(files)} files", file=sys.stderr)
-        return 1
-    print(f"check_layers: {len(files)} files, {n_includes} includes of experiments/, layering clean")
-    return 0
+    return report(problems, f"check_layers: {len(problems)} violation(s) in {len(files)} files",
+                  f"check_layers: {len(files)} files, {n_includes} includes of experiments/, layering clean")
 
 
 if __name__ == "__main__":

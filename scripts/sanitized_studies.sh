@@ -56,14 +56,10 @@ run() {
 if [ "$study" = stress ]; then
   run stress stress $([ $quick = 1 ] && echo --quick) --scenes-dir "$scenes" --out "$out/stress.h5" --force --quiet
 else
-  # The long-time cases of scripts/build_paper.sh (scene|dt|t_end|schemes), full or --quick.
-  if [ $quick = 1 ]; then
-    cases=("free_body_hlw|0.1|1e3|dmv rkmk4 split-exact quat/rk4" "heavy_top_trindade_1|2e-3|20|lgvi rkmk4 simo-wong")
-  else
-    cases=("free_body_hlw|0.1|1e6|dmv dmv-pre4 lgvi@suzuki4 rkmk4 cf4 rkmk-gauss4 simo-wong split-exact quat/rk4 matrix/rk4"
-           "heavy_top_trindade_1|1e-3|1e3|lgvi rkmk4 rkmk-gauss4 split-exact simo-wong quat/rk4")
-  fi
-  for spec in "${cases[@]}"; do
+  # The long-time cases of scripts/build_paper.sh, full or --quick.
+  . "$root/scripts/long_time_cases.sh"
+  long_time_cases "$([ $quick = 1 ] && echo quick || echo full)"
+  for spec in "${lt_cases[@]}"; do
     IFS='|' read -r scene dt t_end schemes <<< "$spec"
     for s in $schemes; do
       run "long-time_${scene}_$(tr '/@' '__' <<< "$s")" long-time --scene "$scenes/$scene.toml" --scheme "$s" \

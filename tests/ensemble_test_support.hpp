@@ -118,4 +118,16 @@ inline void check_loop(const char* scheme, const system::Scene& scene, const int
   }
 }
 
+/// The loop tests' run: t from 0 to 3, h = 1e-2, a sample every 7 steps, no
+/// CPU clock (the runs are compared bit for bit), crossings of `events`.
+inline integrators::RunConfig loop_config(const integrators::EventFunctions* events) {
+  integrators::RunConfig cfg{0.0, 3.0, 1e-2, 0.0, 7};
+  cfg.cpu_clock = false;
+  cfg.events = events;
+  return cfg;
+}
+
+/// Output times for the loop tests, off the step grid but for the ends.
+inline const std::vector<double> loop_output_times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
+
 }  // namespace lgi::ensemble_test

@@ -6,8 +6,6 @@
 // and `lgi singularity`: test_baselines_singularity.cpp.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -23,22 +21,14 @@
 #include "integrators/registry.hpp"
 #include "support/baseline_runs.hpp"
 #include "support/convergence.hpp"
-#include "support/h5_read.hpp"
-#include "support/run_command.hpp"
 
 using namespace lgi;
-using integrators::RunConfig;
 using integrators::RunStats;
 using lie::Mat3;
 using lie::Vec3;
 namespace bl = integrators::baselines;
-namespace fs = std::filesystem;
 
-using lgi::testing::attitude_error;
-using lgi::testing::rkmk4_at;
-using lgi::testing::run;
-using lgi::testing::scene;
-using lgi::testing::scenes;
+using namespace lgi::testing;
 
 namespace {
 

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <string>
 
 // First: it includes odeint with a GCC false positive silenced (see there).
@@ -21,7 +20,6 @@
 #include "integrators/baselines/rotation_vector.hpp"
 #include "integrators/registry.hpp"
 #include "support/baseline_runs.hpp"
-#include "support/convergence.hpp"
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
@@ -29,15 +27,10 @@ using namespace lgi;
 using integrators::RunConfig;
 using integrators::RunStats;
 using lie::Mat3;
-using lie::Vec3;
 namespace bl = integrators::baselines;
 namespace fs = std::filesystem;
 
-using lgi::testing::attitude_error;
-using lgi::testing::rkmk4_at;
-using lgi::testing::run;
-using lgi::testing::scene;
-using lgi::testing::scenes;
+using namespace lgi::testing;
 
 TEST_CASE("the Euler-angle singularity is detected and reported, never a silent wrong answer",
           "[baselines][singularity]") {

@@ -23,16 +23,17 @@
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
+#include "support/order_reference.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
 #include "support/registered_run.hpp"
+#include "support/shipped_scene.hpp"
 
 using namespace lgi;
 using testing::ConvergencePoint;
 
 namespace {
 
-const std::string scenes = LGI_SCENES_DIR;
 
 // From the registry's facts, never the name: a composition has a base scheme
 // (`lgi schemes --json` "kind": "composition", "base"); a processed one is the
@@ -69,11 +70,10 @@ std::vector<ConvergencePoint> convergence(const integrators::SchemeInfo& scheme,
 }  // namespace
 
 TEST_CASE("every composition reaches its order on the asymmetric free body", "[composition][order]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel model = system::make_model(scene);
   const double T = 10.0;
-  const system::State exact =
-      system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
+  const system::State exact = testing::exact_free_body_at(model, scene, T);
   std::set<std::string> bases;
   for (const auto& scheme : integrators::scheme_registry()) {
     if (!is_composition(scheme) || !integrators::unsupported_reason(scheme, model).empty()) continue;
@@ -100,7 +100,7 @@ TEST_CASE("every composition reaches its order on the asymmetric free body", "[c
 }
 
 TEST_CASE("every composition reaches its order on the Kovalevskaya top", "[composition][order]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/kovalevskaya.toml");
+  const system::Scene scene = testing::shipped_scene("kovalevskaya");
   const system::AnyModel model = system::make_model(scene);
   REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 10.0;
@@ -122,7 +122,7 @@ TEST_CASE("every composition reaches its order on the Kovalevskaya top", "[compo
 }
 
 TEST_CASE("every processed composition reaches its order on HLW's heavy top", "[composition][order][processed]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/heavy_top_hlw.toml");
+  const system::Scene scene = testing::shipped_scene("heavy_top_hlw");
   const system::AnyModel model = system::make_model(scene);
   const double T = 10.0;
   const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T);

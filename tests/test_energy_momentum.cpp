@@ -22,9 +22,11 @@
 #include "integrators/registry.hpp"
 #include "integrators/simo_wong.hpp"
 #include "integrators/system/free_body_exact.hpp"
+#include "support/order_reference.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
 #include "support/shipped_scene.hpp"
+#include "support/spring_scenes.hpp"
 
 using namespace lgi;
 using lie::Mat3;
@@ -56,44 +58,6 @@ system::State run_ok(const system::AnyModel& model, const system::State& x0, dou
   REQUIRE(stats.ok);
   return x;
 }
-
-// An undamped torsional spring (the discrete-gradient case), and the same with a
-// drive and gravity added, inline.
-const char* spring_toml = R"(
-name = "undamped spring"
-[body]
-inertia = [1.0, 2.0, 2.5]
-[spring]
-stiffness = 10.0
-damping = 0.0
-[initial]
-rotation_vector = [1.0, 0.5, -0.3]
-angular_velocity = [0.4, -1.0, 2.0]
-[run]
-t_end = 10.0
-)";
-
-const char* kitchen_sink_toml = R"(
-name = "everything"
-[body]
-mass = 2.0
-inertia = [1.0, 2.0, 2.5]
-center_of_mass = [0.1, 0.2, 0.3]
-[gravity]
-g = 9.81
-[spring]
-stiffness = 10.0
-damping = 0.5
-[drive]
-torque_amplitude = [0.3, -0.2, 0.1]
-angular_frequency = 2.0
-phase = 0.3
-[initial]
-rotation_vector = [1.0, 0.5, -0.3]
-angular_velocity = [0.4, -1.0, 2.0]
-[run]
-t_end = 10.0
-)";
 
 double pi_dot_gamma(const system::State& s) { return s.Pi.dot(s.R.row(2).transpose()); }
 
@@ -143,8 +107,7 @@ TEST_CASE("simo-wong converges at order 2", "[simo-wong][order]") {
     const system::Scene scene = testing::shipped_scene("free_body_hlw");
     const system::AnyModel model = system::make_model(scene);
     const double T = 10.0;
-    const system::State exact =
-        system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
+    const system::State exact = testing::exact_free_body_at(model, scene, T);
     check_order2("free_body_hlw", model, scene.initial, T, exact, 0.1, 0.002);
   }
   SECTION("the Kovalevskaya top against rkf78") {
@@ -156,7 +119,7 @@ TEST_CASE("simo-wong converges at order 2", "[simo-wong][order]") {
     check_order2("kovalevskaya", model, scene.initial, T, ref, 0.1, 0.002);
   }
   SECTION("a heavy top with a damped spring and a drive against rkf78 (every discrete torque at once)") {
-    const system::Scene scene = experiments::parse_scene(kitchen_sink_toml, "kitchen_sink.toml");
+    const system::Scene scene = experiments::parse_scene(testing::kitchen_sink_toml, "kitchen_sink.toml");
     const system::AnyModel model = system::make_model(scene);
     const double T = 2.0;
     const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model),
@@ -190,9 +153,9 @@ TEST_CASE("simo-wong is symmetric: a step back undoes a step", "[simo-wong][symm
       if (name == std::string("heavy_top_trindade_1") && h > 0.05) continue;  // 50 rad/s: h|Ω| ≥ π
       check(system::make_model(scene), scene.initial, h, name);
     }
-    const system::Scene spring = experiments::parse_scene(spring_toml, "spring.toml");
+    const system::Scene spring = experiments::parse_scene(testing::undamped_spring_toml, "spring.toml");
     check(system::make_model(spring), spring.initial, h, "undamped spring");
-    const system::Scene all = experiments::parse_scene(kitchen_sink_toml, "kitchen_sink.toml");
+    const system::Scene all = experiments::parse_scene(testing::kitchen_sink_toml, "kitchen_sink.toml");
     check(system::make_model(all), all.initial, h, "gravity + damped spring + drive");
   }
 }
@@ -245,7 +208,7 @@ TEST_CASE("simo-wong conserves H and Pi.Gamma of the heavy top exactly over 1e5 
 
 TEST_CASE("simo-wong conserves the energy of an undamped spring exactly (discrete gradient)",
           "[simo-wong][conservation][spring]") {
-  const system::Scene scene = experiments::parse_scene(spring_toml, "spring.toml");
+  const system::Scene scene = experiments::parse_scene(testing::undamped_spring_toml, "spring.toml");
   const auto model = std::get<system::SceneModel>(system::make_model(scene));
   integrators::SimoWong scheme;
   integrators::WorkCounters work;

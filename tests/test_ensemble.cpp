@@ -201,14 +201,11 @@ struct Surfaces final : integrators::EventFunctions {
 TEST_CASE("the ensemble loop gives each lane the scalar loop's run", "[ensemble]") {
   const system::Scene top = shipped("heavy_top_trindade_1");
   Surfaces surfaces;
-  integrators::RunConfig cfg{0.0, 3.0, 1e-2, 0.0, 7};
-  cfg.cpu_clock = false;
-  cfg.events = &surfaces;
+  integrators::RunConfig cfg = loop_config(&surfaces);
   std::vector<State> initial = initial_states(top.initial, 16, 3);
   SECTION("samples every 7 steps and crossings") { check_loop("rkmk4", top, cfg, initial); }
   SECTION("output times") {
-    const std::vector<double> times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
-    cfg.output_times = &times;
+    cfg.output_times = &loop_output_times;
     check_loop("rkmk4", top, cfg, initial);
   }
   SECTION("backward in time") {

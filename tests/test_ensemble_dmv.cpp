@@ -128,19 +128,14 @@ struct MomentumZero final : integrators::EventFunctions {
 TEST_CASE("the ensemble loop gives each dmv-pre lane the scalar loop's run", "[ensemble][dmv]") {
   const system::Scene body = shipped("free_body_hlw");
   MomentumZero zero;
-  integrators::RunConfig cfg{0.0, 3.0, 1e-2, 0.0, 7};
-  cfg.cpu_clock = false;
-  cfg.events = &zero;
+  integrators::RunConfig cfg = loop_config(&zero);
   std::vector<State> initial = initial_states(body.initial, 16, 5);
-  SECTION("samples every 7 steps and crossings") { check_loop("dmv-pre10", body, cfg, initial); }
-  SECTION("output times, and dmv-pre6") {
-    const std::vector<double> times{0.0, 0.05, 1.0, 1.234, 2.37, 3.0};
-    cfg.output_times = &times;
-    check_loop("dmv-pre6", body, cfg, initial);
+  SECTION("samples every 7 steps and crossings: dmv-pre10, dmv and lgvi") {
+    for (const char* scheme : {"dmv-pre10", "dmv", "lgvi"}) check_loop(scheme, body, cfg, initial);
   }
-  SECTION("dmv and lgvi") {
-    check_loop("dmv", body, cfg, initial);
-    check_loop("lgvi", body, cfg, initial);
+  SECTION("output times, and dmv-pre6") {
+    cfg.output_times = &loop_output_times;
+    check_loop("dmv-pre6", body, cfg, initial);
   }
   SECTION("backward in time, a step that does not divide the span") {
     cfg.t_end = -2.005;

@@ -65,7 +65,6 @@
 #include "support/free_body_scenes.hpp"
 #include "support/verbose.hpp"
 
-
 using lgi::lie::Mat3;
 using lgi::lie::Vec3;
 using lgi::system::FreeBodyExactFlow;
@@ -73,22 +72,7 @@ using lgi::system::Inertia;
 using lgi::system::make_inertia;
 using Regime = FreeBodyExactFlow::Regime;
 
-using lgi::testing::book;
-using lgi::testing::diag;
-using lgi::testing::hlw;
-using lgi::testing::kBook;
-using lgi::testing::kR0;
-using lgi::testing::prism;
-using lgi::testing::rotated_book;
-using lgi::testing::sample_times;
-using lgi::testing::Scene;
-using lgi::testing::separatrix;
-using lgi::testing::separatrix_crossed;
-using lgi::testing::spherical;
-using lgi::testing::span_of;
-using lgi::testing::symmetric_oblate;
-using lgi::testing::symmetric_prolate;
-using lgi::testing::verbose;
+using namespace lgi::testing;
 
 // IEEE binary128 for the quad-precision reference: long double where it is
 // binary128, else GCC/Clang's __float128 behind a minimal number type (the

@@ -5,17 +5,11 @@
 // symmetric body in closed form. The comparison against Boost.Odeint
 // references: test_free_body_exact.cpp.
 #include <algorithm>
-#include <array>
-#include <boost/numeric/odeint.hpp>
 #include <catch2/catch.hpp>
-#include <cfloat>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
-#include <random>
-#include <string>
 #include <vector>
 
 #include "integrators/system/free_body_exact.hpp"
@@ -24,30 +18,13 @@
 #include "support/free_body_scenes.hpp"
 #include "support/verbose.hpp"
 
-
 using lgi::lie::Mat3;
 using lgi::lie::Vec3;
 using lgi::system::FreeBodyExactFlow;
 using lgi::system::Inertia;
 using lgi::system::make_inertia;
-using Regime = FreeBodyExactFlow::Regime;
 
-using lgi::testing::book;
-using lgi::testing::diag;
-using lgi::testing::hlw;
-using lgi::testing::kBook;
-using lgi::testing::kR0;
-using lgi::testing::prism;
-using lgi::testing::rotated_book;
-using lgi::testing::sample_times;
-using lgi::testing::Scene;
-using lgi::testing::separatrix;
-using lgi::testing::separatrix_crossed;
-using lgi::testing::spherical;
-using lgi::testing::span_of;
-using lgi::testing::symmetric_oblate;
-using lgi::testing::symmetric_prolate;
-using lgi::testing::verbose;
+using namespace lgi::testing;
 
 TEST_CASE("exact free flow conserves H, |Π| and m = RΠ to round-off", "[free_body_exact]") {
   const std::vector<Scene> scenes = {
@@ -186,7 +163,7 @@ TEST_CASE("exact free flow: steady rotations and the symmetric body in closed fo
       Vec3 Pi = Vec3::Zero();
       Pi(axis) = 0.07;
       const FreeBodyExactFlow f(make_inertia(kBook), {kR0, Pi});
-      REQUIRE(f.regime() == Regime::steady);
+      REQUIRE(f.regime() == FreeBodyExactFlow::Regime::steady);
       const double rate = 0.07 / kBook(axis, axis);
       for (double t : {0.5, 3.0, 40.0}) {
         const auto x = f.at(t);

@@ -30,6 +30,21 @@ namespace fs = std::filesystem;
 using namespace lgi::experiments;
 using namespace lgi::testing;
 
+namespace {
+
+/// The OutputFileError message of creating a trajectory file at `path`; the test fails if none is thrown.
+std::string creation_error(const std::string& path) {
+  try {
+    TrajectoryWriter w(path, false, full_layout(), provenance());
+  } catch (const OutputFileError& e) {
+    return e.what();
+  }
+  FAIL("no exception");
+  return {};
+}
+
+}  // namespace
+
 TEST_CASE("trajectory file: refuses to overwrite without force", "[h5md]") {
   const std::string path = scratch("existing.h5");
   { std::ofstream(path) << "precious"; }
@@ -113,16 +128,11 @@ TEST_CASE("trajectory file: a writer destroyed by an exception records \"interru
 TEST_CASE("trajectory file: missing or unwritable directory gives a one-line error naming the path", "[h5md]") {
   SECTION("missing directory") {
     const std::string path = std::string(LGI_TEST_TMPDIR) + "/h5md_writer/no/such/dir/out.h5";
-    try {
-      TrajectoryWriter w(path, false, full_layout(), provenance());
-      FAIL("no exception");
-    } catch (const OutputFileError& e) {
-      const std::string msg = e.what();
-      INFO(msg);
-      CHECK(msg.find(path) != std::string::npos);
-      CHECK(msg.find('\n') == std::string::npos);
-      CHECK(msg.find("No such file or directory") != std::string::npos);
-    }
+    const std::string msg = creation_error(path);
+    INFO(msg);
+    CHECK(msg.find(path) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
+    CHECK(msg.find("No such file or directory") != std::string::npos);
   }
   SECTION("read-only directory") {
     const fs::path dir = fs::path(LGI_TEST_TMPDIR) / "h5md_writer" / "readonly";
@@ -130,15 +140,10 @@ TEST_CASE("trajectory file: missing or unwritable directory gives a one-line err
     fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
     // root ignores directory permissions; /proc refuses new files even to root.
     const std::string path = geteuid() == 0 ? "/proc/lgi_h5md_writer_test.h5" : (dir / "out.h5").string();
-    try {
-      TrajectoryWriter w(path, false, full_layout(), provenance());
-      FAIL("no exception");
-    } catch (const OutputFileError& e) {
-      const std::string msg = e.what();
-      INFO(msg);
-      CHECK(msg.find(path) != std::string::npos);
-      CHECK(msg.find('\n') == std::string::npos);
-    }
+    const std::string msg = creation_error(path);
+    INFO(msg);
+    CHECK(msg.find(path) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
     CHECK_FALSE(exists(path + ".partial"));
     fs::permissions(dir, fs::perms::owner_all);
   }

@@ -231,10 +231,7 @@ TEST_CASE("a free body's dmv-pre10 run resumes bit for bit from a checkpoint", "
   cfg.cpu_clock = false;
   KeepOne keep(173);
   cfg.checkpoints = &keep;
-  Recorder whole;
-  State x = x0;
-  integrators::DmvPre10 straight;
-  const integrators::RunStats all = integrators::integrate_fixed(straight, body, x, cfg, whole);
+  const auto [whole, x, all] = loop_run(body, x0, cfg);
   REQUIRE(all.ok);
   REQUIRE(keep.kept);
   // The checkpoint's state has the attitude the run had reached: R(q) of step 173.
@@ -245,10 +242,7 @@ TEST_CASE("a free body's dmv-pre10 run resumes bit for bit from a checkpoint", "
   from.resume_from = &*keep.kept;
   integrators::RunConfig c = cfg;
   c.checkpoints = &from;
-  Recorder rest;
-  State y = x0;
-  integrators::DmvPre10 resumed;
-  const integrators::RunStats st = integrators::integrate_fixed(resumed, body, y, c, rest);
+  const auto [rest, y, st] = loop_run(body, x0, c);
   REQUIRE(st.ok);
   CHECK(st.steps == all.steps);
   CHECK(same_bits(y, x));

@@ -19,6 +19,7 @@
 
 #include "lie/charts.hpp"
 #include "lie/so3.hpp"
+#include "support/rk4.hpp"
 #include "support/worst_error.hpp"
 
 namespace {
@@ -31,6 +32,8 @@ constexpr double pi = std::numbers::pi;
 
 double maxabs(const Mat3& m) { return m.cwiseAbs().maxCoeff(); }
 
+using lgi::testing::omega_of_t;
+using lgi::testing::rk4;
 using lgi::testing::Worst;
 
 std::string describe(const EulerZXZ& e) {
@@ -56,23 +59,6 @@ Mat3 roughened(const Mat3& target, const Vec3& a) {
   const Mat3 A = lgi::lie::exp_so3(a);
   return A * lgi::lie::exp_so3(lgi::lie::log_so3(A.transpose() * target));
 }
-
-/// RK4 in ℝⁿ (fixed size) for ẋ = f(t, x).
-template <class V>
-V rk4(const std::function<V(double, const V&)>& f, V x, double T, int n) {
-  const double h = T / n;
-  for (int i = 0; i < n; ++i) {
-    const double t = i * h;
-    const V k1 = f(t, x);
-    const V k2 = f(t + 0.5 * h, V(x + 0.5 * h * k1));
-    const V k3 = f(t + 0.5 * h, V(x + 0.5 * h * k2));
-    const V k4 = f(t + h, V(x + h * k3));
-    x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  }
-  return x;
-}
-
-Vec3 omega_of_t(double t) { return Vec3(1.0 + 0.5 * std::sin(3.0 * t), -0.7 * std::cos(2.0 * t), 0.4 + t); }
 
 }  // namespace
 
@@ -266,17 +252,9 @@ TEST_CASE("Euler ZXZ: integrating the angle rates reproduces Ṙ = R Ω̂(t)", "
     const V3 a = rk4<V3>(
         [](double t, const V3& x) { return euler_zxz_rates_from_omega({x(0), x(1), x(2)}, omega_of_t(t)); },
         V3(e0.psi, e0.theta, e0.phi), T, n);
-    using V9 = Eigen::Matrix<double, 9, 1>;
-    const Mat3 R0 = matrix_from_euler_zxz(e0);
-    const V9 r = rk4<V9>(
-        [](double t, const V9& x) {
-          const Mat3 R = Eigen::Map<const Mat3>(x.data());
-          const Mat3 dR = R * hat(omega_of_t(t));
-          return V9(Eigen::Map<const V9>(dR.data()));
-        },
-        V9(Eigen::Map<const V9>(R0.data())), T, n);
+    const Mat3 r = lgi::testing::body_attitude_rk4(matrix_from_euler_zxz(e0), T, n);
     REQUIRE(std::sin(a(1)) > 0.05);  // stayed away from the singular set
-    CHECK(w(maxabs(Mat3(matrix_from_euler_zxz({a(0), a(1), a(2)}) - Eigen::Map<const Mat3>(r.data()))),
+    CHECK(w(maxabs(Mat3(matrix_from_euler_zxz({a(0), a(1), a(2)}) - r)),
             describe(e0)) <= 1e-10);
   }
 }
@@ -315,21 +293,13 @@ TEST_CASE("Rotation vector chart: round trip, rate = dexpinv_body, and its kinem
 TEST_CASE("Rotation vector chart: Ψ̇ = rotation_vector_rate(Ψ, Ω(t)) reproduces Ṙ = R Ω̂(t)", "[lie][charts][rotvec]") {
   const double T = 1.0;
   const int n = 1000;
-  using V9 = Eigen::Matrix<double, 9, 1>;
   Worst w("|exp(Psi(T)) - R(T)|");
   for (const Vec3& psi0 : {Vec3(Vec3::Zero()), Vec3(0.3, -0.2, 0.1), Vec3(-1.0, 0.8, 1.5)}) {
     INFO("Psi0 = (" << psi0.transpose() << ")");
     const Vec3 psi = rk4<Vec3>([](double t, const Vec3& x) { return rotation_vector_rate(x, omega_of_t(t)); }, psi0,
                                T, n);
-    const Mat3 R0 = matrix_from_rotation_vector(psi0);
-    const V9 r = rk4<V9>(
-        [](double t, const V9& x) {
-          const Mat3 R = Eigen::Map<const Mat3>(x.data());
-          const Mat3 dR = R * hat(omega_of_t(t));
-          return V9(Eigen::Map<const V9>(dR.data()));
-        },
-        V9(Eigen::Map<const V9>(R0.data())), T, n);
+    const Mat3 r = lgi::testing::body_attitude_rk4(matrix_from_rotation_vector(psi0), T, n);
     CHECK(psi.norm() < 2.0 * pi - 0.5);  // stayed inside the chart
-    CHECK(w(maxabs(Mat3(matrix_from_rotation_vector(psi) - Eigen::Map<const Mat3>(r.data()))), "") <= 1e-10);
+    CHECK(w(maxabs(Mat3(matrix_from_rotation_vector(psi) - r)), "") <= 1e-10);
   }
 }

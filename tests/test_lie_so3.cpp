@@ -46,15 +46,7 @@ using Vec3L = Eigen::Matrix<LD, 3, 1>;
 
 constexpr double pi = std::numbers::pi;
 
-using lgi::testing::kAngles;
-using lgi::testing::axes;
-using lgi::testing::describe;
-using lgi::testing::kEta;
-using lgi::testing::kEta2;
-using lgi::testing::maxabs;
-using lgi::testing::Sample;
-using lgi::testing::samples;
-using lgi::testing::Worst;
+using namespace lgi::testing;
 
 // ---------------------------------------------------------------------------
 // Long-double references (80-bit on x86-64: about 3 more decimal digits)

@@ -31,6 +31,7 @@
 #include "lie/so3.hpp"
 #include "support/worst_error.hpp"
 #include "support/so3_samples.hpp"
+#include "support/rk4.hpp"
 
 namespace {
 
@@ -40,47 +41,7 @@ using Quat = Eigen::Quaterniond;
 
 constexpr double pi = std::numbers::pi;
 
-using lgi::testing::axes;
-using lgi::testing::describe;
-using lgi::testing::kEta;
-using lgi::testing::kEta2;
-using lgi::testing::maxabs;
-using lgi::testing::Sample;
-using lgi::testing::samples;
-using lgi::testing::Worst;
-
-// ---------------------------------------------------------------------------
-// Independent integrators for the ODE tests
-
-/// RK4 in ℝ⁹ for Ṙ = f(t, R): knows nothing about exp, log or their derivatives.
-Mat3 rk4_matrix(const std::function<Mat3(double, const Mat3&)>& f, Mat3 R, double T, int n) {
-  const double h = T / n;
-  for (int i = 0; i < n; ++i) {
-    const double t = i * h;
-    const Mat3 k1 = f(t, R);
-    const Mat3 k2 = f(t + 0.5 * h, R + 0.5 * h * k1);
-    const Mat3 k3 = f(t + 0.5 * h, R + 0.5 * h * k2);
-    const Mat3 k4 = f(t + h, R + h * k3);
-    R += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  }
-  return R;
-}
-/// RK4 in ℝ³ for ξ̇ = f(t, ξ).
-Vec3 rk4_vector(const std::function<Vec3(double, const Vec3&)>& f, Vec3 x, double T, int n) {
-  const double h = T / n;
-  for (int i = 0; i < n; ++i) {
-    const double t = i * h;
-    const Vec3 k1 = f(t, x);
-    const Vec3 k2 = f(t + 0.5 * h, x + 0.5 * h * k1);
-    const Vec3 k3 = f(t + 0.5 * h, x + 0.5 * h * k2);
-    const Vec3 k4 = f(t + h, x + h * k3);
-    x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  }
-  return x;
-}
-
-/// A body angular velocity whose values at different times do not commute.
-Vec3 omega_of_t(double t) { return Vec3(1.0 + 0.5 * std::sin(3.0 * t), -0.7 * std::cos(2.0 * t), 0.4 + t); }
+using namespace lgi::testing;
 
 }  // namespace
 
@@ -207,11 +168,11 @@ TEST_CASE("ξ̇ = dexpinv(ξ, Ω(t)) reproduces Ṙ = R Ω̂(t) (guards the ½ s
     const std::string where = "xi0 = (" + std::to_string(xi0.x()) + ", " + std::to_string(xi0.y()) + ", " +
                               std::to_string(xi0.z()) + ")";
     const Mat3 R0 = exp_so3(xi0);
-    const Mat3 Rbody = rk4_matrix([](double t, const Mat3& R) { return Mat3(R * hat(omega_of_t(t))); }, R0, T, n);
-    const Mat3 Rspace = rk4_matrix([](double t, const Mat3& R) { return Mat3(hat(omega_of_t(t)) * R); }, R0, T, n);
+    const Mat3 Rbody = body_attitude_rk4(R0, T, n);
+    const Mat3 Rspace = rk4<Mat3>([](double t, const Mat3& R) { return Mat3(hat(omega_of_t(t)) * R); }, R0, T, n);
     REQUIRE(orthogonality_error(Rbody) < 1e-10);
 
-    const Vec3 xb = rk4_vector([](double t, const Vec3& x) { return dexpinv_body(x, omega_of_t(t)); }, xi0, T, n);
+    const Vec3 xb = rk4<Vec3>([](double t, const Vec3& x) { return dexpinv_body(x, omega_of_t(t)); }, xi0, T, n);
     CHECK(xb.norm() < 2.0 * pi);
     CHECK(w_body(maxabs(Mat3(exp_so3(xb) - Rbody)), where) <= 1e-10);
 
@@ -221,12 +182,12 @@ TEST_CASE("ξ̇ = dexpinv(ξ, Ω(t)) reproduces Ṙ = R Ω̂(t) (guards the ½ s
     for (int i = 0; i < np; ++i) Rp = Rp * exp_so3((T / np) * omega_of_t((i + 0.5) * T / np));
     CHECK(w_poe(maxabs(Mat3(exp_so3(xb) - Rp)), where) <= 1e-6);
 
-    const Vec3 xs = rk4_vector([](double t, const Vec3& x) { return dexpinv_space(x, omega_of_t(t)); }, xi0, T, n);
+    const Vec3 xs = rk4<Vec3>([](double t, const Vec3& x) { return dexpinv_space(x, omega_of_t(t)); }, xi0, T, n);
     CHECK(w_space(maxabs(Mat3(exp_so3(xs) - Rspace)), where) <= 1e-10);
 
     Vec3 c0 = Vec3::Zero();
     REQUIRE(cay_inv(R0, c0));
-    const Vec3 xc = rk4_vector([](double t, const Vec3& x) { return dcayinv_body(x, omega_of_t(t)); }, c0, T, n);
+    const Vec3 xc = rk4<Vec3>([](double t, const Vec3& x) { return dcayinv_body(x, omega_of_t(t)); }, c0, T, n);
     CHECK(w_cay(maxabs(Mat3(cay(xc) - Rbody)), where) <= 1e-10);
 
     // The wrong trivialisation fails by O(1): this problem does discriminate the ½ sign.

@@ -27,21 +27,15 @@
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 #include "experiments/io/gamma_attitude.hpp"
 #include "integrators/registry.hpp"
+#include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
 using namespace lgi;
+using testing::body_of;
 using experiments::HeavyTopBody;
 using experiments::Vec6;
 
 namespace {
-
-HeavyTopBody body_of(const system::Scene& s) {
-  HeavyTopBody b;
-  b.J = s.inertia;
-  if (s.declared<system::GravityTerm>())
-    b.weight = *s.mass * s.declared<system::GravityTerm>()->g * s.center_of_mass.value_or(lie::Vec3::Zero());
-  return b;
-}
 
 struct EndRecorder final : integrators::Observer {
   system::State last;

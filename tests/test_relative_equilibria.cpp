@@ -15,22 +15,16 @@
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "integrators/registry.hpp"
 #include "lie/charts.hpp"
+#include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
 using namespace lgi;
+using testing::body_of;
 using experiments::EquilibriumStability;
 using experiments::HeavyTopBody;
 using experiments::RelativeEquilibrium;
 
 namespace {
-
-HeavyTopBody body_of(const system::Scene& s) {
-  HeavyTopBody b;
-  b.J = s.inertia;
-  if (s.declared<system::GravityTerm>())
-    b.weight = *s.mass * s.declared<system::GravityTerm>()->g * s.center_of_mass.value_or(lie::Vec3::Zero());
-  return b;
-}
 
 /// The largest |Π − Π*| + |Γ − Γ*| (body quantities are constant at a relative
 /// equilibrium) over samples, for a run from the equilibrium perturbed by 1e-6.

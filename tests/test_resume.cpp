@@ -15,24 +15,15 @@
 #include "experiments/io/run_checkpoint.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry.hpp"
+#include "support/recorder.hpp"
 
 using namespace lgi;
+using testing::Recorder;
+using testing::Sample;
 
 namespace {
 
 const std::string scenes = LGI_SCENES_DIR;
-
-struct Sample {
-  std::int64_t step;
-  double t;
-  system::State s;
-};
-
-class Recorder final : public integrators::Observer {
- public:
-  void observe(std::int64_t step, double t, const system::State& s) override { samples.push_back({step, t, s}); }
-  std::vector<Sample> samples;
-};
 
 /// Keeps the checkpoint offered at step `at`.
 class KeepOne final : public integrators::Checkpoints {

@@ -2,18 +2,15 @@
 // that are valid: every shipped scene parses with the values its README table
 // gives, and the accepted spellings (integers for floats, quaternion, matrix,
 // rotation vector, inertia tensor, optional [run] keys) read as intended.
-// Bad input: test_scene_reader_errors.cpp, test_scene_reader_value_errors.cpp.
+// Bad input: test_scene_reader_errors.cpp (one table of bad scenes).
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <set>
 #include <string>
 
-#include "experiments/errors/input_error.hpp"
 #include "experiments/io/gamma_attitude.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "lie/charts.hpp"
@@ -24,12 +21,10 @@
 #include "support/scene_error.hpp"
 #include "support/valid_scene.hpp"
 
-using lgi::experiments::InputError;
 using lgi::experiments::parse_scene;
 using lgi::experiments::read_scene;
 using lgi::lie::Mat3;
 using lgi::lie::Vec3;
-using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using lgi::testing::error_of;
 using lgi::testing::near;
@@ -253,4 +248,29 @@ TEST_CASE("every [run] key is optional: the command line gives what a scene lack
   CHECK_FALSE(no_run.dt.has_value());
   CHECK_THAT(error_of("name = \"t\"\n[body]\ninertia = [1, 1, 1]\n[run]\nt_end = -1\n"),
              StartsWith("test.toml:5: [run] t_end: must be >= 0"));
+}
+
+// Valid scenes just inside the rules of test_scene_reader_errors.cpp.
+TEST_CASE("scene: accepted at the limits of the bad-input rules", "[scene]") {
+  const auto read = [](const std::string& body) {
+    return parse_scene("name = \"t\"\n[body]\n" + body + "[run]\nt_end = 1\n", "test.toml");
+  };
+  // the triangle inequality broken when asked for; equality (a plane body) is physical
+  CHECK(read("inertia = [2, 1, 0.6666666666666666]\nallow_unphysical = true\n").allow_unphysical);
+  CHECK_NOTHROW(read("inertia = [1, 2, 3]\n"));
+  // the rule applies to the final J about the reference point: J_c = (2, 1, 0.6)
+  // violates it, but J = J_c + m(|χ|²I − χχᵀ) = diag(2, 2, 1.6) with χ = e1 does not
+  const auto pa = read("mass = 1\ninertia_cm = [2, 1, 0.6]\ncenter_of_mass = [1, 0, 0]\n");
+  CHECK(near(pa.inertia, Vec3(2, 2, 1.6).asDiagonal().toDenseMatrix(), 1e-15));
+  // a tensor symmetric within 1e-12 relative: accepted and symmetrised
+  const auto sym = read("inertia_tensor = [[2, 0.1, 0], [0.100000000000001, 3, 0], [0, 0, 4]]\n");
+  CHECK(sym.inertia(0, 1) == sym.inertia(1, 0));
+  // a quaternion 5e-13 off unit norm is normalised
+  const auto q = read("inertia = [1, 1, 1]\n[initial]\nquaternion = [1.0000000000005, 0, 0, 0]\n");
+  CHECK(q.initial.R == Mat3::Identity());
+  // a proper rotation is accepted as given
+  const auto r = read("inertia = [1, 1, 1]\n[initial]\nmatrix = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]\n");
+  Mat3 Rz90;
+  Rz90 << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  CHECK(r.initial.R == Rz90);
 }

@@ -28,9 +28,11 @@
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/free_body_flow_stepper.hpp"
 #include "integrators/system/invariants.hpp"
+#include "support/order_reference.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
 #include "support/shipped_scene.hpp"
+#include "support/spring_scenes.hpp"
 #include "support/registered_run.hpp"
 
 using namespace lgi;
@@ -53,24 +55,6 @@ double momentum_error(const system::State& a, const system::State& b) {
 }
 
 double pi_dot_gamma(const system::State& s) { return s.Pi.dot(s.R.row(2).transpose()); }
-
-const char* damped_driven_toml = R"(
-name = "damped spring with a drive"
-[body]
-inertia = [1.0, 2.0, 2.5]
-[spring]
-stiffness = 10.0
-damping = 5.0
-[drive]
-torque_amplitude = [0.3, -0.2, 0.1]
-angular_frequency = 2.0
-phase = 0.3
-[initial]
-rotation_vector = [1.0, 0.5, -0.3]
-angular_velocity = [0.4, -1.0, 2.0]
-[run]
-t_end = 10.0
-)";
 
 /// Least-squares line through (t_i, e_i): returns the slope.
 double fitted_trend(const std::vector<double>& t, const std::vector<double>& e) {
@@ -148,8 +132,7 @@ TEST_CASE("split-exact on a free body is the exact flow", "[split-exact][free-fl
   const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel model = system::make_model(scene);
   const double T = 10.0;
-  const system::State exact =
-      system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
+  const system::State exact = testing::exact_free_body_at(model, scene, T);
   for (double h : {0.5, 0.1, 0.01}) {
     const system::State x = run_ok(model, scene.initial, T, h);
     INFO("h = " << h);
@@ -182,7 +165,7 @@ TEST_CASE("split-exact converges at order 2", "[split-exact][order]") {
     check(std::get<system::SceneModel>(any), any, scene.initial, 5.0, 0.1, "general_top_richter");
   }
   SECTION("damped spring with a drive (exact linear kick, frozen-time drive)") {
-    const system::Scene scene = experiments::parse_scene(damped_driven_toml, "damped_driven.toml");
+    const system::Scene scene = experiments::parse_scene(testing::damped_driven_toml, "damped_driven.toml");
     const system::AnyModel any = system::make_model(scene);
     check(std::get<system::SceneModel>(any), any, scene.initial, 2.0, 0.05, "damped driven spring");
   }
@@ -222,7 +205,7 @@ TEST_CASE("split-exact is symmetric and its half kicks merge", "[split-exact][sy
       const system::Scene scene = testing::shipped_scene(name);
       check(system::make_model(scene), scene.initial, h, name);
     }
-    const system::Scene scene = experiments::parse_scene(damped_driven_toml, "damped_driven.toml");
+    const system::Scene scene = experiments::parse_scene(testing::damped_driven_toml, "damped_driven.toml");
     check(system::make_model(scene), scene.initial, h, "damped driven spring");
   }
 }

@@ -41,6 +41,7 @@
 #include "integrators/rkmk_adaptive.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/cardan_problems.hpp"
+#include "support/order_reference.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
 #include "support/registered_run.hpp"
@@ -375,8 +376,7 @@ TEST_CASE("every adaptive Lie-group scheme meets its tolerance in proportion", "
   const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel model = system::make_model(scene);
   const double T = 10.0;
-  const system::State exact =
-      system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
+  const system::State exact = testing::exact_free_body_at(model, scene, T);
   int tested = 0;
   for (const auto& scheme : integrators::scheme_registry()) {
     if (!scheme.properties.adaptive || scheme.properties.baseline || scheme.order == 0) continue;

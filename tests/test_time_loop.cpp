@@ -14,29 +14,13 @@
 #include <vector>
 
 #include "integrators/registry.hpp"
+#include "support/recorder.hpp"
 #include "support/shipped_scene.hpp"
 
 using namespace lgi;
+using testing::Recorder;
 
 namespace {
-
-struct Sample {
-  std::int64_t step;
-  double t;
-  system::State s;
-};
-
-class Recorder final : public integrators::Observer {
- public:
-  void observe(std::int64_t step, double t, const system::State& s) override { samples.push_back({step, t, s}); }
-  void on_stop() override {
-    ++stops;
-    samples_at_stop = samples.size();
-  }
-  std::vector<Sample> samples;
-  int stops = 0;
-  std::size_t samples_at_stop = 0;
-};
 
 const integrators::SchemeInfo& scheme(const char* name) {
   const auto* s = integrators::find_scheme(name);
@@ -45,6 +29,19 @@ const integrators::SchemeInfo& scheme(const char* name) {
 }
 
 bool same(const system::State& a, const system::State& b) { return a.R == b.R && a.Pi == b.Pi; }
+
+/// A run from `initial` with every sample recorded.
+struct ObservedRun {
+  system::State x;
+  Recorder r;
+  integrators::RunStats stats;
+};
+ObservedRun observed_run(const integrators::SchemeInfo& s, const system::AnyModel& model, const system::State& initial,
+                         const integrators::RunConfig& cfg) {
+  ObservedRun run{initial, {}, {}};
+  run.stats = s.run(model, run.x, cfg, run.r);
+  return run;
+}
 
 integrators::RunConfig config(const integrators::SchemeInfo& s, double t_end) {
   integrators::RunConfig cfg;
@@ -68,9 +65,7 @@ TEST_CASE("time loop: output times are observed exactly, and nowhere else", "[ti
     off.insert(off.begin() + 3, 0.0205);  // between grid points: skipped
     auto cfg = config(s, 1.0);
     cfg.output_times = &off;
-    system::State x = scene.initial;
-    Recorder r;
-    const auto stats = s.run(model, x, cfg, r);
+    const auto [x, r, stats] = observed_run(s, model, scene.initial, cfg);
     REQUIRE(stats.ok);
     CHECK(stats.steps == 1000);
     REQUIRE(r.samples.size() == times.size());
@@ -94,9 +89,7 @@ TEST_CASE("time loop: output times are observed exactly, and nowhere else", "[ti
     std::vector<double> partial(times.begin() + 5, times.begin() + 60);  // not t0, not t_end
     auto cfg = config(s, 1.0);
     cfg.output_times = &partial;
-    system::State x = scene.initial;
-    Recorder r;
-    const auto stats = s.run(model, x, cfg, r);
+    const auto [x, r, stats] = observed_run(s, model, scene.initial, cfg);
     INFO(stats.status);
     REQUIRE(stats.ok);
     CHECK(stats.t_final == 1.0);
@@ -126,9 +119,7 @@ TEST_CASE("time loop: the stop flag ends a run cleanly with its statistics", "[t
       auto cfg = config(s, 10.0);
       cfg.save_every = save_every;
       cfg.stop = &stop;
-      system::State x = scene.initial;
-      Recorder r;
-      const auto stats = s.run(model, x, cfg, r);
+      const auto [x, r, stats] = observed_run(s, model, scene.initial, cfg);
       CHECK_FALSE(stats.ok);
       CHECK(stats.interrupted);
       CHECK(stats.status.rfind("interrupted by signal at step 1, t = ", 0) == 0);
@@ -151,9 +142,7 @@ TEST_CASE("time loop: the stop flag ends a run cleanly with its statistics", "[t
     auto cfg = config(s, 1.0);
     cfg.output_times = &times;
     cfg.stop = &stop;
-    system::State x = scene.initial;
-    Recorder r;
-    const auto stats = s.run(model, x, cfg, r);
+    const auto [x, r, stats] = observed_run(s, model, scene.initial, cfg);
     CHECK(stats.interrupted);
     REQUIRE(r.samples.size() == 2);
     CHECK(r.samples[0].t == 0.0);
@@ -165,9 +154,7 @@ TEST_CASE("time loop: the stop flag ends a run cleanly with its statistics", "[t
     const auto& s = scheme("rkmk-dp54");
     auto cfg = config(s, 1.0);
     cfg.stop = &go;
-    system::State x = scene.initial;
-    Recorder r;
-    const auto stats = s.run(model, x, cfg, r);
+    const auto [x, r, stats] = observed_run(s, model, scene.initial, cfg);
     CHECK(stats.ok);
     CHECK_FALSE(stats.interrupted);
     CHECK(r.stops == 0);

@@ -107,14 +107,24 @@ State at_rest() {
 
 const system::FreeBody model{};
 
+/// A run of `scheme` from rest over [0, 1] with h = 0.1: its statistics, samples and final state.
+struct WallRun {
+  integrators::RunStats stats;
+  Recorder rec;
+  State s;
+};
+WallRun run_wall(WallScheme scheme) {
+  WallRun run{{}, {}, at_rest()};
+  const RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .dt = 0.1}};
+  run.stats = integrators::integrate_fixed(scheme, model, run.s, cfg, run.rec);
+  return run;
+}
+
 }  // namespace
 
 TEST_CASE("time loop: a refused step ends the run at the last accepted state", "[time-loop]") {
   WallScheme scheme{.wall = 0.35};
-  State s = at_rest();
-  RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .dt = 0.1}};
-  Recorder rec;
-  const auto stats = integrators::integrate_fixed(scheme, model, s, cfg, rec);
+  const auto [stats, rec, s] = run_wall(scheme);
   CHECK_FALSE(stats.ok);
   CHECK(stats.status == scheme.refusal_reason());
   CHECK(stats.steps == 3);  // the refused 4th step is not a step
@@ -125,10 +135,7 @@ TEST_CASE("time loop: a refused step ends the run at the last accepted state", "
 
 TEST_CASE("time loop: a refused start fails the run after the initial sample", "[time-loop]") {
   WallScheme scheme{.wall = 10.0, .refuse_start = true};
-  State s = at_rest();
-  RunConfig cfg{{.t0 = 0.0, .t_end = 1.0, .dt = 0.1}};
-  Recorder rec;
-  const auto stats = integrators::integrate_fixed(scheme, model, s, cfg, rec);
+  const auto [stats, rec, s] = run_wall(scheme);
   CHECK_FALSE(stats.ok);
   CHECK(stats.status == scheme.refusal_reason());
   CHECK(stats.steps == 0);

@@ -23,9 +23,11 @@
 #include "integrators/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
+#include "support/order_reference.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"
 #include "support/registered_run.hpp"
+#include "support/shipped_scene.hpp"
 #include "support/run_command.hpp"
 
 using namespace lgi;
@@ -35,7 +37,6 @@ using testing::ConvergencePoint;
 
 namespace {
 
-const std::string scenes = LGI_SCENES_DIR;
 
 using Run = testing::RegisteredRun;
 Run run_scheme(const std::string& name, const system::AnyModel& model, const system::State& x0, double t_end,
@@ -134,7 +135,7 @@ std::vector<double> halving(double h0, int n) {
 }
 
 system::Scene undamped_spring() {
-  system::Scene scene = experiments::read_scene(scenes + "/stiff_damped_spring.toml");
+  system::Scene scene = testing::shipped_scene("stiff_damped_spring");
   REQUIRE(scene.declared<system::SpringTerm>());
   scene.declared<system::SpringTerm>()->damping = 0.0;  // a conservative spring: V = ½ k |log(R_restᵀ R)|²
   return scene;
@@ -171,11 +172,10 @@ TEST_CASE("dmv and dmv-pre* give the authors' numbers on the Hairer-Vilmart test
 }
 
 TEST_CASE("dmv, lgvi and dmv-pre* converge at their nominal orders on the asymmetric free body", "[variational][order]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel model = system::make_model(scene);
   const double T = 10.0;
-  const system::State exact =
-      system::FreeBodyExactFlow(std::get<system::FreeBody>(model).inertia, scene.initial).at(T);
+  const system::State exact = testing::exact_free_body_at(model, scene, T);
   struct Case {
     const char* name;
     int order;
@@ -200,11 +200,10 @@ TEST_CASE("dmv, lgvi and dmv-pre* converge at their nominal orders on the asymme
 }
 
 TEST_CASE("lgvi and the split dmv-pre* have order 2 on the Kovalevskaya top", "[variational][order]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/kovalevskaya.toml");
+  const system::Scene scene = testing::shipped_scene("kovalevskaya");
   const system::AnyModel model = system::make_model(scene);
-  REQUIRE(std::holds_alternative<system::SceneModel>(model));
   const double T = 10.0;
-  const system::State ref = testing::reference_solution(std::get<system::SceneModel>(model), scene.initial, 0.0, T);
+  const system::State ref = testing::scene_reference_at(model, scene, T);
   for (const char* name : {"lgvi", "dmv-pre4", "dmv-pre6", "dmv-pre8", "dmv-pre10"}) {
     std::vector<ConvergencePoint> pts;
     for (double h : halving(0.1, 6))
@@ -232,14 +231,14 @@ TEST_CASE("lgvi has order 2 on an undamped spring", "[variational][order]") {
   CHECK(std::abs(fit.slope - 2.0) <= 0.2);
   // The damped original is refused: a damper is not a potential force.
   const system::AnyModel damped =
-      system::make_model(experiments::read_scene(scenes + "/stiff_damped_spring.toml"));
+      system::make_model(testing::shipped_scene("stiff_damped_spring"));
   const Run r = run_scheme("lgvi", damped, scene.initial, 0.1, 0.01);
   CHECK_FALSE(r.stats.ok);
   CHECK_THAT(r.stats.status, Catch::Contains("potential"));
 }
 
 TEST_CASE("dmv, lgvi and dmv-pre* conserve their invariants to round-off over 1e5 steps", "[variational][conservation]") {
-  const system::Scene free_scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene free_scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel free_model = system::make_model(free_scene);
   const auto& body = std::get<system::FreeBody>(free_model);
   const std::int64_t steps = 100000;
@@ -259,7 +258,7 @@ TEST_CASE("dmv, lgvi and dmv-pre* conserve their invariants to round-off over 1e
     CHECK(energy.max_drift() <= 1e-12);
     CHECK(spatial.max_drift() <= 1e-12);
   }
-  const system::Scene top = experiments::read_scene(scenes + "/heavy_top_trindade_1.toml");
+  const system::Scene top = testing::shipped_scene("heavy_top_trindade_1");
   const system::AnyModel top_model = system::make_model(top);
   for (const char* name : {"lgvi", "dmv-pre4"}) {
     DriftObserver vertical([](const system::State& s) { return s.Pi.dot(s.R.row(2).transpose()); });
@@ -272,7 +271,7 @@ TEST_CASE("dmv, lgvi and dmv-pre* conserve their invariants to round-off over 1e
 }
 
 TEST_CASE("lgvi keeps the energy of a heavy top bounded, without drift, over 1e6 steps", "[variational][conservation]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/kovalevskaya.toml");
+  const system::Scene scene = testing::shipped_scene("kovalevskaya");
   const system::AnyModel model = system::make_model(scene);
   const auto& top = std::get<system::SceneModel>(model);
   // Maximum relative energy error over the first tenth and over the whole run.
@@ -313,9 +312,9 @@ TEST_CASE("dmv, lgvi and dmv-pre6 are symmetric to round-off", "[variational]") 
     INFO(what << ": |Phi_-h(Phi_h(x)) - x| = " << err);
     CHECK(err < 1e-14);
   };
-  const system::Scene free_scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene free_scene = testing::shipped_scene("free_body_hlw");
   const auto free_body = std::get<system::FreeBody>(system::make_model(free_scene));
-  const system::Scene top = experiments::read_scene(scenes + "/general_top_richter.toml");
+  const system::Scene top = testing::shipped_scene("general_top_richter");
   const auto heavy = std::get<system::SceneModel>(system::make_model(top));
   check_symmetric(integrators::Dmv{}, free_body, free_scene.initial, 0.3, "dmv, free body");
   check_symmetric(integrators::Lgvi{}, heavy, top.initial, 0.3, "lgvi, general heavy top");
@@ -324,7 +323,7 @@ TEST_CASE("dmv, lgvi and dmv-pre6 are symmetric to round-off", "[variational]") 
 }
 
 TEST_CASE("dmv and dmv-pre6 use the full inertia tensor: a rotated body frame gives the rotated motion", "[variational]") {
-  const system::Scene scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene scene = testing::shipped_scene("free_body_hlw");
   const auto body = std::get<system::FreeBody>(system::make_model(scene));
   const Mat3 P = lie::exp_so3(Vec3(0.3, -0.5, 0.7));  // new body axes: X' = P X
   system::FreeBody rotated;
@@ -346,9 +345,9 @@ TEST_CASE("dmv and dmv-pre6 use the full inertia tensor: a rotated body frame gi
 }
 
 TEST_CASE("the Newton solve converges in few iterations and fails cleanly where no solution exists", "[variational][newton]") {
-  const system::Scene free_scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene free_scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel free_model = system::make_model(free_scene);
-  const system::Scene top = experiments::read_scene(scenes + "/heavy_top_trindade_1.toml");
+  const system::Scene top = testing::shipped_scene("heavy_top_trindade_1");
   const system::AnyModel top_model = system::make_model(top);
 
   struct Case {
@@ -381,7 +380,7 @@ TEST_CASE("the Newton solve converges in few iterations and fails cleanly where 
 }
 
 TEST_CASE("steps beyond DMV's reach are reported through the registry, with their step and residual", "[variational][newton]") {
-  const system::Scene free_scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
+  const system::Scene free_scene = testing::shipped_scene("free_body_hlw");
   const system::AnyModel free_model = system::make_model(free_scene);
   const double omega = std::get<system::FreeBody>(free_model).omega(free_scene.initial.Pi).norm();
   struct Case {
@@ -434,7 +433,7 @@ TEST_CASE("a principal-axis spin: sin(theta) = h|Omega|, so no DMV step exists p
 
 TEST_CASE("lgi simulate runs lgvi on a heavy top and refuses dmv there", "[variational][cli]") {
   const std::string dir = testing::scratch_dir("variational_cli");
-  const std::string scene = scenes + "/heavy_top_trindade_1.toml";
+  const std::string scene = std::string(LGI_SCENES_DIR) + "/heavy_top_trindade_1.toml";
   const auto ok = testing::run_lgi("simulate --scene " + scene + " --scheme lgvi --dt 1e-3 --t-end 1 --out " + dir +
                                    "/lgvi.h5 --force --quiet");
   INFO(ok.err);
@@ -453,8 +452,8 @@ TEST_CASE("lgi simulate runs lgvi on a heavy top and refuses dmv there", "[varia
 }
 
 TEST_CASE("cost per step of dmv, lgvi and dmv-pre* against rkmk4", "[variational][perf]") {
-  const system::Scene free_scene = experiments::read_scene(scenes + "/free_body_hlw.toml");
-  const system::Scene top = experiments::read_scene(scenes + "/heavy_top_trindade_1.toml");
+  const system::Scene free_scene = testing::shipped_scene("free_body_hlw");
+  const system::Scene top = testing::shipped_scene("heavy_top_trindade_1");
   const struct {
     const system::Scene* scene;
     double h;

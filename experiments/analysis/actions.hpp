@@ -134,6 +134,8 @@ struct NumericalTorus {
   double fit_residual = nan;     // largest residual of the Fourier fit (Π relative to its largest |Π|)
   SectionChoice section;         // the section F = c (docs/actions.md §3, step 1)
   int winding = 0;               // turns of φ along the section curve
+  int circles = 0;               // k: the section cuts k circles, cycle b is k returns
+  std::vector<Point6> circle;    // (Π, Γ) of cycle a's section points in the order met (α_j = jρ), if ok
   int crossings = 0;
   double t_end = 0.0;
   bool ok = false;

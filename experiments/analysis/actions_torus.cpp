@@ -447,6 +447,9 @@ NumericalTorus numerical_torus(const system::Scene& scene, const system::State& 
   r.omega_a = rho * r.omega_b;
   r.mean_pq = recorder.mean_pq(r.l);
   r.action_b = (r.mean_pq - I_a * r.omega_a) / r.omega_b;
+  r.circles = c.k;
+  for (std::size_t j = 0; j < pts.size(); j += static_cast<std::size_t>(c.k))
+    r.circle.push_back((Point6() << pts[j].Pi, pts[j].Gamma).finished());
   r.ok = true;
   r.status = "ok (" + std::to_string(c.k) + " circle" + (c.k > 1 ? "s)" : ")");
   return r;

@@ -8,6 +8,7 @@
 #include "experiments/analysis/tangent_loops.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/trajectory_observer.hpp"
+#include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/system/model.hpp"
 #include "integrators/torus/torus_tangent_flow.hpp"
 
@@ -15,12 +16,6 @@ namespace lgi::experiments {
 
 namespace {
 
-template <class Model>
-std::array<double, 6> spectrum_of(const Model& model, system::State x, double t_end, double dt) {
-  return spectrum_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(model, x, V, t, h); },
-                       [&] { return x.Pi.allFinite(); }, integrators::Mat6::Identity(), t_end, dt,
-                       &interrupt_requested);
-}
 
 /// The fields every indicator run shares, from the loop's result.
 StateIndicators from_loop(const integrators::ChaosIndicators& r, const IndicatorSettings& s) {
@@ -41,6 +36,21 @@ std::vector<double> sample_times(const IndicatorSettings& s) {
   return gali_times(gali_targets(s.t_end, s.dt, s.gali_sampling), s.t_end, s.dt);
 }
 
+/// The loop's indicators with the spectrum and the GALI curves that `s` asks for
+/// (spectrum() and gali() compute them); a non-finite one marks the run not ok.
+template <class Spectrum, class Gali>
+StateIndicators with_requested(StateIndicators out, const IndicatorSettings& s, Spectrum spectrum, Gali gali) {
+  if (s.spectrum) {
+    out.spectrum = spectrum();
+    out.ok = out.ok && std::isfinite(out.spectrum[0]);
+  }
+  if (s.gali) {
+    out.gali = gali();
+    out.ok = out.ok && finite_curves(out.gali);
+  }
+  return out;
+}
+
 }  // namespace
 
 integrators::Vec6 initial_tangent(std::uint64_t seed, std::int64_t index) {
@@ -58,71 +68,96 @@ bool lyapunov_converged(double lyapunov, double last_half, double rtol) {
   return std::isfinite(scale) && std::abs(last_half - lyapunov) <= rtol * scale;
 }
 
+namespace {
+
+/// λ and ⟨Y⟩ from the loop's result r, then the spectrum and GALI as asked.
+StateIndicators with_extras(const integrators::ChaosIndicators& r, const system::Scene& scene, const system::State& x0,
+                            const IndicatorSettings& s, std::int64_t index) {
+  return with_requested(
+      from_loop(r, s), s, [&] { return lyapunov_spectrum(scene, x0, s.t_end, s.dt); },
+      [&] { return gali_curves(scene, x0, s, index); });
+}
+
+}  // namespace
+
 StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                                  std::int64_t index) {
   const system::AnyModel model = system::make_model(scene);
-  const integrators::ChaosIndicators r = std::visit(
-      [&](const auto& m) {
-        system::State x = x0;
-        return integrators::chaos_indicators(m, x, initial_tangent(s.seed, index), 0.0, s.t_end, s.dt,
-                                             &interrupt_requested);
-      },
-      model);
-  StateIndicators out = from_loop(r, s);
-  if (s.spectrum) {
-    out.spectrum = lyapunov_spectrum(scene, x0, s.t_end, s.dt);
-    out.ok = out.ok && std::isfinite(out.spectrum[0]);
+  const integrators::ChaosIndicators r = integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    integrators::Vec6 v = initial_tangent(s.seed, index);
+    return integrators::accumulate_chaos_indicators([&](double t, double h, integrators::Vec6& w) { step(x, w, t, h); },
+                                                    [&] { return x.Pi.allFinite(); }, v, 0.0, s.t_end, s.dt,
+                                                    &interrupt_requested);
+  });
+  return with_extras(r, scene, x0, s, index);
+}
+
+void state_indicators(const system::Scene& scene, std::span<const system::State> x0, const IndicatorSettings& s,
+                      std::int64_t first_index, std::optional<integrators::ensemble::Isa> isa,
+                      std::span<StateIndicators> out) {
+  const system::AnyModel model = system::make_model(scene);
+  std::optional<integrators::ensemble::TangentEnsemble> e;
+  if (isa) e = integrators::ensemble::TangentEnsemble::make(model, *isa);
+  const auto index = [&](std::size_t k) { return first_index + static_cast<std::int64_t>(k); };
+  std::size_t first = 0;
+  while (first < x0.size()) {
+    if (!e) {
+      out[first] = state_indicators(scene, x0[first], s, index(first));
+      ++first;
+      continue;
+    }
+    const std::size_t n = std::min(x0.size() - first, static_cast<std::size_t>(e->lanes()));
+    for (std::size_t l = 0; l < n; ++l)
+      e->set_lane(static_cast<int>(l), x0[first + l], initial_tangent(s.seed, index(first + l)));
+    integrators::ChaosIndicators r[integrators::ensemble::max_lanes];
+    e->chaos_indicators(0.0, s.t_end, s.dt, &interrupt_requested, {r, n});
+    for (std::size_t l = 0; l < n; ++l) out[first + l] = with_extras(r[l], scene, x0[first + l], s, index(first + l));
+    first += n;
   }
-  if (s.gali) {
-    out.gali = gali_curves(scene, x0, s, index);
-    out.ok = out.ok && finite_curves(out.gali);
-  }
-  return out;
 }
 
 GaliCurves gali_curves(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                        std::int64_t index) {
   const system::AnyModel model = system::make_model(scene);
-  return std::visit(
-      [&](const auto& m) {
-        system::State x = x0;
-        return gali_loop([&](double t, double h, integrators::Mat6& V) { integrators::tangent_step(m, x, V, t, h); },
-                         [&] { return x.Pi.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s),
-                         s.t_end, s.dt, &interrupt_requested);
-      },
-      model);
+  return integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    return gali_loop([&](double t, double h, integrators::Mat6& V) { step(x, V, t, h); },
+                     [&] { return x.Pi.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s),
+                     s.t_end, s.dt, &interrupt_requested);
+  });
 }
 
 std::array<double, 6> lyapunov_spectrum(const system::Scene& scene, const system::State& x0, double t_end,
                                         double dt) {
   const system::AnyModel model = system::make_model(scene);
-  return std::visit([&](const auto& m) { return spectrum_of(m, x0, t_end, dt); }, model);
+  return integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    return spectrum_loop([&](double t, double h, integrators::Mat6& V) { step(x, V, t, h); },
+                         [&] { return x.Pi.allFinite(); }, integrators::Mat6::Identity(), t_end, dt,
+                         &interrupt_requested);
+  });
 }
 
 StateIndicators cardan_state_indicators(const system::Scene& scene, const system::TorusState& x0,
                                         const IndicatorSettings& s, std::int64_t index) {
   const system::CardanTop top = cardan_top(scene);
   system::TorusState x = x0;
-  StateIndicators out = from_loop(integrators::torus::torus_chaos_indicators(
-                                      top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
-                                  s);
-  if (s.spectrum) {
+  const StateIndicators loop = from_loop(integrators::torus::torus_chaos_indicators(
+                                            top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
+                                        s);
+  const auto spectrum = [&] {
     // Not from the identity: δq₁ is exactly invariant where q₁ is cyclic, and
     // would hold the first Gram–Schmidt column at λ = 0.
     system::Vec6 y = system::stack(x0);
     std::array<double, 6> unused{};
     integrators::Mat6 V = initial_deviation_vectors(s.seed, index);
     orthonormalise(V, unused);
-    out.spectrum = spectrum_loop(
+    return spectrum_loop(
         [&](double, double h, integrators::Mat6& W) { integrators::torus::torus_tangent_step(top, y, W, h); },
         [&] { return y.allFinite(); }, V, s.t_end, s.dt, &interrupt_requested);
-    out.ok = out.ok && std::isfinite(out.spectrum[0]);
-  }
-  if (s.gali) {
-    out.gali = cardan_gali_curves(scene, x0, s, index);
-    out.ok = out.ok && finite_curves(out.gali);
-  }
-  return out;
+  };
+  return with_requested(loop, s, spectrum, [&] { return cardan_gali_curves(scene, x0, s, index); });
 }
 
 GaliCurves cardan_gali_curves(const system::Scene& scene, const system::TorusState& x0, const IndicatorSettings& s,

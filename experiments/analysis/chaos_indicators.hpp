@@ -4,7 +4,9 @@
 // the largest Lyapunov exponent over the run and over its second half (the
 // convergence estimate), MEGNO ⟨Y⟩, and on request the full spectrum.
 // The state and its tangent vector(s) are integrated together by
-// integrators/tangent_flow.hpp (RKMK4 on SO(3) × ℝ³ × ℝ⁶).
+// integrators/tangent_flow.hpp (RKMK4 on SO(3) × ℝ³ × ℝ⁶), in the scalar form
+// of its SIMD-lane kernel where the model has one
+// (integrators/ensemble/tangent_ensemble.hpp, with_tangent_step).
 //
 // Spectrum: six tangent vectors, the columns of V (from the identity), are
 // advanced with the state and re-orthonormalised after every step by modified
@@ -20,8 +22,11 @@
 // integrators/torus/torus_tangent_flow.hpp (RK4 on ℝ⁶ × ℝ⁶), cardan_state_indicators.
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <span>
 
 #include "experiments/analysis/gali.hpp"
+#include "integrators/ensemble/ensemble.hpp"
 #include "integrators/system/scene.hpp"
 #include "integrators/tangent_flow.hpp"
 
@@ -60,6 +65,13 @@ bool lyapunov_converged(double lyapunov, double last_half, double rtol);
 /// tangent vector starts at initial_tangent(seed, index).
 StateIndicators state_indicators(const system::Scene& scene, const system::State& x0, const IndicatorSettings& s,
                                  std::int64_t index);
+
+/// state_indicators of the states x0[k] (index first_index + k): bit for bit
+/// the same, λ and ⟨Y⟩ computed in the SIMD lanes of a TangentEnsemble on `isa`
+/// where the model has tangent kernels (integrators/ensemble/tangent_ensemble.hpp).
+void state_indicators(const system::Scene& scene, std::span<const system::State> x0, const IndicatorSettings& s,
+                      std::int64_t first_index, std::optional<integrators::ensemble::Isa> isa,
+                      std::span<StateIndicators> out);
 
 /// The indicators of the state x0 of the Cardan scene `scene` from t = 0, as
 /// state_indicators (the same draws of the tangent vectors).

@@ -5,14 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace lgi::experiments {
 
 namespace {
 
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-using Vec9 = Eigen::Matrix<double, 9, 1>;
-using Mat9 = Eigen::Matrix<double, 9, 9>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;  // a point x = (Γ, Π) of the phase space
 
 /// The gradients of H, k, C = Π·Γ and |Γ|² at x = (Γ, Π) in the scaled top
 /// (J = diag(2, 2, 1), so Ω = (Π1/2, Π2/2, Π3); k as in kovalevskaya_k with c = ±1).
@@ -29,6 +26,10 @@ Gradients gradients(const HeavyTopBody& b, const Vec6& x) {
   g.G << 2.0 * x.head<3>(), Vec3::Zero();
   return g;
 }
+
+// z = (x, α, β, γ), the Lagrange system's unknowns.
+using Vec9 = Eigen::Matrix<double, 9, 1>;
+using Mat9 = Eigen::Matrix<double, 9, 9>;
 
 /// The Lagrange system F(x, α, β, γ) = (∇k − α∇H − β∇C − γ∇|Γ|², H − h, C − ℓ, |Γ|² − 1).
 Vec9 lagrange_residual(const HeavyTopBody& b, const Vec9& z, double l, double h) {

@@ -15,33 +15,6 @@ namespace {
 
 using Mat46 = Eigen::Matrix<double, 4, 6>;
 
-/// Moves x onto {H = h, C = ℓ, |Γ|² = 1, K = k} by minimum-norm Gauss–Newton steps
-/// (the level set is a surface, so the step J⁺F is the least move); false when the
-/// residual does not fall below 1e-11 in 30 steps.
-bool project(const HeavyTopBody& b, double l, double h, double k, const SecondIntegral& K, StateVec6& x) {
-  const Mat3 Jinv = b.J.inverse();
-  for (int it = 0; it < 30; ++it) {
-    const IntegralValue q = K(x);
-    Eigen::Vector4d F(heavy_top_energy(b, x) - h, x.tail<3>().dot(x.head<3>()) - l, x.head<3>().squaredNorm() - 1.0,
-                      q.value - k);
-    if (F.lpNorm<Eigen::Infinity>() < 1e-11 * (1.0 + std::abs(k))) return true;
-    Mat46 D;
-    D.row(0) << b.weight.transpose(), (Jinv * x.tail<3>()).transpose();
-    D.row(1) << x.tail<3>().transpose(), x.head<3>().transpose();
-    D.row(2) << 2.0 * x.head<3>().transpose(), 0.0, 0.0, 0.0;
-    D.row(3) = q.gradient.transpose();
-    const Eigen::Matrix4d normal = D * D.transpose();
-    Eigen::LDLT<Eigen::Matrix4d> ldlt(normal);
-    if (ldlt.info() != Eigen::Success || !(std::abs(ldlt.vectorD().minCoeff()) > 1e-14 * normal.trace())) return false;
-    StateVec6 dx = -D.transpose() * ldlt.solve(F);
-    const double n = dx.norm();
-    if (!std::isfinite(n)) return false;
-    if (n > 0.25) dx *= 0.25 / n;  // damped far from the level set
-    x += dx;
-  }
-  return false;
-}
-
 /// The edge lengths of the Euclidean minimum spanning tree of the points (Prim,
 /// O(n²)), longest first: cutting the n − 1 longest leaves n single-linkage clusters.
 std::vector<double> spanning_tree_edges(const std::vector<StateVec6>& p) {
@@ -65,6 +38,33 @@ std::vector<double> spanning_tree_edges(const std::vector<StateVec6>& p) {
 }
 
 }  // namespace
+
+/// Moves x onto {H = h, C = ℓ, |Γ|² = 1, K = k} by minimum-norm Gauss–Newton steps
+/// (the level set is a surface, so the step J⁺F is the least move); false when the
+/// residual does not fall below 1e-11 in 30 steps.
+bool project_to_level_set(const HeavyTopBody& b, double l, double h, double k, const SecondIntegral& K, StateVec6& x) {
+  const Mat3 Jinv = b.J.inverse();
+  for (int it = 0; it < 30; ++it) {
+    const IntegralValue q = K(x);
+    Eigen::Vector4d F(heavy_top_energy(b, x) - h, x.tail<3>().dot(x.head<3>()) - l, x.head<3>().squaredNorm() - 1.0,
+                      q.value - k);
+    if (F.lpNorm<Eigen::Infinity>() < 1e-11 * (1.0 + std::abs(k))) return true;
+    Mat46 D;
+    D.row(0) << b.weight.transpose(), (Jinv * x.tail<3>()).transpose();
+    D.row(1) << x.tail<3>().transpose(), x.head<3>().transpose();
+    D.row(2) << 2.0 * x.head<3>().transpose(), 0.0, 0.0, 0.0;
+    D.row(3) = q.gradient.transpose();
+    const Eigen::Matrix4d normal = D * D.transpose();
+    Eigen::LDLT<Eigen::Matrix4d> ldlt(normal);
+    if (ldlt.info() != Eigen::Success || !(std::abs(ldlt.vectorD().minCoeff()) > 1e-14 * normal.trace())) return false;
+    StateVec6 dx = -D.transpose() * ldlt.solve(F);
+    const double n = dx.norm();
+    if (!std::isfinite(n)) return false;
+    if (n > 0.25) dx *= 0.25 / n;  // damped far from the level set
+    x += dx;
+  }
+  return false;
+}
 
 double heavy_top_energy(const HeavyTopBody& b, const StateVec6& x) {
   const Vec3 Pi = x.tail<3>();
@@ -95,7 +95,7 @@ LevelSetComponents level_set_components(const HeavyTopBody& body, double l, doub
                                         const SecondIntegral& K, int seeds) {
   std::vector<StateVec6> points;
   for (StateVec6 x : energy_surface_lattice(body, l, h, seeds))
-    if (project(body, l, h, k, K, x)) points.push_back(x);
+    if (project_to_level_set(body, l, h, k, K, x)) points.push_back(x);
   LevelSetComponents out;
   out.points = static_cast<int>(points.size());
   if (points.size() < 2) return out;

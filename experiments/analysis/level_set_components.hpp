@@ -26,6 +26,11 @@ using SecondIntegral = std::function<IntegralValue(const StateVec6&)>;
 /// H = ½ Π·J⁻¹Π + m g χ·Γ at x = (Γ, Π).
 double heavy_top_energy(const HeavyTopBody& body, const StateVec6& x);
 
+/// Moves x onto {H = h, C = ℓ, |Γ|² = 1, K = k} by minimum-norm Gauss–Newton steps (the
+/// least move onto the surface); false when the residual stays above 1e-11 after 30 steps.
+bool project_to_level_set(const HeavyTopBody& body, double l, double h, double k, const SecondIntegral& K,
+                          StateVec6& x);
+
 /// A lattice of states (Γ, Π) on {H = h, Π·Γ = ℓ, |Γ| = 1}: Fibonacci directions Γ
 /// where the energy allows, two kinetic directions each.
 std::vector<StateVec6> energy_surface_lattice(const HeavyTopBody& body, double l, double h, int seeds);

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "experiments/analysis/chaos_indicators.hpp"
+#include "integrators/ensemble/tangent_ensemble.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/system/model.hpp"
@@ -96,16 +97,39 @@ double minimum_energy(const HeavyTopBody& body, double l) {
 
 OrbitIndicators orbit_indicators(const system::Scene& scene, const system::State& x0, double t_end, double dt,
                                  std::uint64_t seed, std::int64_t index) {
-  const integrators::Vec6 v = initial_tangent(seed, index);
+  integrators::Vec6 v = initial_tangent(seed, index);
   const system::AnyModel model = system::make_model(scene);
-  return std::visit(
-      [&](const auto& m) {
-        system::State x = x0;
-        // interrupt_requested (io/trajectory_observer.hpp): Ctrl-C ends a long orbit too
-        const auto r = integrators::chaos_indicators(m, x, v, 0.0, t_end, dt, &interrupt_requested);
-        return OrbitIndicators{r.lyapunov, r.megno};
-      },
-      model);
+  return integrators::ensemble::with_tangent_step(model, [&](auto step) {
+    system::State x = x0;
+    // interrupt_requested (io/trajectory_observer.hpp): Ctrl-C ends a long orbit too
+    const auto r = integrators::accumulate_chaos_indicators(
+        [&](double t, double h, integrators::Vec6& w) { step(x, w, t, h); }, [&] { return x.Pi.allFinite(); }, v, 0.0,
+        t_end, dt, &interrupt_requested);
+    return OrbitIndicators{r.lyapunov, r.megno};
+  });
+}
+
+void orbit_indicators(const system::Scene& scene, std::span<const system::State> x0, double t_end, double dt,
+                      std::uint64_t seed, std::span<const std::int64_t> index, std::optional<integrators::ensemble::Isa> isa,
+                      std::span<OrbitIndicators> out) {
+  const system::AnyModel model = system::make_model(scene);
+  std::optional<integrators::ensemble::TangentEnsemble> e;
+  if (isa) e = integrators::ensemble::TangentEnsemble::make(model, *isa);
+  std::size_t first = 0;
+  while (first < x0.size()) {
+    if (!e) {
+      out[first] = orbit_indicators(scene, x0[first], t_end, dt, seed, index[first]);
+      ++first;
+      continue;
+    }
+    const std::size_t n = std::min(x0.size() - first, static_cast<std::size_t>(e->lanes()));
+    for (std::size_t l = 0; l < n; ++l)
+      e->set_lane(static_cast<int>(l), x0[first + l], initial_tangent(seed, index[first + l]));
+    integrators::ChaosIndicators r[integrators::ensemble::max_lanes];
+    e->chaos_indicators(0.0, t_end, dt, &interrupt_requested, {r, n});
+    for (std::size_t l = 0; l < n; ++l) out[first + l] = OrbitIndicators{r[l].lyapunov, r[l].megno};
+    first += n;
+  }
 }
 
 }  // namespace lgi::experiments

@@ -5,9 +5,12 @@
 // given ℓ (an empty level set is refused), and the chaos indicators of one
 // initial state (integrators/tangent_flow.hpp).
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "experiments/analysis/relative_equilibria.hpp"
+#include "integrators/ensemble/ensemble.hpp"
 #include "integrators/system/rigid_body.hpp"
 #include "integrators/system/scene.hpp"
 
@@ -55,5 +58,12 @@ struct OrbitIndicators {
 };
 OrbitIndicators orbit_indicators(const system::Scene& scene, const system::State& x0, double t_end, double dt,
                                  std::uint64_t seed, std::int64_t index);
+/// orbit_indicators of several initial states of one scene (index[k] the
+/// draw of x0[k]'s tangent vector): bit for bit the same values, computed in
+/// the lanes of a TangentEnsemble on `isa` where the model has tangent kernels
+/// (integrators/ensemble/tangent_ensemble.hpp), else one at a time.
+void orbit_indicators(const system::Scene& scene, std::span<const system::State> x0, double t_end, double dt,
+                      std::uint64_t seed, std::span<const std::int64_t> index,
+                      std::optional<integrators::ensemble::Isa> isa, std::span<OrbitIndicators> out);
 
 }  // namespace lgi::experiments

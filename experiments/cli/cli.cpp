@@ -29,6 +29,12 @@ std::string one_line(std::string s) {
   return s;
 }
 
+/// A refusal: one line "lgi: <what>" on `err`, and the exit status it ends with.
+int refuse(std::ostream& err, const std::exception& e, int status) {
+  err << "lgi: " << one_line(e.what()) << '\n';
+  return status;
+}
+
 }  // namespace
 
 CommandLine::CommandLine(int argc, const char* const* argv, const std::vector<CommandFactory>& commands)
@@ -66,11 +72,9 @@ std::optional<int> CommandLine::parse(std::ostream& out, std::ostream& err) {
     check_argument_values(*selected_->app, argc_, argv_);
     if (selected_->check) selected_->check();
   } catch (const InputError& e) {
-    err << "lgi: " << one_line(e.what()) << '\n';
-    return exit_bad_input;
+    return refuse(err, e, exit_bad_input);
   } catch (const UsageError& e) {
-    err << "lgi: " << one_line(e.what()) << '\n';
-    return exit_bad_input;
+    return refuse(err, e, exit_bad_input);
   }
   return std::nullopt;
 }
@@ -80,17 +84,15 @@ int CommandLine::run(std::ostream& err) const {
   try {
     return selected_->action();
   } catch (const InputError& e) {
-    err << "lgi: " << one_line(e.what()) << '\n';
-    return exit_bad_input;
+    return refuse(err, e, exit_bad_input);
   } catch (const UsageError& e) {
-    err << "lgi: " << one_line(e.what()) << '\n';
-    return exit_bad_input;
+    return refuse(err, e, exit_bad_input);
+  } catch (const OutputWriteError& e) {  // the output existed: a failed run, its .partial kept (README)
+    return refuse(err, e, exit_run_failed);
   } catch (const OutputFileError& e) {
-    err << "lgi: " << one_line(e.what()) << '\n';
-    return exit_bad_input;
+    return refuse(err, e, exit_bad_input);
   } catch (const RunError& e) {
-    err << "lgi: " << one_line(e.what()) << '\n';
-    return exit_run_failed;
+    return refuse(err, e, exit_run_failed);
   } catch (const std::exception& e) {
     err << "lgi: internal error: " << one_line(e.what()) << '\n';
     return exit_run_failed;

@@ -14,9 +14,13 @@ namespace lgi::experiments {
 
 class SweepProgress {
  public:
-  /// `done_before`: trajectories completed by an earlier run (--resume).
-  SweepProgress(bool quiet, std::int64_t total, std::int64_t done_before)
-      : enabled_(!quiet),
+  /// `done_before`: trajectories completed by an earlier run (--resume). `command` and `unit` name
+  /// the line's command and what it counts (lgi chaos-map: "chaos-map", "orbits").
+  SweepProgress(bool quiet, std::int64_t total, std::int64_t done_before, const char* command = "sweep",
+                const char* unit = "trajectories")
+      : command_(command),
+        unit_(unit),
+        enabled_(!quiet),
         terminal_(::isatty(STDERR_FILENO) == 1),
         total_(total),
         before_(done_before),
@@ -43,8 +47,8 @@ class SweepProgress {
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double rate = elapsed > 0.0 ? static_cast<double>(done - before_) / elapsed : 0.0;
     const double left = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
-    std::fprintf(stderr, "%ssweep: %lld/%lld trajectories, %.3g/s, %s left, %lld failed%s", lead,
-                 static_cast<long long>(done), static_cast<long long>(total_), rate, duration(left).c_str(),
+    std::fprintf(stderr, "%s%s: %lld/%lld %s, %.3g/s, %s left, %lld failed%s", lead, command_,
+                 static_cast<long long>(done), static_cast<long long>(total_), unit_, rate, duration(left).c_str(),
                  static_cast<long long>(failures), tail);
     std::fflush(stderr);
   }
@@ -55,6 +59,7 @@ class SweepProgress {
     else std::snprintf(buf, sizeof buf, "%d h %02d min", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
     return buf;
   }
+  const char *command_, *unit_;
   bool enabled_, terminal_, shown_ = false;
   std::int64_t total_, before_;
   std::chrono::steady_clock::time_point start_, last_;

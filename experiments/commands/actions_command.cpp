@@ -1,10 +1,12 @@
-// lgi actions --scene FILE --out FILE.h5 [--h H [--grid N] [--l L1,L2,.. --tori N]]
+// lgi actions --scene FILE --out FILE.h5 [--h H [--grid N] [--l L1,L2,.. --tori N | --l L --k K]]
 //             [--scheme S] [--dt DT] [--crossings N] [--harmonics M] [--force] [--quiet]
 // The action variables of the tori of an integrable top (analysis/actions.hpp;
 // formulas: docs/actions.md; layout: experiments/ACTIONS.md). Without --h:
 // the torus of the scene's initial state, in closed form (Lagrange, Euler)
 // and numerically from the flow. With --h: the energy surface H = h in action
-// space, on a grid (closed forms) or from --tori numerical tori at each --l.
+// space, on a grid (closed forms) or from --tori numerical tori at each --l;
+// with --k (a Kovalevskaya top): the torus through the level (h, l, k), with
+// the Maslov indices of its cycles (analysis/kovalevskaya_torus.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +19,8 @@
 #include <vector>
 
 #include "experiments/analysis/actions.hpp"
+#include "experiments/analysis/kovalevskaya_diagram.hpp"
+#include "experiments/analysis/kovalevskaya_torus.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -33,7 +37,7 @@ namespace {
 
 struct ActionsOptions {
   std::string scene, out, scheme = experiments::NumericalTorusOptions::default_scheme;
-  std::optional<double> h, dt;
+  std::optional<double> h, dt, k;
   std::vector<double> l;
   int grid = 61, tori = 12, crossings = 400, harmonics = NumericalTorusOptions{}.harmonics;
   bool force = false, quiet = false;
@@ -50,6 +54,9 @@ struct Row {
   int reason = 0;       // method 2: a TorusFailure (experiments/ACTIONS.md)
   int section = -1;     // method 2: the section's coordinate of (Π, Γ), 0..5 (−1: none)
   std::string status;   // method 2: the printed status
+  double k = nan();                   // --k: the level's k = K/c²
+  double mu_a = nan(), mu_b = nan();  // --k: the Maslov indices of cycles a and b
+  double slow = nan(), fast = nan();  // --k: the actions in the libration basis (docs/quantum.md §10)
   static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
 };
 
@@ -130,9 +137,32 @@ std::vector<Row> single_torus(const system::Scene& scene, const HeavyTopBody& bo
   return rows;
 }
 
+/// --k: the Kovalevskaya torus through a point of {H = h, C = l, k} (analysis/kovalevskaya_torus.hpp).
+std::vector<Row> level_torus(const system::Scene& scene, const HeavyTopBody& body, const ActionsOptions& o) {
+  const double l = o.l.front(), h = *o.h, k = *o.k;
+  const std::optional<StateVec6> x = kovalevskaya_level_point(body, l, h, k, std::nullopt);
+  if (!x)
+    throw InputError("--k: no point of {H = " + format_general(h, 6) + ", l = " + format_general(l, 6) +
+                     ", k = " + format_general(k, 6) + "} found on " + scene.file + " (outside the attained range?)");
+  NumericalTorusOptions opt;
+  opt.scheme = o.scheme;
+  opt.dt = o.dt.value_or(scene.dt.value_or(1e-2));
+  opt.crossings = o.crossings;
+  opt.harmonics = o.harmonics;
+  const system::State x0 = state_at(*x);
+  Row r = numerical_row(scene, x0, o);
+  const KovalevskayaTorus t = kovalevskaya_torus(scene, body, x0, opt);
+  r.k = t.k;
+  if (t.maslov.ok) r.mu_a = t.maslov.mu_a, r.mu_b = t.maslov.mu_b;
+  else if (r.ok) r.status += "; Maslov indices not found: " + t.maslov.status;
+  if (t.basis.ok) r.slow = t.basis.action_slow, r.fast = t.basis.action_fast;
+  return {r};
+}
+
 std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& body, const ActionsOptions& o) {
   std::vector<Row> rows;
   const double h = *o.h;
+  if (o.k) return level_torus(scene, body, o);
   if (o.l.empty()) {
     if (const auto lb = lagrange_body(body)) {
       for (const auto& a : lagrange_surface(*lb, h, o.grid)) rows.push_back(lagrange_row(a, h));
@@ -152,7 +182,8 @@ std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& 
 std::vector<TableColumn> columns_of(const std::vector<Row>& rows) {
   std::vector<TableColumn> c = {{"method", 1, true}, {"actions", 3}, {"h"}, {"frequencies", 3},
                                 {"rotation_number"}, {"return_time"}, {"fit_residual"}, {"ok", 1, true},
-                                {"reason", 1, true}, {"section", 1, true}};
+                                {"reason", 1, true}, {"section", 1, true}, {"k"}, {"maslov", 2},
+                                {"libration_actions", 2}};
   for (const auto& r : rows) {
     c[0].whole.push_back(r.method);
     c[1].real.insert(c[1].real.end(), r.actions.data(), r.actions.data() + 3);
@@ -164,6 +195,9 @@ std::vector<TableColumn> columns_of(const std::vector<Row>& rows) {
     c[7].whole.push_back(r.ok ? 1 : 0);
     c[8].whole.push_back(r.reason);
     c[9].whole.push_back(r.section);
+    c[10].real.push_back(r.k);
+    c[11].real.insert(c[11].real.end(), {r.mu_a, r.mu_b});
+    c[12].real.insert(c[12].real.end(), {r.slow, r.fast});
   }
   return c;
 }
@@ -173,6 +207,8 @@ void check_flags(const ActionsOptions& o) {
   for (const double l : o.l)
     if (!std::isfinite(l)) throw UsageError("--l: the values must be finite numbers");
   if (!o.l.empty() && !o.h) throw UsageError("--l: only with --h");
+  if (o.k && (!std::isfinite(*o.k) || !o.h || o.l.size() != 1))
+    throw UsageError("--k: needs a finite value, --h and exactly one --l");
   if (o.grid < 2 || o.grid > 2000) throw UsageError("--grid: must be between 2 and 2000");
   if (o.tori < 1) throw UsageError("--tori: must be at least 1");
   check_work_limit("--tori", saturating_product(o.tori, std::max<std::int64_t>(1, static_cast<std::int64_t>(o.l.size()))),
@@ -193,6 +229,8 @@ int run_actions(const ActionsOptions& o) {
   refuse_cardan_scene(scene, "actions");
   const HeavyTopBody body = heavy_top(scene);
   check_flags(o);
+  if (o.k && !kovalevskaya_scale(body))
+    throw InputError("--k: " + scene.file + " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
   const std::vector<Row> rows = o.h ? energy_surface(scene, body, o) : single_torus(scene, body, o);
   std::map<std::string, std::string> parameters = {
       {"subcommand", "actions"},      {"command_line", o.command_line},  {"scene_file", scene.file},
@@ -202,8 +240,17 @@ int run_actions(const ActionsOptions& o) {
       {"methods", "0: Lagrange closed form (l, L3, I_theta); 1: Euler closed form (l, G, I_l); "
                   "2: numerical (l, I_a, I_b)"}};
   if (o.h) parameters["h"] = format_general(*o.h, 17);
+  if (o.k) parameters["k"] = format_general(*o.k, 17);
   write_table_file(o.out, o.force, "tori", columns_of(rows), parameters);
   if (o.quiet) return exit_ok;
+  if (o.k) {
+    const Row& r = rows.front();
+    std::printf("method=numerical h=%.10g l=%.10g k=%.10g actions=(%.10g, %.10g) frequencies=(%.10g, %.10g) "
+                "maslov=(%g, %g) libration_actions=(%.10g, %.10g) ok=%d status=%s\n",
+                r.h, r.actions[0], r.k, r.actions[1], r.actions[2], r.frequencies[1], r.frequencies[2], r.mu_a,
+                r.mu_b, r.slow, r.fast, r.ok ? 1 : 0, r.status.c_str());
+    return exit_ok;
+  }
   if (o.h) {
     std::size_t failures = 0;
     for (std::size_t i = 0; i < rows.size(); ++i)
@@ -236,6 +283,9 @@ Subcommand add_actions_subcommand(CLI::App& app, const CommandContext& context) 
   sub->add_option("--h", o->h, "The energy of the surface; without it, the torus of the scene's initial state");
   sub->add_option("--l", o->l, "With --h: the momenta l of the numerical tori (comma-separated)")->delimiter(',');
   sub->add_option("--grid", o->grid, "With --h and a closed form: grid points per axis")->capture_default_str();
+  sub->add_option("--k", o->k,
+                  "With --h and one --l, a Kovalevskaya top: the torus through a point of the level (h, l, k), "
+                  "k = K/c^2, with the Maslov indices of its cycles");
   sub->add_option("--tori", o->tori, "With --l: numerical tori per l")->capture_default_str();
   sub->add_option("--scheme", o->scheme, "Scheme of the numerical tori")->capture_default_str();
   sub->add_option("--dt", o->dt, "Step of the numerical tori. Default: the scene's [run] dt, else 0.01");

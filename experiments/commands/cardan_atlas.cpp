@@ -12,6 +12,7 @@
 #include "experiments/analysis/cardan_equilibria.hpp"
 #include "experiments/analysis/cardan_section.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_suspension.hpp"
@@ -34,24 +35,10 @@ std::map<std::string, std::string> provenance(const system::Scene& scene, const 
 void push3(std::vector<double>& v, const Vec3& x) { v.insert(v.end(), x.data(), x.data() + 3); }
 
 std::vector<TableColumn> equilibrium_columns(const std::vector<CardanEquilibrium>& rows) {
-  std::vector<TableColumn> c = {{"omega"},          {"gamma", 3},         {"angular_momentum", 3},
-                                {"l"},              {"h"},                {"branch", 1, true},
-                                {"g1"},             {"g2"},               {"stability", 1, true},
-                                {"nonlinearly_stable", 1, true}, {"fold", 1, true}, {"residual"},
-                                {"cardan_angles", 3}, {"degenerate", 1, true}, {"pole", 1, true}};
+  std::vector<TableColumn> c = shared_equilibrium_columns();
+  c.insert(c.end(), {{"cardan_angles", 3}, {"degenerate", 1, true}, {"pole", 1, true}});
   for (const auto& e : rows) {
-    c[0].real.push_back(e.omega);
-    push3(c[1].real, e.gamma);
-    push3(c[2].real, e.angular_momentum);
-    c[3].real.push_back(e.l);
-    c[4].real.push_back(e.h);
-    c[5].whole.push_back(e.branch);
-    c[6].real.push_back(e.g1);
-    c[7].real.push_back(e.g2);
-    c[8].whole.push_back(static_cast<std::int64_t>(e.stability));
-    c[9].whole.push_back(e.nonlinearly_stable ? 1 : 0);
-    c[10].whole.push_back(0);
-    c[11].real.push_back(e.residual);
+    push_shared_equilibrium_row(c, e, false);  // no folds are located on a Cardan top's branches
     push3(c[12].real, e.q);
     c[13].whole.push_back(e.degenerate ? 1 : 0);
     c[14].whole.push_back(e.pole ? 1 : 0);

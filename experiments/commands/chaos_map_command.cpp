@@ -27,6 +27,7 @@
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/cli/thread_count.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/chaos_map/cardan_chaos_map.hpp"
 #include "experiments/commands/chaos_map/chaos_map_cells.hpp"
@@ -42,6 +43,7 @@
 #include "experiments/io/sweep_spec.hpp"
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"
+#include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
@@ -49,7 +51,7 @@ namespace lgi::experiments {
 namespace {
 
 struct ChaosMapOptions {
-  std::string scene, out = "chaos_map.h5", l_range, h_range, measure = "liouville", vary;
+  std::string scene, out, l_range, h_range, measure = "liouville", vary;
   std::int64_t ics = 0;
   double t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;
@@ -132,32 +134,66 @@ std::vector<Cell> make_cells(const ChaosMapOptions& o, const system::Scene& scen
   return cells;
 }
 
+/// Where the orbits ran: "avx512 (16 lanes)", or "off" and why (the tangent lanes, docs/ensemble.md).
+std::string simd_note(const system::Scene& scene) {
+  const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
+  std::string why;
+  if (!integrators::ensemble::ensemble_model(system::make_model(scene), &why)) return "off; " + why;
+  if (!isa) return "off";
+  return std::string(integrators::ensemble::isa_name(*isa)) + " (" +
+         std::to_string(integrators::ensemble::isa_lanes(*isa)) + " lanes)";
+}
+
 /// Every orbit of every cell, on `threads` threads (each orbit a function of
-/// its cell and index alone); stops early when a signal asks.
+/// its cell and index alone); stops early when a signal asks. A task is up to
+/// max_lanes orbits of one cell, run together in the SIMD lanes of the tangent
+/// flow where the scene has them (orbit_indicators; the same values bit for bit).
 std::vector<Orbit> run_orbits(const ChaosMapOptions& o, const std::vector<Cell>& cells, const system::Scene& scene,
                               double dt, int threads) {
+  constexpr std::int64_t batch = integrators::ensemble::max_lanes;
+  const std::int64_t per_cell = (o.ics + batch - 1) / batch;
+  const auto tasks = static_cast<std::int64_t>(cells.size()) * per_cell;
   const auto total = static_cast<std::int64_t>(cells.size()) * o.ics;
   std::vector<Orbit> orbits(static_cast<std::size_t>(total));
+  const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
+  // Progress on stderr (cli/sweep_progress.hpp): in place on a terminal, else a line every 10 s.
+  SweepProgress progress(o.quiet, total, 0, "chaos-map", "orbits");
+  std::int64_t finished = 0;
 #pragma omp parallel num_threads(threads)
   {
     std::vector<double> flat;
+    std::vector<system::State> x0;
+    std::vector<std::int64_t> index;
+    std::vector<Orbit*> rows;
+    std::vector<OrbitIndicators> ind;
 #pragma omp for schedule(dynamic, 1)
-    for (std::int64_t task = 0; task < total; ++task) {
-      const Cell& cell = cells[static_cast<std::size_t>(task / o.ics)];
+    for (std::int64_t task = 0; task < tasks; ++task) {
+      const std::int64_t c = task / per_cell;
+      const Cell& cell = cells[static_cast<std::size_t>(c)];
       if (!cell.plan || interrupt_requested) continue;
-      const std::int64_t i = task % o.ics;
-      Orbit& r = orbits[static_cast<std::size_t>(task)];
-      try {
-        cell.plan->inputs(i, flat);
-        const system::State x0 = cell.plan->initial_state(i, scene, flat);
-        r.gamma = x0.R.transpose() * Vec3::UnitZ(), r.Pi = x0.Pi;
-        const OrbitIndicators ind = orbit_indicators(scene, x0, o.t_end, dt, o.seed, i);
-        r.megno = ind.megno, r.lyapunov = ind.lyapunov;
-      } catch (const std::exception&) {  // no initial state (TrajectorySetupError): NaN indicators
+      x0.clear(), index.clear(), rows.clear();
+      const std::int64_t first = (task % per_cell) * batch;
+      for (std::int64_t i = first; i < std::min(first + batch, o.ics); ++i) {
+        Orbit& r = orbits[static_cast<std::size_t>(c * o.ics + i)];
+        try {
+          cell.plan->inputs(i, flat);
+          const system::State x = cell.plan->initial_state(i, scene, flat);
+          r.gamma = x.R.transpose() * Vec3::UnitZ(), r.Pi = x.Pi;
+          x0.push_back(x), index.push_back(i), rows.push_back(&r);
+        } catch (const std::exception&) {  // no initial state (TrajectorySetupError): NaN indicators
+        }
       }
-      r.done = !interrupt_requested;
+      ind.assign(x0.size(), OrbitIndicators{});
+      orbit_indicators(scene, x0, o.t_end, dt, o.seed, index, isa, ind);
+      for (std::size_t k = 0; k < rows.size(); ++k) rows[k]->megno = ind[k].megno, rows[k]->lyapunov = ind[k].lyapunov;
+      for (std::int64_t i = first; i < std::min(first + batch, o.ics); ++i)
+        orbits[static_cast<std::size_t>(c * o.ics + i)].done = !interrupt_requested;
+      const std::int64_t count = std::min(first + batch, o.ics) - first;
+#pragma omp critical(chaos_map_progress)
+      progress.update(finished += count, 0);
     }
   }
+  progress.finish();
   return orbits;
 }
 
@@ -242,7 +278,9 @@ int run_chaos_map(const ChaosMapOptions& o) {
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
       {"cxx_flags", build_info::cxx_flags}, {"l_range", o.l_range}, {"h_range", o.h_range},
       {"ics", std::to_string(o.ics)}, {"t_end", number(o.t_end)}, {"dt", number(dt)}, {"seed", std::to_string(o.seed)},
-      {"threshold", number(o.threshold)}, {"measure", o.measure}, {"indicators", "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp)"},
+      {"threshold", number(o.threshold)}, {"measure", o.measure}, {"indicators", "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp; "
+                                                      "integrators/ensemble/tangent_ensemble.hpp)"},
+      {"simd", simd_note(scene)},
       {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)},
       {"status", interrupted ? "interrupted by signal" : "complete"}};
   const auto groups = result_groups(o, cells, orbits, ls, hs, h_min);
@@ -288,7 +326,7 @@ Subcommand add_chaos_map_subcommand(CLI::App& app, const CommandContext& context
   sub->add_option("--threshold", o->threshold, "An orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
-  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); required")->required();
   add_force_quiet_flags(*sub, *o, "Replace an existing output file");
   sub->footer(exit_status_help);
   return {sub,

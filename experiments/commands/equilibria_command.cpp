@@ -101,6 +101,18 @@ int run_equilibria(const EquilibriaOptions& o) {
   return exit_ok;
 }
 
+/// The flags both commands end with (--out, --force, --quiet), and the command.
+Subcommand with_output(CLI::App* sub, const std::shared_ptr<EquilibriaOptions>& o, const CommandContext& context) {
+  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
+  add_force_quiet_flags(*sub, *o, "Replace existing output files");
+  return {sub,
+          [o, context] {
+            o->command_line = context.command_line;
+            return run_equilibria(*o);
+          },
+          [o] { check_flags(*o); }};
+}
+
 }  // namespace
 
 Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& context) {
@@ -114,14 +126,7 @@ Subcommand add_equilibria_subcommand(CLI::App& app, const CommandContext& contex
   sub->add_option("--omega-max", o->omega_max, "Cardan top without --l: omega in [-W, W]");
   sub->add_option("--l", o->l, "The momentum l = Pi.Gamma: every equilibrium there, polished to round-off");
   sub->add_option("--samples", o->samples, "Points per branch without --l")->capture_default_str();
-  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
-  add_force_quiet_flags(*sub, *o, "Replace existing output files");
-  return {sub,
-          [o, context] {
-            o->command_line = context.command_line;
-            return run_equilibria(*o);
-          },
-          [o] { check_flags(*o); }};
+  return with_output(sub, o, context);
 }
 
 Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& context) {
@@ -142,14 +147,7 @@ Subcommand add_bifurcation_subcommand(CLI::App& app, const CommandContext& conte
       ->delimiter(',');
   sub->add_option("--appelrot-h", o->appelrot_h, "With --appelrot: the energies a:b:n where the range of k is found "
                                                  "(default: h/(J3 c) from -1.1 to 5, 123 values)");
-  sub->add_option("--out", o->out, "Output file (HDF5); the same table as CSV beside it")->required();
-  add_force_quiet_flags(*sub, *o, "Replace existing output files");
-  return {sub,
-          [o, context] {
-            o->command_line = context.command_line;
-            return run_equilibria(*o);
-          },
-          [o] { check_flags(*o); }};
+  return with_output(sub, o, context);
 }
 
 }  // namespace lgi::experiments

@@ -11,16 +11,19 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <span>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "experiments/analysis/chaos_indicators.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/thread_count.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -31,6 +34,8 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/state_file.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
+#include "integrators/ensemble/ensemble.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -104,7 +109,9 @@ std::vector<TableColumn> columns_of(const std::vector<system::State>& states,
   if (s.gali)  // log10 GALI_k at T: the last sample of each curve
     for (int k = 2; k <= 6; ++k) {
       TableColumn g{"log10_gali_" + std::to_string(k)};
-      for (const auto& r : results) g.real.push_back(r.gali.log10_gali.back()[static_cast<std::size_t>(k - 2)]);
+      for (const auto& r : results)  // a state a signal kept from starting has no curve
+        g.real.push_back(r.gali.log10_gali.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                   : r.gali.log10_gali.back()[static_cast<std::size_t>(k - 2)]);
       c.push_back(std::move(g));
     }
   return c;
@@ -188,13 +195,29 @@ int run_indicators(const IndicatorsOptions& o) {
   const std::vector<system::State> states = cardan ? std::vector<system::State>{scene.initial}
                                                    : chosen_states(o, scene, source);
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
+  // Ctrl-C / SIGTERM: the tangent flows stop within a few steps (they read the flag), no state starts after
+  // it, and what was computed goes to <out>.partial; a state the signal cut short or kept from starting has
+  // NaN indicators and t_end 0 (its run is not a measurement).
+  const InterruptGuard interrupt_guard;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<StateIndicators> results(states.size());
+  StateIndicators not_run;
+  not_run.lyapunov = not_run.lyapunov_last_half = not_run.megno = std::numeric_limits<double>::quiet_NaN();
+  not_run.spectrum.fill(std::numeric_limits<double>::quiet_NaN());
+  std::vector<StateIndicators> results(states.size(), not_run);
+  // A task is up to max_lanes states, whose λ and ⟨Y⟩ run together in SIMD lanes (the same bits; docs/ensemble.md).
+  constexpr std::int64_t batch = integrators::ensemble::max_lanes;
   const auto n = static_cast<std::int64_t>(states.size());
+  const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (std::int64_t i = 0; i < n; ++i)
-    results[static_cast<std::size_t>(i)] = cardan ? cardan_state_indicators(scene, scene.cardan_initial, s, i)
-                                                  : state_indicators(scene, states[static_cast<std::size_t>(i)], s, i);
+  for (std::int64_t first = 0; first < n; first += batch) {
+    if (interrupt_requested.load(std::memory_order_relaxed)) continue;
+    const auto u = static_cast<std::size_t>(first), m = static_cast<std::size_t>(std::min(batch, n - first));
+    std::vector<StateIndicators> part(m, not_run);
+    if (cardan) part[0] = cardan_state_indicators(scene, scene.cardan_initial, s, first);
+    else state_indicators(scene, std::span(states).subspan(u, m), s, first, isa, std::span(part));
+    if (!interrupt_requested.load()) std::copy(part.begin(), part.end(), results.begin() + first);  // else: maybe cut short
+  }
+  const bool interrupted = interrupt_signal() != 0;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t failed = 0;
   for (const auto& r : results) failed += r.ok ? 0 : 1;
@@ -209,13 +232,23 @@ int run_indicators(const IndicatorsOptions& o) {
       {"converged_rule", "|lyapunov_last_half - lyapunov| <= rtol * max(|lyapunov_last_half|, |lyapunov|)"},
       {"indicators", cardan ? "RK4 on the Cardan state and its tangent (integrators/torus/torus_tangent_flow.hpp); "
                               "experiments/INDICATORS.md"
-                            : "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp); "
-                              "experiments/INDICATORS.md"},
-      {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)}};
+                            : "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp, "
+                              "integrators/ensemble/tangent_ensemble.hpp); experiments/INDICATORS.md"},
+      {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)},
+      {"status", interrupted ? "interrupted by signal" : "complete"}};
   std::vector<TableColumn> columns = columns_of(states, results, s);
   if (cardan) add_cardan_columns(columns, scene.cardan_initial, states.size());
   std::vector<TableGroup> groups;
   if (s.gali) groups.push_back(gali_group(results, s));
+  if (interrupted) {  // the HDF5 file alone, as <out>.partial (no CSV): an incomplete table
+    const std::string partial = o.out + ".partial";
+    groups.insert(groups.begin(), TableGroup{"indicators", columns, {}});
+    write_groups_file(partial, true, groups, parameters);
+    std::cerr << "lgi: indicators interrupted by signal; the states so far (each row's t_end says how far it got) "
+                 "are kept in "
+              << partial << '\n';
+    return interrupted_exit_status();
+  }
   write_table_file(o.out, o.force, "indicators", columns, parameters, groups);
   if (failed > 0)
     std::cerr << "lgi: note: " << failed << " of " << results.size()

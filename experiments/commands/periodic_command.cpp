@@ -1,8 +1,11 @@
-// lgi periodic --scene FILE --l L (--from-equilibria | --seed-file F) [--h-range A:B] [--steps N]
-//              [--h-step D] [--dt DT] [--amplitude E] --out FILE.h5 [--force] [--quiet]
-// Periodic orbits of a heavy top's Euler–Poisson flow at fixed ℓ: the Lyapunov
-// centre families of the linearly stable relative equilibria, or families from
-// seeds, continued in h (analysis/periodic/; layout and method: experiments/PERIODIC.md).
+// lgi periodic --scene FILE --l L (--from-equilibria | --seed-file F | --seeds-from-poincare P.h5 ...)
+//              [--continue-in h|l] [--h-range A:B] [--l-range A:B] [--steps N] [--h-step D] [--l-step D]
+//              [--manifolds N ...] [--dt DT] [--amplitude E] --out FILE.h5 [--force] [--quiet]
+// Periodic orbits of a heavy top's Euler–Poisson flow: the Lyapunov centre
+// families of the linearly stable relative equilibria, or families from seeds
+// or from points of a Poincaré section, continued in h at fixed ℓ or in ℓ at
+// fixed h, and the manifolds of hyperbolic orbits on the section
+// (analysis/periodic/, commands/periodic/; layout and method: experiments/PERIODIC.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +17,8 @@
 #include <string>
 
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
+#include "experiments/commands/periodic/periodic_seeds.hpp"
+#include "experiments/commands/periodic/periodic_tables.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
@@ -27,27 +32,45 @@ namespace lgi::experiments {
 namespace {
 
 struct PeriodicOptions {
-  std::string scene, out, seed_file, h_range;
+  std::string scene, out, seed_file, h_range, l_range, poincare, poincare_rows, continue_in = "h";
+  std::vector<std::string> poincare_points;
   std::optional<double> l;
   bool from_equilibria = false, no_events = false, no_branch_switching = false;
-  int steps = 10;
-  double h_step = 0.01, dt = 2e-3, amplitude = 1e-4;
+  int steps = 10, returns = 1, manifolds = 0;
+  double h_step = 0.01, l_step = 0.01, dt = 2e-3, amplitude = 1e-4;
+  double manifold_periods = 4.0, manifold_epsilon = 1e-5;
   bool force = false, quiet = false;
   std::string command_line;
 };
 
 void check_flags(const PeriodicOptions& o) {
-  if (!o.l || !std::isfinite(*o.l)) throw UsageError("--l: must be a finite number");
-  if (o.from_equilibria == !o.seed_file.empty())
-    throw UsageError("--from-equilibria / --seed-file: give exactly one of them");
+  const bool poincare = !o.poincare.empty();
+  if (!poincare && (!o.l || !std::isfinite(*o.l))) throw UsageError("--l: must be a finite number");
+  if (o.l && !std::isfinite(*o.l)) throw UsageError("--l: must be a finite number");
+  if (int(o.from_equilibria) + int(!o.seed_file.empty()) + int(poincare) != 1)
+    throw UsageError("--from-equilibria / --seed-file / --seeds-from-poincare: give exactly one of them");
+  if (poincare == (o.poincare_rows.empty() && o.poincare_points.empty()))
+    throw UsageError(poincare ? "--seeds-from-poincare: give --poincare-rows or --poincare-point"
+                              : "--poincare-rows / --poincare-point: only with --seeds-from-poincare");
+  if (o.returns < 1 || o.returns > 1000) throw UsageError("--returns: must be in [1, 1000]");
+  if (o.continue_in != "h" && o.continue_in != "l") throw UsageError("--continue-in: expected h or l");
+  if (o.continue_in == "l" && o.from_equilibria)
+    throw UsageError("--continue-in l: the families from equilibria are continued in h (give seeds)");
   if (o.steps < 0 || o.steps > 100000) throw UsageError("--steps: must be in [0, 100000]");
   if (!(o.h_step > 0.0) || !std::isfinite(o.h_step)) throw UsageError("--h-step: must be a positive number");
+  if (!(o.l_step != 0.0) || !std::isfinite(o.l_step)) throw UsageError("--l-step: must be a nonzero number");
   if (!(o.dt > 0.0) || !(o.dt <= 1.0)) throw UsageError("--dt: must be in (0, 1]");
   if (!(o.amplitude > 0.0) || !(o.amplitude <= 0.1)) throw UsageError("--amplitude: must be in (0, 0.1]");
+  if (o.manifolds < 0 || o.manifolds > 100000) throw UsageError("--manifolds: must be in [0, 100000]");
+  if (o.manifolds > 0 && !poincare) throw UsageError("--manifolds: only with --seeds-from-poincare (its section)");
+  if (!(o.manifold_periods > 0.0) || !(o.manifold_periods <= 1000.0))
+    throw UsageError("--manifold-periods: must be in (0, 1000]");
+  if (!(o.manifold_epsilon > 0.0) || !(o.manifold_epsilon <= 0.1))
+    throw UsageError("--manifold-epsilon: must be in (0, 0.1]");
 }
 
-/// --h-range A:B, A < B.
-std::pair<double, double> h_bounds(const std::string& text) {
+/// --h-range / --l-range A:B, A < B.
+std::pair<double, double> bounds(const std::string& text, const std::string& flag) {
   if (text.empty()) return {-INFINITY, INFINITY};
   const auto colon = text.find(':');
   double a = NAN, b = NAN;
@@ -58,60 +81,10 @@ std::pair<double, double> h_bounds(const std::string& text) {
     b = std::stod(text.substr(colon + 1), &ib);
     if (ia != colon || ib != text.size() - colon - 1) throw std::invalid_argument("trailing text");
   } catch (const std::exception&) {
-    throw UsageError("--h-range: expected A:B (two numbers), got '" + text + "'");
+    throw UsageError(flag + ": expected A:B (two numbers), got '" + text + "'");
   }
-  if (!(a < b) || !std::isfinite(a) || !std::isfinite(b)) throw UsageError("--h-range: need finite A < B");
+  if (!(a < b) || !std::isfinite(a) || !std::isfinite(b)) throw UsageError(flag + ": need finite A < B");
   return {a, b};
-}
-
-/// Seeds: one per line, Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T (spaces or commas; '#' starts a comment).
-std::vector<std::pair<Vec6, double>> read_seeds(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UsageError("--seed-file: cannot read '" + path + "'");
-  std::vector<std::pair<Vec6, double>> seeds;
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    line = line.substr(0, line.find('#'));
-    for (char& c : line) c = c == ',' ? ' ' : c;
-    std::istringstream s(line);
-    std::vector<double> v;
-    double d = 0.0;
-    while (s >> d) v.push_back(d);
-    if (v.empty() && (s.eof() || line.find_first_not_of(" \t\r") == std::string::npos)) continue;
-    Vec6 x;
-    bool finite = v.size() == 7 && s.eof();
-    for (std::size_t k = 0; finite && k < 6; ++k) x(static_cast<int>(k)) = v[k], finite = std::isfinite(v[k]);
-    if (!finite || !(v[6] > 0.0) || !std::isfinite(v[6]) || x.tail<3>().norm() == 0.0)
-      throw UsageError("--seed-file: " + path + " line " + std::to_string(n) +
-                       ": expected Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T (Gamma nonzero, T > 0)");
-    seeds.emplace_back(x, v[6]);
-  }
-  if (seeds.empty()) throw UsageError("--seed-file: " + path + " holds no seed");
-  return seeds;
-}
-
-std::vector<TableColumn> periodic_columns(const std::vector<FamilyOrbit>& rows) {
-  std::vector<TableColumn> c = {{"family", 1, true}, {"index", 1, true}, {"l"}, {"h"}, {"period"},
-                                {"angular_momentum", 3}, {"gamma", 3}, {"residual"}, {"multipliers", 12},
-                                {"stability", 1, false, {}, {}, {}, true}, {"event", 1, false, {}, {}, {}, true},
-                                {"degenerate", 1, true}, {"equilibrium", 1, true}, {"omega"},
-                                {"trivial_deviation"}, {"product_deviation"}, {"parent", 1, true},
-                                {"reduced_trace"}, {"invariance_defect"},
-                                {"family_end", 1, false, {}, {}, {}, true}};
-  for (const auto& r : rows) {
-    const PeriodicOrbit& o = r.orbit;
-    c[0].whole.push_back(r.family), c[1].whole.push_back(r.index);
-    c[2].real.push_back(o.l), c[3].real.push_back(o.h), c[4].real.push_back(o.period);
-    for (int k = 0; k < 3; ++k) c[5].real.push_back(o.x0(k)), c[6].real.push_back(o.x0(k + 3));
-    c[7].real.push_back(o.residual);
-    for (const auto& m : o.multipliers) c[8].real.push_back(m.real()), c[8].real.push_back(m.imag());
-    c[9].text.push_back(o.stability), c[10].text.push_back(r.event);
-    c[11].whole.push_back(o.degenerate ? 1 : 0), c[12].whole.push_back(r.equilibrium);
-    c[13].real.push_back(r.omega), c[14].real.push_back(o.trivial_deviation), c[15].real.push_back(o.product_deviation);
-    c[16].whole.push_back(r.parent), c[17].real.push_back(o.reduced_trace), c[18].real.push_back(o.invariance_defect);
-    c[19].text.push_back(r.family_end);
-  }
-  return c;
 }
 
 std::string failures_text(const std::vector<std::string>& failures) {
@@ -120,45 +93,105 @@ std::string failures_text(const std::vector<std::string>& failures) {
   return t;
 }
 
+/// The families of the seeds (of a seed file or a poincare file), numbered from 0.
+std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
+                                       double direction, const FamilySettings& s, std::vector<std::string>& failures) {
+  std::vector<FamilyOrbit> rows;
+  int family = 0;
+  for (const SectionSeed& seed : seeds) {
+    if (!seed.failure.empty()) {
+      failures.push_back(seed.failure);
+      continue;
+    }
+    const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
+    const auto f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
+    for (const auto& r : f) family = std::max(family, r.family + 1);
+    rows.insert(rows.end(), f.begin(), f.end());
+  }
+  return rows;
+}
+
+/// The manifolds of each family's first orbit that is hyperbolic (--manifolds).
+std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSection& section,
+                                       const std::vector<FamilyOrbit>& rows, const PeriodicOptions& o,
+                                       std::vector<std::string>& failures) {
+  ManifoldSettings ms;
+  ms.points = o.manifolds, ms.periods = o.manifold_periods, ms.epsilon = o.manifold_epsilon, ms.dt = o.dt;
+  std::vector<RowManifolds> out;
+  for (const FamilyOrbit& r : rows) {
+    if (r.index != 0 || r.orbit.stability == "elliptic") continue;
+    RowManifolds m{r.family, r.index, orbit_manifolds(body, section, r.orbit, ms)};
+    if (!m.m.why_not.empty())
+      failures.push_back("manifolds of family " + std::to_string(r.family) + ": " + m.m.why_not);
+    else
+      out.push_back(std::move(m));
+  }
+  return out;
+}
+
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
-  const auto [h_min, h_max] = h_bounds(o.h_range);
+  const bool in_l = o.continue_in == "l";
+  const auto [p_min, p_max] = bounds(in_l ? o.l_range : o.h_range, in_l ? "--l-range" : "--h-range");
   const system::Scene scene = read_scene(o.scene);
   if (scene.suspension) throw UsageError("--scene: " + scene.file + " is a Cardan top; lgi periodic takes a heavy top");
   const HeavyTopBody body = equilibria_body(scene);
   FamilySettings s;
-  s.shooting.dt = o.dt, s.amplitude = o.amplitude, s.steps = o.steps, s.h_step = o.h_step;
-  s.h_min = h_min, s.h_max = h_max;
+  s.shooting.dt = o.dt, s.shooting.in_l = in_l, s.amplitude = o.amplitude, s.steps = o.steps;
+  s.h_step = in_l ? std::abs(o.l_step) : o.h_step;
+  s.h_min = p_min, s.h_max = p_max;
   s.locate_events = !o.no_events, s.switch_branches = !o.no_branch_switching;
+  const double direction = in_l && o.l_step < 0.0 ? -1.0 : 1.0;
   std::vector<FamilyOrbit> rows;
   std::vector<std::string> failures;
+  std::vector<RowManifolds> manifolds;
+  double l = o.l.value_or(0.0);
   if (o.from_equilibria) {
-    rows = lyapunov_families(body, *o.l, s, failures);
+    rows = lyapunov_families(body, l, s, failures);
+  } else if (!o.seed_file.empty()) {
+    std::vector<SectionSeed> seeds;
+    for (const auto& [x, T] : read_seeds(o.seed_file)) seeds.push_back({x, T, "", ""});
+    rows = seed_families(body, seeds, l, direction, s, failures);
   } else {
-    int family = 0;
-    for (const auto& [x, T] : read_seeds(o.seed_file)) {
-      const double h = euler_poisson_invariants(body, x).value(0);
-      const auto f = continue_family(body, x, T, h, *o.l, 1.0, family, s, failures);
-      for (const auto& r : f) family = std::max(family, r.family + 1);
-      rows.insert(rows.end(), f.begin(), f.end());
-    }
+    const PoincareFile f = read_poincare_file(o.poincare);
+    if (o.l && std::abs(*o.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
+      throw UsageError("--l: " + format_general(*o.l, 17) + " differs from the l of --seeds-from-poincare " + o.poincare +
+                       " (" + format_general(f.l, 17) + "); leave --l out");
+    l = f.l;
+    s.shooting.section = section_of(f);
+    // Every seed is put at the file's level; its family starts at the file's h.
+    std::vector<SectionSeed> seeds =
+        poincare_seeds(body, f, o.poincare_rows, o.poincare_points, o.returns, o.dt, 500.0 * o.returns);
+    for (SectionSeed& seed : seeds)
+      if (seed.failure.empty() && !project_to_level(body, seed.x, f.h, f.l, &*s.shooting.section))
+        seed.failure = seed.label + ": cannot be put on the level and the section";
+    rows = seed_families(body, seeds, l, direction, s, failures);
+    if (o.manifolds > 0) manifolds = manifolds_of(body, *s.shooting.section, rows, o, failures);
   }
-  write_table_file(o.out, o.force, "periodic", periodic_columns(rows),
+  std::vector<TableGroup> extra;
+  if (o.manifolds > 0) extra.push_back(manifold_group(manifolds));
+  write_table_file(o.out, o.force, "periodic", periodic_columns(body, rows, s.shooting.section),
                    {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
                     {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
-                    {"l", format_general(*o.l, 17)}, {"dt", format_general(o.dt, 17)},
+                    {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
                     {"integrator", "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"},
-                    {"continuation", "pseudo-arclength in (x0, T, h) after a first natural step in h"},
+                    {"continuation", in_l ? "pseudo-arclength in (x0, T, l) at fixed h after a first natural step in l"
+                                          : "pseudo-arclength in (x0, T, h) after a first natural step in h"},
+                    {"continue_in", o.continue_in},
+                    {"phase_condition", o.poincare.empty() ? "hyperplane through the guess, normal to the flow"
+                                                           : "on the section of the poincare file"},
+                    {"seeds_from_poincare", o.poincare},
                     {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
                     {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
-                    {"failures", failures_text(failures)}});
+                    {"failures", failures_text(failures)}},
+                   extra);
   // Starts that failed are said even with --quiet: they are missing families.
   for (const std::string& f : failures) std::cerr << "lgi: periodic: no family from " << f << '\n';
   if (o.quiet) return exit_ok;
   int degenerate = 0;
   for (const auto& r : rows) {
-    std::printf("family=%d index=%d h=%.12g period=%.12g residual=%.2e stability=%s%s%s%s\n", r.family, r.index,
-                r.orbit.h, r.orbit.period, r.orbit.residual, r.orbit.stability.c_str(),
+    std::printf("family=%d index=%d l=%.12g h=%.12g period=%.12g residual=%.2e stability=%s%s%s%s\n", r.family,
+                r.index, r.orbit.l, r.orbit.h, r.orbit.period, r.orbit.residual, r.orbit.stability.c_str(),
                 r.orbit.degenerate ? " degenerate" : "", r.event == "none" ? "" : " event=", r.event == "none" ? "" : r.event.c_str());
     degenerate += r.orbit.degenerate ? 1 : 0;
     if (!r.family_end.empty()) std::printf("family=%d ended: %s\n", r.family, r.family_end.c_str());
@@ -166,6 +199,9 @@ int run_periodic(const PeriodicOptions& o) {
   if (degenerate)
     std::printf("note: %d orbit(s) degenerate: the Newton system is rank-deficient and all multipliers are at 1; "
                 "they lie on resonant tori (an integrable top) and are not isolated\n", degenerate);
+  for (const RowManifolds& m : manifolds)
+    std::printf("manifolds of family=%d: multiplier %.9g, %d crossings a period, %zu section points\n", m.family,
+                m.m.lambda, m.m.returns, m.m.points.size());
   std::cout << rows.size() << " orbits; wrote " << o.out << '\n';
   return exit_ok;
 }
@@ -175,14 +211,32 @@ int run_periodic(const PeriodicOptions& o) {
 Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context) {
   auto o = std::make_shared<PeriodicOptions>();
   auto* sub = app.add_subcommand("periodic",
-                                 "Periodic orbits of a heavy top at fixed l: Lyapunov families from the stable relative "
-                                 "equilibria or from seeds, their Floquet multipliers and stability, continued in h "
+                                 "Periodic orbits of a heavy top: Lyapunov families from the stable relative "
+                                 "equilibria, from seeds or from points of a Poincare section, their Floquet multipliers "
+                                 "and stability, continued in h or in l, and the manifolds of hyperbolic orbits "
                                  "(experiments/PERIODIC.md)");
   sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top")->required();
-  sub->add_option("--l", o->l, "The momentum l = Pi.Gamma")->required();
+  sub->add_option("--l", o->l, "The momentum l = Pi.Gamma (with --seeds-from-poincare: the file's, may be left out)");
   sub->add_flag("--from-equilibria", o->from_equilibria, "The Lyapunov families of every linearly stable equilibrium");
   sub->add_option("--seed-file", o->seed_file, "Seeds, one per line: Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T");
+  sub->add_option("--seeds-from-poincare", o->poincare,
+                  "A file of lgi poincare: seeds on its section at its (l, h) (--poincare-rows, --poincare-point)");
+  sub->add_option("--poincare-rows", o->poincare_rows, "Rows of its /events (from 0), comma-separated");
+  sub->add_option("--poincare-point", o->poincare_points, "phi,theta,sheet: a point of its Richter section (repeatable)");
+  sub->add_option("--returns", o->returns, "The period guess of a section seed: the time of its N-th return")
+      ->capture_default_str();
+  sub->add_option("--continue-in", o->continue_in, "h (at fixed l) or l (at fixed h; seeds only)")->capture_default_str();
   sub->add_option("--h-range", o->h_range, "A:B: a family stops when h leaves [A, B]");
+  sub->add_option("--l-range", o->l_range, "A:B: with --continue-in l, a family stops when l leaves [A, B]");
+  sub->add_option("--l-step", o->l_step, "With --continue-in l: the first step in l (its sign the direction)")
+      ->capture_default_str();
+  sub->add_option("--manifolds", o->manifolds,
+                  "N > 0: the stable and unstable manifolds of each hyperbolic first orbit on the section, N points "
+                  "a fundamental domain (--seeds-from-poincare)");
+  sub->add_option("--manifold-periods", o->manifold_periods, "Integrate the manifold points for this many periods")
+      ->capture_default_str();
+  sub->add_option("--manifold-epsilon", o->manifold_epsilon, "The fundamental domain's inner end, relative to |x0|")
+      ->capture_default_str();
   sub->add_option("--steps", o->steps, "Continuation steps after each family's first orbit")->capture_default_str();
   sub->add_option("--h-step", o->h_step, "The first continuation step in h; later steps keep its arclength (halved on failure)")
       ->capture_default_str();

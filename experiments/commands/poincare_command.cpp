@@ -356,7 +356,7 @@ Subcommand add_poincare_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--threshold", o->threshold, "With --megno: an orbit is chaotic where MEGNO <Y>(t_end) exceeds this")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "OpenMP threads (default: all cores; at most 64 per core)")->check(thread_count_check());
-  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); required")->required();
   sub->add_flag("--force", o->force, "Replace an existing output file");
   sub->add_flag("--quiet", o->quiet, "No progress line and no summary");
   sub->footer(exit_status_help);

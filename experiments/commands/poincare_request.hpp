@@ -8,7 +8,7 @@
 namespace lgi::experiments {
 
 struct PoincareRequest {
-  std::string scene, out = "poincare.h5", axis, section = "richter", scheme, seeds;  // scheme: empty is the default
+  std::string scene, out, axis, section = "richter", scheme, seeds;  // scheme: empty is the default
   std::string measure;  // empty: liouville (a Cardan top refuses the flag)
   double l = 0.0, h = 0.0, t_end = 0.0, threshold = 3.0;
   std::optional<double> dt;

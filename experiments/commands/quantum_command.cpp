@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "experiments/analysis/quantum/ebk_kovalevskaya.hpp"
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/quantum_outputs.hpp"
@@ -152,9 +153,10 @@ int run_quantum(QuantumOptions o) {
   check_flags(o);
   const system::Scene scene = read_scene(o.scene);
   const quantum::QuantumTop top = quantum::quantum_top_of(scene);
-  if (o.ebk && !top.is_free() && top.symmetry != quantum::TopSymmetry::symmetric_heavy)
-    throw InputError("--ebk: needs a free body or a Lagrange top (J1 = J2, centre of mass on the symmetry axis); "
-                     "scene " + scene.file +
+  const bool kovalevskaya = quantum::is_kovalevskaya_scene(scene);
+  if (o.ebk && !top.is_free() && top.symmetry != quantum::TopSymmetry::symmetric_heavy && !kovalevskaya)
+    throw InputError("--ebk: needs a free body, a Lagrange top (J1 = J2, centre of mass on the symmetry axis) or a "
+                     "Kovalevskaya top; scene " + scene.file +
                      " is " + quantum::symmetry_name(top.symmetry));
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   quantum::QuantumSettings s;
@@ -167,8 +169,9 @@ int run_quantum(QuantumOptions o) {
     throw RunError(e.what());
   }
   std::vector<TableGroup> extra;
+  std::vector<std::string> notes;
   try {
-    if (o.ebk) extra.push_back(ebk_group(q, o.hbar, o.m));
+    if (o.ebk) extra.push_back(ebk_group(q, o.hbar, o.m, kovalevskaya ? &scene : nullptr, &notes));
     if (o.statistics) extra.push_back(statistics_group(q, o.hbar, o.m, o.energy_low, o.energy_high));
     if (o.statistics) extra.push_back(weyl_group(q, o.hbar, o.m));
   } catch (const std::invalid_argument& e) {
@@ -183,6 +186,7 @@ int run_quantum(QuantumOptions o) {
               << "jmax = " << o.jmax << " and " << o.jmax + o.jmax_step << ": converged = 0 (raise --jmax)\n";
   if (o.quiet) return exit_ok;
   print_rows(q);
+  for (const std::string& note : notes) std::cout << note << '\n';
   print_extra(extra);
   std::cout << q.levels.size() << " levels at m = " << o.m << ", hbar = " << format_general(o.hbar, 10)
             << " (" << quantum::symmetry_name(top.symmetry) << "); basis " << q.dimension << " states; "

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "experiments/analysis/quantum/ebk_free_rotor.hpp"
+#include "experiments/analysis/quantum/ebk_kovalevskaya.hpp"
 #include "experiments/analysis/quantum/quantum_statistics.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
@@ -25,16 +26,38 @@ TableColumn whole_column(const std::string& name, std::vector<std::int64_t> valu
 
 }  // namespace
 
-TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
-  std::vector<std::int64_t> n, ms, k, js, axes, converged;
+TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m, const system::Scene* kovalevskaya,
+                     std::vector<std::string>* notes) {
+  std::vector<std::int64_t> n, ms, k, js, axes, converged, n_fast;
   std::vector<double> ebk, exact, difference;
-  for (const quantum::EbkRow& r : quantum::ebk_table(q, hbar, m)) {
+  std::vector<quantum::EbkRow> rows;
+  if (kovalevskaya) {
+    quantum::KovalevskayaEbkOptions options;
+    options.torus.dt = kovalevskaya->dt.value_or(1e-2);
+    std::vector<quantum::KovalevskayaEbkLevel> solved;
+    rows = quantum::ebk_kovalevskaya_table(*kovalevskaya, q, hbar, m, options, &solved);
+    for (const auto& s : solved)
+      if (notes)
+        notes->push_back("EBK (n_slow, n_fast) = (" + std::to_string(s.n_slow) + ", " + std::to_string(s.n_fast) +
+                         "): E = " + format_general(s.energy, 12) + ", k = " + format_general(s.k, 8) +
+                         ", Maslov (a, b) = (" + std::to_string(s.mu_a) + ", " + std::to_string(s.mu_b) +
+                         "), residual " + format_general(s.residual, 3) + ", " + std::to_string(s.tori) + " tori, " +
+                         s.status);
+  } else {
+    rows = quantum::ebk_table(q, hbar, m);
+  }
+  for (const quantum::EbkRow& r : rows) {
     n.push_back(r.n), ms.push_back(r.m), k.push_back(r.k), js.push_back(r.j), axes.push_back(r.axis);
+    n_fast.push_back(r.n_fast);
     converged.push_back(r.converged ? 1 : 0);
     ebk.push_back(r.energy_ebk), exact.push_back(r.energy_exact), difference.push_back(r.energy_ebk - r.energy_exact);
   }
   const char* rule =
-      q.top.is_free()
+      kovalevskaya
+          ? "the numerical torus in its libration basis (both Maslov indices 2, from the tangent planes span(X_H, X_K)): "
+            "I_slow = hbar (n + 1/2), I_fast = hbar (n_fast + 1/2); within each parity class the i-th EBK level "
+            "beside the i-th exact level (docs/quantum.md section 10)"
+      : q.top.is_free()
           ? "|L| = hbar (j + 1/2); the cap of the orbit of Pi about its axis: I_cap = hbar (n + 1/2), Maslov index 2 "
             "(Colwell, Handy & Miller 1977); n counts the doublets from the steady rotation (docs/quantum.md "
             "section 9)"
@@ -43,7 +66,8 @@ TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
   return {"ebk",
           {whole_column("n", n), whole_column("m", ms), whole_column("k", k), real_column("energy_ebk", ebk),
            real_column("energy_exact", exact), real_column("difference", difference),
-           whole_column("converged", converged), whole_column("j", js), whole_column("axis", axes)},
+           whole_column("converged", converged), whole_column("j", js), whole_column("axis", axes),
+           whole_column("n_fast", n_fast)},
           {{"rule", rule}}};
 }
 

@@ -1,14 +1,22 @@
 #pragma once
 // The optional groups of lgi quantum (experiments/QUANTUM.md): /ebk (--ebk,
-// EBK levels beside the exact ones: a Lagrange top or a free body) and /statistics
+// EBK levels beside the exact ones: a Lagrange top, a free body or a
+// Kovalevskaya top) and /statistics
 // (--statistics, per symmetry class, unfolded with Weyl's law).
+#include <string>
+#include <vector>
+
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/io/table_file.hpp"
+#include "integrators/system/scene.hpp"
 
 namespace lgi::experiments {
 
-/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged, j, axis (one row per level).
-TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+/// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged, j, axis, n_fast (one row per level).
+/// A Kovalevskaya top (its scene given) gets the EBK levels of its numerical tori; each solved level
+/// adds a line to `notes`.
+TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m,
+                     const system::Scene* kovalevskaya = nullptr, std::vector<std::string>* notes = nullptr);
 
 /// /weyl: weyl_count, Weyl's smooth count N̄(E) at each /spectrum row's energy
 /// (a free body: N̄_j(E) of the row's j).

@@ -31,7 +31,7 @@ namespace lgi::experiments {
 namespace {
 
 struct RegionOptions {
-  std::string scene, out = "region.h5", l_range, h_range;
+  std::string scene, out, l_range, h_range;
   std::optional<double> l, h;
   bool cells = false;
   int grid = 120, samples = 400;
@@ -153,7 +153,7 @@ Subcommand add_region_subcommand(CLI::App& app, const CommandContext& context) {
   sub->add_option("--grid", o->grid, "Sphere grid: theta in n + 1 rings, phi in 2n meridians")->capture_default_str();
   sub->add_option("--samples", o->samples, "With --cells: points per branch of the equilibria written beside")
       ->capture_default_str();
-  sub->add_option("--out", o->out, "Output file (HDF5)")->capture_default_str();
+  sub->add_option("--out", o->out, "Output file (HDF5); required")->required();
   add_force_quiet_flags(*sub, *o, "Replace an existing output file");
   return {sub,
           [o, context] {

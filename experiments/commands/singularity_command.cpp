@@ -110,6 +110,10 @@ int singularity_command(const SingularityOptions& o) {
       {"trindade_4", scenes_dir + "/heavy_top_trindade_4.toml", 4.0},
   };
 
+  // Every scene is read before <out>.partial exists: a missing one is bad input (exit 2, nothing written).
+  std::vector<system::Scene> scenes;
+  for (const SceneCase& c : cases) scenes.push_back(read_scene(c.file));
+
   const std::string partial = o.out + ".partial";
   // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
   const InterruptGuard interrupt_guard;
@@ -125,8 +129,7 @@ int singularity_command(const SingularityOptions& o) {
   bool stopped = false;  // a signal came before every run was done
   const auto interrupted = [&stopped] { return stopped = stopped || interrupt_requested.load(); };
   for (std::size_t ci = 0; ci < cases.size() && !interrupted(); ++ci) {
-    const system::Scene scene = read_scene(cases[ci].file);
-    const StudyScene sc = study_scene(scene, cases[ci], o);
+    const StudyScene sc = study_scene(scenes[ci], cases[ci], o);
     tol_used = sc.tol;
     dt_used = sc.dt;
     const std::vector<double> reference = reference_center_of_mass(sc);

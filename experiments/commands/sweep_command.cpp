@@ -257,6 +257,12 @@ Subcommand add_sweep_subcommand(CLI::App& app, const CommandContext& context) {
             } catch (const UsageError& e) {
               if (ranks.root()) throw;
               return static_cast<int>(exit_bad_input);
+            } catch (const OutputWriteError& e) {  // a failed write during the run: the ranks end as one
+              std::cerr << "lgi: rank " << ranks.rank() << ": " << e.what() << '\n';
+              ranks.abort(exit_run_failed);
+            } catch (const OutputFileError& e) {  // rank 0 refused the output or the resume file before the run
+              if (ranks.root()) throw;
+              return static_cast<int>(exit_bad_input);
             } catch (const std::exception& e) {  // during the run: the other ranks cannot finish
               std::cerr << "lgi: rank " << ranks.rank() << ": " << e.what() << '\n';
               ranks.abort(exit_run_failed);

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 
 #include "experiments/io/hdf5_support.hpp"
@@ -305,7 +306,9 @@ void ResultsFile::write_block() {
         fail("cannot write " + full);
     }
     std::string text;
+    std::vector<std::uint64_t> hashes;
     for (const ResultRow& r : buffer_) {
+      const std::size_t line = text.size();
       for (std::size_t c = 0; c < columns_.size(); ++c) {
         if (c) text += ',';
         const auto& cell = r.cells_[c];
@@ -314,7 +317,10 @@ void ResultsFile::write_block() {
         else text += csv_text(std::get<std::string>(cell));
       }
       text += '\n';
+      if (impl_->row_hashes.valid())
+        hashes.push_back(results_detail::row_hash(r.cells_, std::string_view(text).substr(line)));
     }
+    if (impl_->row_hashes.valid()) write_row_hashes(at, hashes);
     if (std::fputs(text.c_str(), impl_->csv) < 0) fail_csv();
   } catch (const std::exception& e) {
     write_failed_ = true;
@@ -345,6 +351,7 @@ void ResultsFile::flush() {
 void ResultsFile::close_files() {
   open_ = false;
   impl_->columns.clear();
+  impl_->row_hashes.reset();
   impl_->diagnostics.reset();
   impl_->table.reset();
   const herr_t h5 = impl_->file.reset();

@@ -31,6 +31,13 @@
 // (create_record / write_record / read_record), written in place: its
 // writes change raw data only, never the file's metadata.
 //
+// Row checksums (lgi long-time; RESULTS.md, "long-time --resume"):
+// keep_row_hashes(group) makes the file keep, in the extendible dataset
+// /<group>/row_hash, one FNV-1a hash per row over its cells as stored and its
+// CSV line (results_file_impl.hpp, row_hash), written with the row.
+// Reopened, reopen_row_hashes(group) finds them and first_damaged_row(n)
+// checks rows 0..n-1 of both files against them before the run goes on.
+//
 // Every failure to create, write or publish throws OutputFileError (declared
 // in h5md_writer.hpp) with one line naming the file; a write that fails once
 // the files exist throws OutputWriteError (the commands exit 1 on it). A
@@ -150,6 +157,14 @@ class ResultsFile {
   /// Writes `data` at `offset` into the record, then flushes the file.
   void write_record(const std::string& group, const std::string& name, std::size_t offset,
                     const std::vector<unsigned char>& data);
+  /// Keeps a checksum of every row from now on in /<group>/row_hash (top of this file); before any row.
+  void keep_row_hashes(const std::string& group);
+  /// Reopen: opens /<group>/row_hash (OutputFileError if it is missing or not one); rows() counts
+  /// only the rows that have one.
+  void reopen_row_hashes(const std::string& group);
+  /// Reopen, after reopen_row_hashes: the first of rows 0..n−1 whose HDF5 cells or CSV line do not
+  /// match its checksum; −1 if none. Reads only.
+  std::int64_t first_damaged_row(std::int64_t n) const;
   /// The record's bytes; empty if it is absent or not a record (1-D, 8-bit unsigned).
   std::vector<unsigned char> read_record(const std::string& group, const std::string& name) const;
 
@@ -165,7 +180,11 @@ class ResultsFile {
   void create_table();                              // construction: one dataset per column
   void reopen_table();                              // Reopen: the columns, checked; rows found
   void reopen_csv(const std::string& csv_partial);  // Reopen: the header, checked; rows counted
+  void reopen_for_writing();                        // Reopen, at keep_rows(): read-only until then
   void write_block();
+  void write_row_hashes(std::uint64_t at, const std::vector<std::uint64_t>& hashes);
+  /// The cells of rows first..first+n−1, read back from the HDF5 table.
+  std::vector<std::vector<ResultRow::Cell>> read_cells(std::int64_t first, std::int64_t n) const;
   void write_attributes(std::int64_t group, const ResultAttributes& a);
   void close_files();
   /// Closes what is still open after a failure, keeping quiet about further
@@ -189,6 +208,7 @@ class ResultsFile {
   std::chrono::steady_clock::time_point last_flush_{};
   std::vector<long> csv_row_ends_;  // Reopen: byte offset after the header and after each row of the CSV
   bool untouched_ = false;          // Reopen, before keep_rows(): destroyed, it closes and writes nothing
+  std::string row_hash_group_;      // the group of /<group>/row_hash, if the file keeps row checksums
 };
 
 }  // namespace lgi::experiments

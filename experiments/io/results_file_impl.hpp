@@ -6,8 +6,10 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "experiments/io/fnv_hash.hpp"
 #include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/results_file.hpp"
 
@@ -36,6 +38,22 @@ inline void index_columns(const std::vector<Column>& columns, const ResultsFileO
     throw std::invalid_argument("results file: block_rows and chunk_rows must be positive");
 }
 
+/// The checksum of a row (results_file.hpp, "Row checksums"): FNV-1a over its cells as stored
+/// (8 bytes a number; a text's bytes and a NUL) and then its CSV line, '\n' included.
+inline std::uint64_t row_hash(const std::vector<ResultRow::Cell>& cells, std::string_view csv_line) {
+  Fnv1a h;
+  for (const auto& cell : cells) {
+    if (const double* x = std::get_if<double>(&cell)) h.value(*x);
+    else if (const std::int64_t* k = std::get_if<std::int64_t>(&cell)) h.value(*k);
+    else {
+      const std::string& t = std::get<std::string>(cell);
+      h.bytes(t.c_str(), t.size() + 1);
+    }
+  }
+  h.bytes(csv_line.data(), csv_line.size());
+  return h.get();
+}
+
 }  // namespace results_detail
 
 struct ResultsFile::Impl {
@@ -44,10 +62,12 @@ struct ResultsFile::Impl {
   hdf5::Handle table;
   hdf5::Handle diagnostics;
   std::vector<hdf5::Handle> columns;
+  hdf5::Handle row_hashes;  // /<group>/row_hash, if the file keeps row checksums
   hdf5::Handle string_type;
   std::FILE* csv = nullptr;
   ~Impl() {
     columns.clear();
+    row_hashes.reset();
     diagnostics.reset();
     table.reset();
     file.reset();

@@ -75,8 +75,10 @@ ResultsFile::ResultsFile(const std::string& path, bool force, std::vector<Column
     if (H5Fis_hdf5(partial_path_.c_str()) <= 0) fail("not an HDF5 file, or missing");
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
     if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot open");
-    impl_->file = Handle(H5Fopen(partial_path_.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
-    if (!impl_->file.valid()) fail("cannot open for writing");
+    // Read-only until keep_rows(): a refused file is left byte for byte as it was (an HDF5 file
+    // opened for writing gets its superblock's flags rewritten when it is closed).
+    impl_->file = Handle(H5Fopen(partial_path_.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);
+    if (!impl_->file.valid()) fail("cannot open");
     reopen_table();
     reopen_csv(csv_partial_path());
   } catch (...) {
@@ -141,14 +143,33 @@ void ResultsFile::reopen_csv(const std::string& csv_partial) {
   written_ = std::min(written_, csv_rows);
 }
 
+void ResultsFile::reopen_for_writing() {
+  const std::int64_t rows = written_;
+  impl_->columns.clear();
+  impl_->row_hashes.reset();
+  impl_->diagnostics.reset();
+  impl_->table.reset();
+  impl_->string_type.reset();
+  impl_->file.reset();
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (!fapl.valid() || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) fail("cannot open for writing");
+  impl_->file = Handle(H5Fopen(partial_path_.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
+  if (!impl_->file.valid()) fail("cannot open for writing");
+  reopen_table();
+  if (!row_hash_group_.empty()) reopen_row_hashes(row_hash_group_);
+  written_ = rows;
+}
+
 void ResultsFile::keep_rows(std::int64_t n) {
   if (!open_ || !buffer_.empty()) throw std::logic_error("results '" + path_ + "': keep_rows on a file in use");
   if (n < 0 || n > written_) throw std::logic_error("results '" + path_ + "': keep_rows beyond the rows present");
   const hdf5::QuietHdf5Errors quiet;
+  if (untouched_) reopen_for_writing();
   auto fail_fn = [this](const std::string& what) { fail(what); };
   const auto dims = static_cast<hsize_t>(n);
   for (std::size_t c = 0; c < columns_.size(); ++c)
     if (H5Dset_extent(impl_->columns[c].get(), &dims) < 0) fail("cannot shrink /" + options_.table + "/" + columns_[c].name);
+  if (impl_->row_hashes.valid() && H5Dset_extent(impl_->row_hashes.get(), &dims) < 0) fail("cannot shrink the row checksums");
   hdf5::write_vlen_string(impl_->diagnostics.get(), "status", "running", false, fail_fn);
   if (H5Fflush(impl_->file.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
   const long end = csv_row_ends_[static_cast<std::size_t>(n)];

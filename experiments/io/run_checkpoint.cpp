@@ -3,6 +3,8 @@
 // it is used (fuzz/fuzz_h5_readers.cpp).
 #include "experiments/io/run_checkpoint.hpp"
 
+#include "experiments/io/fnv_hash.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cstddef>
@@ -18,18 +20,14 @@ static_assert(std::endian::native == std::endian::little, "checkpoint slots are 
 constexpr char magic[8] = {'l', 'g', 'i', 'c', 'k', 'p', 't', '1'};
 constexpr std::size_t header_bytes = 32;
 
-std::uint64_t fnv1a(std::span<const unsigned char> bytes, std::uint64_t h = 14695981039346656037ull) {
-  for (unsigned char b : bytes) h = (h ^ b) * 1099511628211ull;
-  return h;
-}
-
 /// The slot's hash covers its sequence number and length as well as the
 /// payload, so a damaged header byte is caught like a damaged payload byte.
 std::uint64_t slot_hash(std::uint64_t sequence, std::uint64_t length, std::span<const unsigned char> payload) {
-  unsigned char head[16];
-  std::memcpy(head, &sequence, 8);
-  std::memcpy(head + 8, &length, 8);
-  return fnv1a(payload, fnv1a(head));
+  Fnv1a h;
+  h.value(sequence);
+  h.value(length);
+  h.bytes(payload);
+  return h.get();
 }
 
 class Writer {

@@ -73,6 +73,12 @@ StateRows read_hdf5(const std::string& path) {
   return chosen;
 }
 
+/// The (q, p) rows of a group, or nothing if it has neither pair of datasets.
+bool read_cardan_group(hid_t g, std::vector<lie::Vec3>& q, std::vector<lie::Vec3>& p) {
+  return (read_vectors(g, "cardan_angles", q) && read_vectors(g, "cardan_momenta", p)) ||
+         (read_vectors(g, "initial_cardan_angles", q) && read_vectors(g, "initial_cardan_momenta", p));
+}
+
 /// The fields of one CSV line (double quotes around a field, "" inside it).
 std::vector<std::string> csv_fields(const std::string& line) {
   std::vector<std::string> out(1);
@@ -141,6 +147,42 @@ StateRows read_state_file(const std::string& path) {
   StateRows r = is_hdf5 ? read_hdf5(path) : read_csv(path);
   if (r.gamma.empty()) throw InputError(path + ": no states (the table has no rows)");
   return r;
+}
+
+std::vector<system::TorusState> read_cardan_state_file(const std::string& path) {
+  const hdf5::QuietHdf5Errors quiet;
+  if (const std::string why = hdf5_input_problem(path); !why.empty())
+    throw InputError(path + ": " + why + " (a Cardan state file is HDF5: lgi chaos-map's or lgi indicators' output)");
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  H5G_info_t info{};
+  if (!file.valid() || H5Gget_info(file.get(), &info) < 0) throw InputError(path + ": cannot open as HDF5");
+  std::vector<std::string> found;
+  std::vector<lie::Vec3> q, p;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    char name[256] = {};
+    if (H5Lget_name_by_idx(file.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof name, H5P_DEFAULT) < 0)
+      continue;
+    Handle g(H5Gopen2(file.get(), name, H5P_DEFAULT), H5Gclose);
+    std::vector<lie::Vec3> qi, pi;
+    if (!g.valid() || !read_cardan_group(g.get(), qi, pi)) continue;
+    found.push_back(std::string("/") + name);
+    if (found.size() == 1) q = std::move(qi), p = std::move(pi);
+  }
+  if (found.empty())
+    throw InputError(path + ": no group with the datasets cardan_angles and cardan_momenta (n x 3), or "
+                            "initial_cardan_angles and initial_cardan_momenta");
+  if (found.size() > 1) throw InputError(path + ": several groups hold Cardan states (" + found[0] + ", " + found[1] +
+                                         "); give one table");
+  if (q.size() != p.size() || q.empty())
+    throw InputError(path + ": " + found[0] + ": " + std::to_string(q.size()) + " rows of angles and " +
+                     std::to_string(p.size()) + " of momenta; need the same count, at least one");
+  std::vector<system::TorusState> out(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (!q[i].allFinite() || !p[i].allFinite())
+      throw InputError(path + ": " + found[0] + ": row " + std::to_string(i) + ": a value is not finite");
+    out[i].q = q[i], out[i].p = p[i];
+  }
+  return out;
 }
 
 std::vector<system::State> states_of(const StateRows& rows, const std::string& where, int& normalised) {

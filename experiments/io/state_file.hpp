@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/system/cardan.hpp"
 #include "integrators/system/rigid_body.hpp"
 #include "lie/so3.hpp"
 
@@ -30,5 +31,11 @@ StateRows read_state_file(const std::string& path);
 /// and the row (0 first); any other is normalised, and `normalised` counts the
 /// rows whose |Γ| differed from 1 by more than 1e-12.
 std::vector<system::State> states_of(const StateRows& rows, const std::string& where, int& normalised);
+
+/// States of a Cardan top (T³ × ℝ³): an HDF5 file with one group holding the n×3 datasets
+/// cardan_angles and cardan_momenta (`lgi indicators` on a Cardan scene) or initial_cardan_angles
+/// and initial_cardan_momenta (`lgi chaos-map`'s /orbits). Throws InputError naming the file:
+/// no such group, several, rows that differ in count, no rows, a value that is not finite.
+std::vector<system::TorusState> read_cardan_state_file(const std::string& path);
 
 }  // namespace lgi::experiments

@@ -12,6 +12,7 @@
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "experiments/io/hdf5_inspection.hpp"
 #include "experiments/io/sweep_hdf5.hpp"
+#include "experiments/io/sweep_row_hash.hpp"
 
 namespace lgi::experiments {
 
@@ -45,7 +46,11 @@ void refuse_if_it_cannot_fit(const std::string& path, const SweepLayout& layout)
 }  // namespace
 
 void SweepPartialFile::fail(const std::string& what) const {
-  throw OutputFileError(path_ + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
+  const std::string line = path_ + ": " + what + " (" + hdf5::hdf5_error_detail() + ")";
+  // Once the file is set up a failure is a failed write (exit 1; README, "exit statuses"): the rows
+  // written so far are complete (status last), and --resume can go on from them.
+  if (ready_) throw OutputWriteError(line + "; " + path_ + " is kept (free space and finish it with --resume)");
+  throw OutputFileError(line);
 }
 
 SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& layout, const std::string& fingerprint)
@@ -57,8 +62,10 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   create_columns();
   Handle partial = hdf5::create_group(file_.get(), "/partial", fail_fn);
   hdf5::write_fixed_string(partial.get(), "fingerprint", fingerprint, fail_fn);
+  SweepHdf5(fail_fn).create_allocated(partial.get(), "row_hash", H5T_STD_U64LE, layout.count, 1, nullptr);
   done_.assign(static_cast<std::size_t>(layout.count), 0);
   if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
+  ready_ = true;
 }
 
 SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& layout, const std::string& fingerprint,
@@ -72,7 +79,9 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
   H5Pset_sieve_buf_size(fapl.get(), 0);
-  file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
+  // Read-only until every check has passed: a refused file is left byte for byte as it was (an
+  // HDF5 file opened for writing gets its superblock's flags rewritten when it is closed).
+  file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);
   if (!file_.valid() && !hdf5::path_exists(path))
     throw OutputFileError(path + ": the partial sweep was removed before it could be opened; run again without --resume");
   if (!file_.valid())
@@ -87,6 +96,11 @@ SweepPartialFile::SweepPartialFile(const std::string& path, const SweepLayout& l
     throw OutputFileError(path + ": --resume: this partial sweep was started with a different spec, scene, scheme or "
                                  "lgi version; remove it or run without --resume");
   read_progress();
+  file_.reset();
+  file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
+  if (!file_.valid())
+    throw OutputFileError(path + ": cannot open the partial sweep for writing to resume it");
+  ready_ = true;
 }
 
 void SweepPartialFile::create_columns() {
@@ -130,7 +144,9 @@ void SweepPartialFile::read_progress() {
   }
   const std::int64_t last = static_cast<std::int64_t>(block_capacity_.size()) - 1;
   constexpr std::int64_t in_block = (std::int64_t{1} << block_shift) - 1;
+  if (h5.rows_of(file_.get(), "/partial/row_hash") != n) throw OutputFileError(not_partial);
   done_.assign(static_cast<std::size_t>(n), 0);
+  const std::vector<std::int64_t> crossings = count;
   for (std::size_t i = 0; i < status.size(); ++i) {
     if (status[i] < 0) continue;
     // A completed row's crossings and samples lie inside one existing block (a damaged file's need not).
@@ -146,6 +162,12 @@ void SweepPartialFile::read_progress() {
     if (first[i] >= 0 && (first[i] >> block_shift) == last)
       block_used_ = std::max(block_used_, (first[i] & ((std::int64_t{1} << block_shift) - 1)) + count[i]);
   }
+  // Every finished row against its checksum (sweep_row_hash.hpp): a damaged one is refused, not recomputed.
+  if (const std::int64_t bad = first_damaged_sweep_row(h5, file_.get(), layout_, status, first, crossings, samples);
+      bad >= 0)
+    throw OutputFileError(path_ + ": --resume: row " + std::to_string(bad) +
+                          " of /sweep does not match the checksum written with it (changed or damaged since); the "
+                          "file is left as it is: remove it and run again without --resume");
 }
 
 std::int64_t SweepPartialFile::event_position(std::int64_t rows_needed) {
@@ -231,6 +253,8 @@ void SweepPartialFile::write(const SweepChunk& c) {
     Handle reason_type = fixed_string_type(reason_width);
     h5.write_rows(sweep.get(), "reason", reason_type.get(), c.first, rows, 1, reasons.data());
   }
+  const std::vector<std::uint64_t> hashes = sweep_chunk_hashes(c, layout_, event_first);
+  h5.write_rows(file_.get(), "/partial/row_hash", H5T_NATIVE_UINT64, c.first, rows, 1, hashes.data());
   if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");
   h5.write_rows(sweep.get(), "status", H5T_NATIVE_INT64, c.first, rows, 1, c.status.data());
   if (H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("cannot flush");

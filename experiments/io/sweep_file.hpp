@@ -82,6 +82,7 @@ class SweepPartialFile {
   hdf5::Handle file_;
   std::vector<char> done_;
   std::int64_t failures_ = 0;
+  bool ready_ = false;  // set up (created, or reopened and checked): failures are OutputWriteError
   std::vector<std::int64_t> block_capacity_;
   std::int64_t block_used_ = 0;  // rows used in the last block
 };

@@ -214,8 +214,9 @@ void SweepPartialFile::write_final(const std::string& path, const SweepAttribute
   const auto start = std::chrono::steady_clock::now();
   const hdf5::QuietHdf5Errors quiet;
   auto fail_in = [this](const std::string& what) { fail(what); };
-  auto fail_out = [&path](const std::string& what) {
-    throw OutputFileError(path + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
+  auto fail_out = [this, &path](const std::string& what) {  // a failed write (exit 1): the .partial is kept
+    throw OutputWriteError(path + ": " + what + " (" + hdf5::hdf5_error_detail() + "); " + path_ +
+                           " is kept (free space and finish it with --resume)");
   };
   const SweepHdf5 in(fail_in), out(fail_out);
   Handle file = hdf5::create_file(path, fail_out);

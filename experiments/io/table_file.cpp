@@ -40,7 +40,7 @@ void write_csv(const std::string& path, const std::vector<TableColumn>& columns,
       }
     out << '\n';
   }
-  if (!out.flush()) throw OutputFileError("cannot write '" + path + "'");
+  if (!out.flush()) throw OutputWriteError("cannot write '" + path + "' (kept)");
 }
 
 std::size_t rows_of(const TableColumn& c) {
@@ -65,10 +65,14 @@ void write_text(hid_t group, const TableColumn& c, const hdf5::Fail& fail) {
 void write_groups(const std::string& partial, const std::vector<TableGroup>& groups,
                   const std::map<std::string, std::string>& parameters) {
   const hdf5::QuietHdf5Errors quiet;
-  auto fail = [&partial](const std::string& what) {
+  auto refuse = [&partial](const std::string& what) {
     throw OutputFileError(partial + ": " + what + " (" + hdf5::hdf5_error_detail() + ")");
   };
-  hdf5::Handle file = hdf5::create_file(partial, fail);
+  // Once the file exists a failure is a failed write (exit 1; README, "exit statuses"), the file kept.
+  auto fail = [&partial](const std::string& what) {
+    throw OutputWriteError(partial + ": " + what + " (" + hdf5::hdf5_error_detail() + "); " + partial + " is kept");
+  };
+  hdf5::Handle file = hdf5::create_file(partial, refuse);
   const sweep_hdf5::SweepHdf5 h5(fail);
   for (const auto& g : groups) {
     hdf5::Handle table = hdf5::create_group(file.get(), "/" + g.name, fail);

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "integrators/cayley_quaternion.hpp"
+#include "integrators/ensemble/tangent_ensemble.hpp"
 
 namespace lgi::integrators::ensemble {
 
@@ -136,6 +137,19 @@ std::optional<Isa> sweep_isa() {
 }
 
 void set_sweep_isa(std::optional<Isa> isa) { sweep_choice = isa ? static_cast<int>(*isa) : -1; }
+
+std::optional<EnsembleModel> ensemble_model(const system::AnyModel& model, std::string* why) {
+  return describe(model, why);
+}
+
+TangentKernelSet tangent_kernels(Isa isa) {
+#if defined(LGI_ENSEMBLE_X86)
+  if (isa == Isa::avx2) return avx2_tangent_kernels();
+  if (isa == Isa::avx512) return avx512_tangent_kernels();
+#endif
+  (void)isa;
+  return baseline_tangent_kernels();
+}
 
 bool has_kernel(std::string_view scheme) { return find(scheme) != nullptr; }
 

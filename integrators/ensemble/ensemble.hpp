@@ -8,7 +8,9 @@
 // each lane for the steps the kernel leaves, lane_fallback.hpp); they are
 // compiled for the baseline
 // instruction set (SSE2 on x86-64) and, on x86-64, for AVX2 and AVX-512F
-// (without FMA), chosen at run time from what the CPU supports.
+// (without FMA), chosen at run time from what the CPU supports. The tangent
+// flow of rkmk4 and the chaos indicators' loop have lanes of their own
+// (tangent_ensemble.hpp).
 //
 // A step allocates nothing: the lanes live in a fixed-size block inside the
 // stepper. Lanes beyond the trajectories in use are padding (a copy of the

@@ -7,4 +7,6 @@ namespace lgi::integrators::ensemble {
 
 KernelSet avx2_kernels() { return kernel_set<Lanes<xsimd::batch<double, xsimd::avx2>, 2>>("avx2"); }
 
+TangentKernelSet avx2_tangent_kernels() { return tangent_kernel_set<Lanes<xsimd::batch<double, xsimd::avx2>, 2>>(); }
+
 }  // namespace lgi::integrators::ensemble

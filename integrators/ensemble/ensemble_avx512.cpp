@@ -14,4 +14,6 @@ namespace lgi::integrators::ensemble {
 
 KernelSet avx512_kernels() { return kernel_set<Lanes<xsimd::batch<double, xsimd::avx512f>, 2>>("avx512"); }
 
+TangentKernelSet avx512_tangent_kernels() { return tangent_kernel_set<Lanes<xsimd::batch<double, xsimd::avx512f>, 2>>(); }
+
 }  // namespace lgi::integrators::ensemble

@@ -10,4 +10,9 @@ KernelSet baseline_kernels() {
       Arch::name());
 }
 
+TangentKernelSet baseline_tangent_kernels() {
+  using Arch = xsimd::default_arch;
+  return tangent_kernel_set<Lanes<xsimd::batch<double, Arch>, 8 / static_cast<int>(xsimd::batch<double, Arch>::size)>>();
+}
+
 }  // namespace lgi::integrators::ensemble

@@ -5,7 +5,7 @@
 // §II.10, the code DOP853 and its contd8; the method: Prince & Dormand,
 // "High order embedded Runge–Kutta formulae", J. Comput. Appl. Math. 7
 // (1981) 67–75, with the estimators of HNW I §II.10). The coefficients are
-// the 30-digit decimals of the code dop853.f; the compile-time checks below
+// the 30-digit decimals of the code dop853.f; the compile-time checks (pair_checks_dop853.cpp)
 // (embedded_pairs.hpp, rooted_trees.hpp) verify all 200 order conditions of
 // orders ≤ 8 for b and that order 9 fails, orders 5 and 3 for the two
 // embedded solutions, and order 7 for the dense output.
@@ -181,6 +181,6 @@ inline constexpr DenseEmbeddedTableau<12, 16, 7> dop853 = [] {
   return t;
 }();
 
-static_assert(pair_checks_out<dop853>(), "DOP853: a coefficient does not satisfy its order conditions");
+// Its compile-time checks (pair_checks_out) are in pair_checks_dop853.cpp, once.
 
 }  // namespace lgi::tableaus

@@ -12,7 +12,7 @@
 // Each coefficient of the step is the quotient of its numerator and
 // denominator as double literals (within 1.5 units in the last place of the
 // rational); the interpolant's are 25-digit decimals of the exact Bernstein
-// coefficients. The checks below verify every order condition up to order 6
+// coefficients. The checks (pair_checks_verner65.cpp) verify every order condition up to order 6
 // for b and that order 7 fails, order 5 (and not 6) for b̂, and order 6 (and
 // not 7) for each θ^k coefficient of the interpolant (converted from β_k,i;
 // embedded_pairs.hpp, rooted_trees.hpp).
@@ -168,6 +168,6 @@ inline constexpr DenseEmbeddedTableau<9, 12, 6> verner65 = [] {
   return t;
 }();
 
-static_assert(pair_checks_out<verner65>(), "Verner 6(5): a coefficient does not satisfy its order conditions");
+// Its compile-time checks (pair_checks_out) are in pair_checks_verner65.cpp, once.
 
 }  // namespace lgi::tableaus

@@ -334,10 +334,7 @@ inline constexpr DenseEmbeddedTableau<13, 21, 8> verner87 = [] {
   return t;
 }();
 
-// The step's checks here; the interpolant's (pair_checks_out, half a minute of
-// constant evaluation over 21 stages) once, in integrators/registry_verner_pairs.cpp.
-static_assert(consistent_explicit(verner87) && classical_order(verner87, pair_condition_tolerance) == 8 &&
-                  classical_order_of_weights(verner87, verner87.b_hat, pair_condition_tolerance) == 7,
-              "Verner 8(7): a coefficient does not satisfy its order conditions");
+// Its compile-time checks (pair_checks_out: the step, the embedded weights and the
+// interpolant, over 21 stages) are in pair_checks_verner87.cpp, once.
 
 }  // namespace lgi::tableaus

@@ -438,10 +438,7 @@ inline constexpr DenseEmbeddedTableau<16, 26, 9> verner98 = [] {
   return t;
 }();
 
-// The step's checks here; the interpolant's (pair_checks_out, half a minute of
-// constant evaluation over 26 stages) once, in integrators/registry_verner_pairs.cpp.
-static_assert(consistent_explicit(verner98) && classical_order(verner98, pair_condition_tolerance) == 9 &&
-                  classical_order_of_weights(verner98, verner98.b_hat, pair_condition_tolerance) == 8,
-              "Verner 9(8): a coefficient does not satisfy its order conditions");
+// Its compile-time checks (pair_checks_out: the step, the embedded weights and the
+// interpolant, over 26 stages) are in pair_checks_verner98.cpp, once.
 
 }  // namespace lgi::tableaus

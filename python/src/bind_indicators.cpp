@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "experiments/analysis/chaos_indicators.hpp"
+#include "integrators/ensemble/tangent_ensemble.hpp"
 #include "experiments/io/gamma_attitude.hpp"
 #include "experiments/io/state_file.hpp"
 #include "integrators/system/model.hpp"
@@ -143,12 +144,11 @@ py::dict tangent_flow(const py::object& scene_arg, const py::dict& state, const 
   {
     const py::gil_scoped_release release;
     const system::AnyModel model = system::make_model(*scene);
-    std::visit(
-        [&](const auto& m) {
-          for (std::int64_t i = 0; i < steps; ++i)
-            integrators::tangent_step(m, x, V, t0 + static_cast<double>(i) * dt, dt);
-        },
-        model);
+    // The indicators' step (integrators/ensemble/tangent_ensemble.hpp): that of the SIMD lanes where the model has them.
+    integrators::ensemble::with_tangent_step(model, [&](auto step) {
+      for (std::int64_t i = 0; i < steps; ++i) step(x, V, t0 + static_cast<double>(i) * dt, dt);
+      return 0;
+    });
   }
   std::vector<double> out(static_cast<std::size_t>(6 * k));
   for (py::ssize_t r = 0; r < 6; ++r)

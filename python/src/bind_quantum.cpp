@@ -7,6 +7,7 @@
 #include <string>
 
 #include "experiments/analysis/quantum/ebk_free_rotor.hpp"
+#include "experiments/analysis/quantum/ebk_kovalevskaya.hpp"
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "python/src/bindings.hpp"
@@ -15,8 +16,8 @@ namespace lgi::python {
 namespace {
 
 /// The optional columns: Weyl's smooth count at each level, the EBK levels.
-void add_semiclassics(py::dict& d, const experiments::quantum::QuantumSpectrum& q, double hbar, int m, bool weyl,
-                      bool ebk) {
+void add_semiclassics(py::dict& d, const system::Scene& scene, const experiments::quantum::QuantumSpectrum& q,
+                      double hbar, int m, bool weyl, bool ebk) {
   namespace eq = experiments::quantum;
   const auto rows = static_cast<py::ssize_t>(q.levels.size());
   if (weyl) {
@@ -30,14 +31,24 @@ void add_semiclassics(py::dict& d, const experiments::quantum::QuantumSpectrum& 
     d["weyl_count"] = to_numpy(std::move(count), {rows});
   }
   if (ebk) {
-    std::vector<std::int64_t> n;
+    std::vector<std::int64_t> n, n_fast;
     std::vector<double> energy;
     try {
-      for (const eq::EbkRow& r : eq::ebk_table(q, hbar, m)) n.push_back(r.n), energy.push_back(r.energy_ebk);
+      std::vector<eq::EbkRow> table;
+      if (!q.top.is_free() && q.top.symmetry != eq::TopSymmetry::symmetric_heavy && eq::is_kovalevskaya_scene(scene)) {
+        eq::KovalevskayaEbkOptions options;
+        options.torus.dt = scene.dt.value_or(1e-2);
+        const py::gil_scoped_release release;
+        table = eq::ebk_kovalevskaya_table(scene, q, hbar, m, options);
+      } else {
+        table = eq::ebk_table(q, hbar, m);
+      }
+      for (const eq::EbkRow& r : table) n.push_back(r.n), n_fast.push_back(r.n_fast), energy.push_back(r.energy_ebk);
     } catch (const std::invalid_argument& e) {
       throw py::value_error(e.what());
     }
     d["ebk_n"] = to_numpy(std::move(n), {rows});
+    d["ebk_n_fast"] = to_numpy(std::move(n_fast), {rows});
     d["energy_ebk"] = to_numpy(std::move(energy), {rows});
   }
 }
@@ -80,7 +91,7 @@ py::dict quantum_spectrum(const py::object& scene_arg, double hbar, int m, int j
   d["weight"] = to_numpy(std::vector<double>(q.top.weight.data(), q.top.weight.data() + 3), {3});
   d["dimension"] = q.dimension;
   d["method"] = q.method;
-  add_semiclassics(d, q, hbar, m, weyl, ebk);
+  add_semiclassics(d, *scene, q, hbar, m, weyl, ebk);
   return d;
 }
 
@@ -96,8 +107,8 @@ void bind_quantum(py::module_& m) {
         "converged, change_with_jmax, k_conserved as arrays, and symmetry, parity_classes, moments and\n"
         "weight (the frame's J and c), dimension, method. ValueError for a scene term that is not a\n"
         "potential of Gamma and for settings out of range. weyl=True adds weyl_count (Weyl's smooth count at\n"
-        "each level, the file's /weyl); ebk=True adds ebk_n and energy_ebk (the file's /ebk; a Lagrange top\n"
-        "or a free body, ValueError otherwise), docs/quantum.md sections 7-9.");
+        "each level, the file's /weyl); ebk=True adds ebk_n, ebk_n_fast and energy_ebk (the file's /ebk; a\n"
+        "Lagrange top, a free body or a Kovalevskaya top, ValueError otherwise), docs/quantum.md sections 7-10.");
 }
 
 }  // namespace lgi::python

@@ -221,6 +221,13 @@ def save(fig, outdir, name, png_dpi=160):
     return paths
 
 
+def legend_below(fig, handles, ncol, fontsize):
+    """One legend for the whole figure, centred under its axes; `handles` maps each label
+    to its artist, in the order they were drawn."""
+    fig.legend(list(handles.values()), list(handles.keys()), ncol=ncol, loc="upper center",
+               bbox_to_anchor=(0.5, 0.0), fontsize=fontsize, frameon=False)
+
+
 def parser(description):
     p = argparse.ArgumentParser(description=description)
     p.add_argument("files", nargs="*", help="HDF5 files written by lgi")

@@ -89,8 +89,7 @@ def main():
             ax.set_ylabel(f"{s}\nerror (window max)" if col == 0 else "", fontsize=7)
         for col in range(len(qnames[s]), ncol):
             axes[row, col].set_visible(False)
-    fig.legend(list(handles.values()), list(handles.keys()), ncol=4, loc="upper center",
-               bbox_to_anchor=(0.5, 0.0), fontsize=6.3, frameon=False)
+    c.legend_below(fig, handles, ncol=4, fontsize=6.3)
     fig.tight_layout()
     c.save(fig, args.out, "long_time")
 

@@ -54,7 +54,7 @@ def coordinates(x, J_inv, e, richter):
 
 
 def crossings(x0, T, J, w, e, richter):
-    """[(phi, theta, sheet)] of the orbit through x0 of period T, one per crossing in [0, T)."""
+    """[(phi, theta, sheet)] of the orbit through x0 of period T, one per crossing in (0, T] (the one at T is the one at 0)."""
     from scipy.integrate import solve_ivp
     J_inv = np.linalg.inv(J)
 
@@ -66,11 +66,12 @@ def crossings(x0, T, J, w, e, richter):
     def s(_, x):
         return np.cross(x[3:], J_inv @ x[:3]) @ e if richter else x[3:] @ e
 
-    sol = solve_ivp(f, (0.0, T), x0, method="DOP853", rtol=1e-11, atol=1e-12, events=s, dense_output=False)
+    # A little past T: an orbit whose point lies on the section (lgi periodic --seeds-from-poincare)
+    # crosses it at 0 and T, where the root finder may see neither end; the one near T is kept for both.
+    sol = solve_ivp(f, (0.0, T * (1 + 1e-4)), x0, method="DOP853", rtol=1e-11, atol=1e-12, events=s,
+                    dense_output=False)
     ts, xs = sol.t_events[0], sol.y_events[0]
-    keep = np.ones(len(ts), dtype=bool)
-    if np.any(ts <= T * 1e-8):  # a crossing at T is the one at 0 again
-        keep = ts < T * (1 - 1e-8)
+    keep = (ts > T * 1e-6) & (ts <= T * (1 + 1e-6))
     return [coordinates(x, J_inv, e, richter) for x in xs[keep]]
 
 

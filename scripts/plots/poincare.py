@@ -2,7 +2,7 @@
 """Poincaré sections from `lgi poincare` files (experiments/POINCARE.md: /events
 phi, theta, sheet; /sweep megno where computed).
 
-Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S]
+Usage: poincare.py --out DIR [--colour orbit|megno|direction] [--dot-size S] [--zoom X0:X1:Y0:Y1]
                    [--periodic PERIODIC.h5 [--periodic-h-tol D]] SECTION.h5 ...
 
 (MEGNO colours are drawn on a grey ground, where the chaotic orbits' yellow shows.)
@@ -26,7 +26,11 @@ p1 is an integral, else h and the orbits' initial p1).
 --periodic marks the orbits of an `lgi periodic` file (experiments/PERIODIC.md)
 at the section's l, of each family the one nearest h within --periodic-h-tol,
 where they cross the section (periodic_crossings.py): open circles elliptic,
-red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate.
+red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate; where
+the file has /manifolds (lgi periodic --manifolds) of an orbit drawn, the
+section points of its unstable manifold are drawn in red and of its stable
+manifold in blue. --zoom X0:X1:Y0:Y1 draws only that window of the (phi, torus angle)
+plane (of a heavy top's section).
 """
 import os
 import sys
@@ -137,9 +141,31 @@ def mark_periodic(ax, par, path, args):
         if points[kind]:
             x, y = np.array(points[kind]).T
             ax.plot(x, y, marker, ls="none", mfc=face, mec=edge, ms=6, mew=0.9, zorder=5, label=label)
+    draw_manifolds(ax, args.periodic, table, rows, richter)
     print(f"poincare.py: {path}: {len(rows)} periodic orbit(s) of {args.periodic} within "
           f"{c.num(args.periodic_h_tol)} of h = {c.num(h)} at l = {c.num(l)}", file=sys.stderr)
     return len(rows)
+
+
+MANIFOLD_COLOURS = {"unstable": ("tab:red", "unstable manifold"), "stable": ("tab:blue", "stable manifold")}
+
+
+def draw_manifolds(ax, path, table, rows, richter):
+    """The /manifolds points of the orbits in `rows` (positions in /periodic), if the file has them."""
+    with c.h5py.File(path, "r") as f:
+        if "manifolds" not in f:
+            return
+        m = {k: f["manifolds"][k][()] for k in ("family", "index", "branch", "phi", "theta", "sheet")}
+    branch = np.array([b.decode() if isinstance(b, bytes) else b for b in m["branch"]])
+    keep = np.zeros(len(branch), dtype=bool)
+    for r in rows:
+        keep |= (m["family"] == table["family"][r]) & (m["index"] == table["index"][r])
+    for name, (colour, label) in MANIFOLD_COLOURS.items():
+        sel = keep & (branch == name)
+        if not np.any(sel):
+            continue
+        y = np.where(m["sheet"][sel] > 0, m["theta"][sel], 2 * np.pi - m["theta"][sel]) if richter else m["theta"][sel]
+        ax.scatter(m["phi"][sel], y, s=1.2, color=colour, linewidths=0, zorder=4, label=label)
 
 
 def region_boundary(ax, par):
@@ -175,7 +201,17 @@ def main():
                    help="a file of lgi periodic: its orbits at the section's l and h marked where they cross it")
     p.add_argument("--periodic-h-tol", type=float, default=1e-2, metavar="D",
                    help="--periodic: the orbit of each family nearest h, if within D of it (default 0.01)")
+    p.add_argument("--zoom", metavar="X0:X1:Y0:Y1",
+                   help="draw only this window of the section (phi from X0 to X1, the vertical axis from Y0 to Y1)")
     args = p.parse_args()
+    zoom = None
+    if args.zoom:
+        try:
+            zoom = [float(v) for v in args.zoom.split(":")]
+        except ValueError:
+            zoom = []
+        if len(zoom) != 4 or not all(np.isfinite(zoom)) or not (zoom[0] < zoom[1] and zoom[2] < zoom[3]):
+            c.die(f"--zoom: '{args.zoom}': expected X0:X1:Y0:Y1, four numbers with X0 < X1 and Y0 < Y1")
     if not args.files:
         c.die("give at least one file written by lgi poincare")
     if not (args.periodic_h_tol >= 0 and np.isfinite(args.periodic_h_tol)):
@@ -214,6 +250,9 @@ def main():
             ax.set_ylabel("angle of $\\Pi$ from the axis")
         if args.periodic:
             mark_periodic(ax, par, path, args)
+        if zoom:
+            ax.set_xlim(zoom[0], zoom[1])
+            ax.set_ylim(zoom[2], zoom[3])
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="lower right", fontsize=6.5)
         seeds = " (orbits from --seeds)" if par.get("seeds_file") else ""

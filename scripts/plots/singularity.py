@@ -66,8 +66,7 @@ def main():
             axes[row, 2].set_ylabel("h (s)")
             for ax in axes[row]:
                 ax.set_xlabel("t (s)")
-    fig.legend(list(handles.values()), list(handles.keys()), ncol=4, loc="upper center",
-               bbox_to_anchor=(0.5, 0.0), fontsize=5.8, frameon=False)
+    c.legend_below(fig, handles, ncol=4, fontsize=5.8)
     fig.tight_layout()
     c.save(fig, args.out, "singularity")
 

@@ -134,8 +134,7 @@ def figure(data, kind):
             ax.set_title(f"{scene}: {what}" + (f", $t_{{\\rm end}}$ = {t_end:g} s" if t_end is not None else ""),
                          loc="left", fontsize=8)
     if kind == "wp":
-        fig.legend(list(handles.values()), list(handles.keys()), ncol=6, loc="upper center",
-                   bbox_to_anchor=(0.5, 0.0), fontsize=6.2, frameon=False)
+        c.legend_below(fig, handles, ncol=6, fontsize=6.2)
     fig.tight_layout()
     for ax in fig.axes:
         c.fix_log_ticks(ax)

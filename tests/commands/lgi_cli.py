@@ -6,6 +6,8 @@ import subprocess
 import h5py
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "experiments", "scenes")
 
 
 def lgi(*args, check=True):
@@ -13,6 +15,12 @@ def lgi(*args, check=True):
     if check:
         assert r.returncode == 0, r.stderr
     return r
+
+
+def columns(path, name):
+    """The columns of group /name."""
+    with h5py.File(path, "r") as f:
+        return {k: f[name][k][()] for k in f[name]}
 
 
 def table(path, name):

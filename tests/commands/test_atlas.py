@@ -12,25 +12,15 @@
    (1, 1.5); each cell equals `lgi poincare --megno --lyapunov` at that (l, h)
    bit for bit; 1 and 2 threads agree bit for bit; empty cells are marked."""
 import os
-import subprocess
 
 import h5py
 import numpy as np
+from lgi_cli import SCENES, lgi
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENES = os.path.join(ROOT, "experiments", "scenes")
 GENERAL = os.path.join(SCENES, "general_top_richter.toml")
 KOVALEVSKAYA = os.path.join(SCENES, "kovalevskaya.toml")
 LAGRANGE = os.path.join(SCENES, "lagrange_top_disk.toml")
 BOOK = os.path.join(SCENES, "dzhanibekov_book_axis2.toml")
-
-
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
 
 
 def group(path, name):

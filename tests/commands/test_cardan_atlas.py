@@ -14,10 +14,8 @@ import subprocess
 
 import h5py
 import numpy as np
+from lgi_cli import ROOT, SCENES, columns, lgi
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENES = os.path.join(ROOT, "experiments", "scenes")
 GENERAL = os.path.join(SCENES, "general_top_richter.toml")
 UPRIGHT = os.path.join(SCENES, "cardan_lagrange_upright.toml")
 HORIZONTAL = os.path.join(SCENES, "cardan_lagrange_horizontal.toml")
@@ -43,18 +41,6 @@ dt = 1.0e-2
 """
 
 
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
-
-
-def group(path, name):
-    with h5py.File(path, "r") as f:
-        return {k: f[name][k][()] for k in f[name]}
-
-
 def refused(r, *words):
     assert r.returncode == 2, (r.returncode, r.stderr)
     lines = r.stderr.strip().splitlines()
@@ -68,7 +54,7 @@ def test_equilibria_massless_rings_double_staude(tmp_path):
     scene.write_text(MASSLESS)
     lgi("equilibria", "--scene", str(scene), "--l", "1", "--out", str(tmp_path / "t3.h5"), "--quiet")
     lgi("equilibria", "--scene", GENERAL, "--l", "1", "--out", str(tmp_path / "so3.h5"), "--quiet")
-    t3, so3 = group(tmp_path / "t3.h5", "equilibria"), group(tmp_path / "so3.h5", "equilibria")
+    t3, so3 = columns(tmp_path / "t3.h5", "equilibria"), columns(tmp_path / "so3.h5", "equilibria")
     for column in ("omega", "gamma", "angular_momentum", "l", "h", "branch", "g1", "g2", "stability",
                    "nonlinearly_stable", "fold", "residual", "cardan_angles", "degenerate", "pole"):
         assert column in t3, column
@@ -85,7 +71,7 @@ def test_bifurcation_of_a_cardan_top(tmp_path):
     out = tmp_path / "b.h5"
     r = lgi("bifurcation", "--scene", GENERAL_UP, "--samples", "60", "--omega-max", "2", "--out", str(out))
     assert "Cardan" in r.stdout
-    e = group(out, "equilibria")
+    e = columns(out, "equilibria")
     assert len(e["h"]) > 60
     assert np.abs(e["omega"]).max() <= 2.0
     assert (e["residual"] < 1e-9).all()
@@ -99,8 +85,8 @@ def test_poincare_of_a_cardan_top(tmp_path):
             "--dt", "0.01", "--megno", "--lyapunov", "--quiet"]
     lgi(*args, "--threads", "1", "--out", str(tmp_path / "one.h5"))
     lgi(*args, "--threads", "2", "--out", str(tmp_path / "two.h5"))
-    s, e = group(tmp_path / "one.h5", "sweep"), group(tmp_path / "one.h5", "events")
-    s2, e2 = group(tmp_path / "two.h5", "sweep"), group(tmp_path / "two.h5", "events")
+    s, e = columns(tmp_path / "one.h5", "sweep"), columns(tmp_path / "one.h5", "events")
+    s2, e2 = columns(tmp_path / "two.h5", "sweep"), columns(tmp_path / "two.h5", "events")
     for k in s:
         if k != "cpu_seconds":
             assert np.array_equal(s[k], s2[k]), k

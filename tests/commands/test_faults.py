@@ -21,6 +21,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SCENES = os.path.join(ROOT, "experiments", "scenes")
 FREE = os.path.join(SCENES, "free_body_hlw.toml")
 LIMIT = 256 * 1024  # bytes: above a new file's metadata, far below a finished run's file
+MIDRUN_LIMIT = 16 * 1024  # bytes: a new HDF5 file's first blocks, below each MIDRUN output
 
 
 def text(v):
@@ -228,3 +229,28 @@ def test_a_step_that_cannot_advance_time_is_refused(tmp_path, args):
     one_line(r.stderr)
     assert "--dt" in r.stderr and ("2^53" in r.stderr or "resolution of t" in r.stderr), r.stderr
     assert not out.exists() and not (tmp_path / "x.h5.partial").exists()
+
+
+# A full disk part-way through the commands that write their table at the end or as they go
+# (issue 50, item 9): one exit-status rule, 1 for a failed write once the output exists, with
+# the .partial kept and named; never 2, and never the HDF5 library's error stack.
+MIDRUN = {
+    "poincare": ["poincare", "--scene", KOVALEVSKAYA, "--l", "1", "--h", "2", "--ics", "2", "--t-end", "50",
+                 "--threads", "1"],
+    "region": ["region", "--scene", os.path.join(SCENES, "lagrange_top_oblate.toml"), "--cells", "--l-range",
+               "0:3:9", "--h-range", "-1.2:3:9", "--grid", "40"],
+    "bifurcation": ["bifurcation", "--scene", os.path.join(SCENES, "heavy_top_hlw.toml")],
+    # (lgi actions writes through the same write_table_file as bifurcation; its run takes too long here.)
+    "singularity": ["singularity", "--scenes-dir", SCENES, "--quick"],
+}
+
+
+@pytest.mark.parametrize("command", list(MIDRUN))
+def test_disk_full_mid_run_exits_1_and_keeps_the_partial(tmp_path, command):
+    out = str(tmp_path / "o.h5")
+    r = lgi(*MIDRUN[command], "--out", out, "--quiet", limit=MIDRUN_LIMIT)
+    assert r.returncode == 1, r.stderr
+    line = one_line(r.stderr)
+    assert "o.h5" in line and ".partial" in line and "kept" in line, line
+    assert not os.path.exists(out)
+    assert any(n.endswith(".partial") for n in os.listdir(tmp_path)), os.listdir(tmp_path)

@@ -5,8 +5,13 @@
    T = 4K(k)/lambda (Landau & Lifshitz §37, scipy's ellipk) to 1e-10, the
    same for both, and the diffusion index of a torus is tiny;
  - a complex pair A+iB: signed frequencies, the sign flipped with the order;
- - bad input (an unknown observable, a flag out of range, a Cardan scene, a
-   scheme that cannot run the scene): one line on stderr and exit 2."""
+ - bad input (an unknown observable, a flag out of range, a scheme that cannot
+   run the scene, an observable or --state-file of the other kind of scene): one
+   line on stderr and exit 2;
+ - a Cardan top (T^3 x R^3): on the invariant set q2 = 0 of an upright, gravity-free
+   symmetric body q1 and q3 turn uniformly, and NAFF gives their rates; --state-file
+   rows (an lgi indicators file, lgi chaos-map's /orbits) give the records of the
+   scene's own run bit for bit, one `index` per state, the same on 1 and 2 threads."""
 import math
 import os
 
@@ -95,7 +100,17 @@ def test_bad_input(tmp_path):
     assert "--scheme" in refused("frequencies", "--scene", LAGRANGE, "--t-end", "10", "--scheme", "exact",
                                  "--out", out)
     cardan = os.path.join(SCENES, "cardan_lagrange_upright.toml")
-    assert "Cardan" in refused("frequencies", "--scene", cardan, "--t-end", "10", "--out", out)
+    assert "Cardan" in refused("frequencies", "--scene", FREE, "--t-end", "10", "--observable", "cardan_angle_1",
+                               "--out", out)
+    assert "--observable" in refused("frequencies", "--scene", cardan, "--t-end", "10", "--observable", "gamma_3",
+                                     "--out", out)
+    assert "--state-file" in refused("frequencies", "--scene", FREE, "--t-end", "10", "--state-file", cardan,
+                                     "--out", out)
+    assert "--state-file" not in refused("frequencies", "--scene", cardan, "--t-end", "10", "--state-file",
+                                         cardan, "--out", out)  # a TOML file: not HDF5, named
+    assert "adaptive" in refused("frequencies", "--scene", cardan, "--t-end", "10", "--scheme", "cardan-dp54",
+                                 "--out", out)
+    assert "--scheme" in refused("frequencies", "--scene", cardan, "--t-end", "10", "--scheme", "rkmk4", "--out", out)
     assert not os.path.exists(out)
 
 
@@ -112,3 +127,56 @@ def test_complex_pair(tmp_path):
     assert abs(d["amplitude"][2] - d["amplitude"][0]) <= 1e-12 * d["amplitude"][0]
     assert "energy" in refused("frequencies", "--scene", FREE, "--t-end", "10", "--observable", "gamma_1+ienergy",
                                "--out", out)
+
+
+def cardan_scene(tmp_path, angles, rates):
+    """cardan_euler_symmetric_up.toml with another initial state."""
+    text = open(os.path.join(SCENES, "cardan_euler_symmetric_up.toml")).read()
+    text = text.replace("cardan_angles = [0.0, 1.0, 0.0]", f"cardan_angles = {angles}")
+    text = text.replace("cardan_rates = [1.0, 0.7, 3.0]", f"cardan_rates = {rates}")
+    path = tmp_path / "cardan.toml"
+    path.write_text(text)
+    return str(path)
+
+
+def test_cardan_uniform_rotation(tmp_path):
+    """q2 = 0, p2 = 0 is invariant for the upright gravity-free symmetric body: q1 and q3 turn at
+    their initial rates, q2 stays 0 (no line), and NAFF's leading lines are those rates."""
+    scene = cardan_scene(tmp_path, "[0.0, 0.0, 0.0]", "[0.7, 0.0, 3.0]")
+    out = str(tmp_path / "u.h5")
+    lgi("frequencies", "--scene", scene, "--t-end", "100", "--dt", "0.01", "--output-dt", "0.05", "--window-order",
+        "2", "--terms", "2", "--observable", "sin_cardan_angle_1,cardan_angle_2,cos_cardan_angle_3+isin_cardan_angle_3",
+        "--out", out, "--quiet")
+    d, p = table(out, "frequencies")
+    names = [s.decode() for s in d["observable"]]
+    assert p["scheme"] == "cardan-rk4" and p["state_count"] == "1" and "cardan_angle_2" not in names
+    assert abs(d["frequency"][names.index("sin_cardan_angle_1")] - 0.7) <= 1e-10
+    assert abs(d["frequency"][names.index("cos_cardan_angle_3+isin_cardan_angle_3")] - 3.0) <= 3e-10
+    assert np.all(d["index"] == 0)
+
+
+def test_cardan_state_file(tmp_path):
+    """Rows of an lgi indicators file (the scene's own state) give the scene's records bit for bit; rows
+    of a chaos-map file's /orbits are analysed each, with their index, the same on 1 and 2 threads."""
+    scene = os.path.join(SCENES, "cardan_euler_tilted.toml")
+    ind, own, rows = (str(tmp_path / n) for n in ("ind.h5", "own.h5", "rows.h5"))
+    lgi("indicators", "--scene", scene, "--t-end", "1", "--out", ind, "--quiet")
+    lgi("frequencies", "--scene", scene, "--t-end", "20", "--terms", "2", "--out", own, "--quiet")
+    lgi("frequencies", "--scene", scene, "--t-end", "20", "--terms", "2", "--state-file", ind, "--out", rows, "--quiet")
+    a, b = table(own, "frequencies")[0], table(rows, "frequencies")[0]
+    for k in ("frequency", "amplitude", "phase", "diffusion"):
+        assert np.array_equal(a[k], b[k], equal_nan=True), k
+    cmap = str(tmp_path / "cmap.h5")
+    lgi("chaos-map", "--scene", scene, "--vary", "suspension.tilt=0.3:0.3:1", "--h-range", "2:2:1", "--ics", "3",
+        "--t-end", "1", "--threads", "1", "--out", cmap, "--quiet")
+    runs = []
+    for threads in ("1", "2"):
+        out = str(tmp_path / f"m{threads}.h5")
+        lgi("frequencies", "--scene", scene, "--t-end", "20", "--terms", "2", "--observable",
+            "sin_cardan_angle_1,sin_cardan_angle_2", "--state-file", cmap, "--threads", threads, "--out", out,
+            "--quiet")
+        runs.append(table(out, "frequency_diffusion"))
+    (d1, p1), (d2, _) = runs
+    assert p1["state_count"] == "3" and d1["index"].tolist() == [0, 0, 1, 1, 2, 2]
+    for k in ("frequency", "frequency_first_half", "frequency_second_half"):
+        assert np.array_equal(d1[k], d2[k], equal_nan=True), k

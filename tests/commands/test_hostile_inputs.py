@@ -85,6 +85,13 @@ CASES += [
     ("poincare-no-l", ["poincare", "--scene", "{KOV}", "--h", "2", "--t-end", "1", *OUT], 2, "--l"),
     ("poincare-no-t-end", ["poincare", "--scene", "{KOV}", "--l", "1", "--h", "2", *OUT], 2, "--t-end"),
     ("chaos-map-no-ics", [*CMAP, *OUT], 2, "--ics"),
+    # --out is required everywhere (issue 50, item 8): no default file in the current folder
+    ("poincare-no-out", [*POIN, "--ics", "2"], 2, "--out"),
+    ("region-no-out", [*REG, "--l", "1", "--h", "2"], 2, "--out"),
+    ("chaos-map-no-out", [*CMAP, "--ics", "2"], 2, "--out"),
+    # a folder without the study's scenes: bad input, refused before <out>.partial exists (issue 50, item 9)
+    ("singularity-scenes-dir-without-scenes", ["singularity", "--scenes-dir", "{DIR}", "--quick", *OUT], 2,
+     "heavy_top_trindade_singular"),
 ]
 
 # ---- numbers that are not numbers, or out of range

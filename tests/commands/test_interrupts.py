@@ -121,5 +121,19 @@ def test_signal_inside_one_long_orbit(tmp_path, command):
     if command == "chaos-map":
         assert p.returncode == 130, err
         assert os.path.exists(out + ".partial") and not os.path.exists(out)
-    else:  # lgi indicators: ends at once, with the signal's status or the default action's
-        assert p.returncode in (130, -signal.SIGINT), err
+    else:  # lgi indicators: the same guard as the other commands (issue 50)
+        assert p.returncode == 130, err
+        assert "interrupted by signal" in err and out + ".partial" in err and err.strip().count("\n") == 0, err
+        assert not os.path.exists(out)
+        with h5py.File(out + ".partial", "r") as f:
+            assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
+            assert f["indicators/t_end"][0] == 0 and np.isnan(f["indicators/lyapunov"][0])  # cut short
+
+
+def test_indicators_sigterm_keeps_the_partial(tmp_path):
+    out = str(tmp_path / "i.h5")
+    richter = os.path.join(SCENES, "general_top_richter.toml")
+    code, err = interrupt(["indicators", "--scene", richter, "--t-end", "1e7", "--out", out], sig=signal.SIGTERM)
+    assert code == 143, err
+    assert "interrupted by signal" in err and out + ".partial" in err, err
+    assert os.path.exists(out + ".partial") and not os.path.exists(out)

@@ -127,43 +127,38 @@ def references(tmp_path_factory):
     return out
 
 
+def killed(tmp_path, references, name, k, read):
+    """Kills a run of command `name` at its k-th moment; returns read() of its .partial file and of
+    the uninterrupted run."""
+    out = str(tmp_path / "kill.h5")
+    run_and_kill(CASES[name][0], out, MOMENTS[name][k])
+    with h5py.File(out + ".partial", "r") as f, h5py.File(references[name], "r") as g:
+        assert_incomplete(f, out)
+        return read(f), read(g)
+
+
 @pytest.mark.parametrize("k", range(3))
 def test_killed_simulate(tmp_path, references, k):
-    out = str(tmp_path / "kill.h5")
-    run_and_kill(SIMULATE[0], out, MOMENTS["simulate"][k])
-    with h5py.File(out + ".partial", "r") as f, h5py.File(references["simulate"], "r") as g:
-        assert_incomplete(f, out)
-        cols, n = series(f)
-        ref, m = series(g)
-
-        assert (np.diff(cols["step"]) > 0).all() and (np.diff(cols["time"]) >= 0).all()
-        assert_prefix(cols, ref, min(n, m - 1), ref.keys())
+    (cols, n), (ref, m) = killed(tmp_path, references, "simulate", k, series)
+    assert (np.diff(cols["step"]) > 0).all() and (np.diff(cols["time"]) >= 0).all()
+    assert_prefix(cols, ref, min(n, m - 1), ref.keys())
 
 
 @pytest.mark.parametrize("k", range(3))
 def test_killed_long_time(tmp_path, references, k):
-    out = str(tmp_path / "kill.h5")
-    run_and_kill(LONG_TIME[0], out, MOMENTS["long-time"][k])
-    with h5py.File(out + ".partial", "r") as f, h5py.File(references["long-time"], "r") as g:
-        assert_incomplete(f, out)
-        cols, n = table(f, "series")
-        ref, m = table(g, "series")
-        assert (np.diff(cols["step"]) > 0).all() and (np.diff(cols["time"]) > 0).all()
-        assert_prefix(cols, ref, min(n, m - 1), ref.keys())
+    (cols, n), (ref, m) = killed(tmp_path, references, "long-time", k, lambda f: table(f, "series"))
+    assert (np.diff(cols["step"]) > 0).all() and (np.diff(cols["time"]) > 0).all()
+    assert_prefix(cols, ref, min(n, m - 1), ref.keys())
     assert os.path.exists(str(tmp_path / "kill.csv.partial"))
 
 
 @pytest.mark.parametrize("k", range(3))
 def test_killed_work_precision(tmp_path, references, k):
-    out = str(tmp_path / "kill.h5")
-    run_and_kill(WORK_PRECISION[0], out, MOMENTS["work-precision"][k])
-    with h5py.File(out + ".partial", "r") as f, h5py.File(references["work-precision"], "r") as g:
-        assert_incomplete(f, out)
-        cols, n = table(f, "results")
-        ref, m = table(g, "results")  # the same rows but the last scheme's
-        # CPU times and the batch sizes judged from them vary from run to run.
-        deterministic = [c for c in ref if not c.startswith("cpu_seconds") and c != "runs_per_repeat"]
-        assert_prefix(cols, ref, min(n, m), deterministic)
+    # the same rows but the last scheme's
+    (cols, n), (ref, m) = killed(tmp_path, references, "work-precision", k, lambda f: table(f, "results"))
+    # CPU times and the batch sizes judged from them vary from run to run.
+    deterministic = [c for c in ref if not c.startswith("cpu_seconds") and c != "runs_per_repeat"]
+    assert_prefix(cols, ref, min(n, m), deterministic)
 
 
 @pytest.mark.parametrize("k", range(3))

@@ -4,25 +4,15 @@ is not; `measure` in a spec and `--measure` in `lgi poincare` and
 `lgi chaos-map` (default liouville); the uniform draw is lgi's earlier draw;
 the chaotic fraction with its 95 % Wilson interval in the files and on stdout."""
 import os
-import subprocess
 
 import h5py
 import numpy as np
+from lgi_cli import SCENES, lgi
 
-LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENES = os.path.join(ROOT, "experiments", "scenes")
 GENERAL = os.path.join(SCENES, "general_top_richter.toml")
 KOVALEVSKAYA = os.path.join(SCENES, "kovalevskaya.toml")
 CARDAN = os.path.join(SCENES, "cardan_euler_tilted.toml")
 Z = 1.959963984540054  # the 0.975 quantile of the normal law
-
-
-def lgi(*args, check=True):
-    r = subprocess.run([LGI, *args], capture_output=True, text=True, timeout=600)
-    if check:
-        assert r.returncode == 0, r.stderr
-    return r
 
 
 def sweep_spec(tmp_path, measure, samples, t_end, scene=GENERAL, l=2.2, h=2.0, seed=1, name="s"):

@@ -3,10 +3,17 @@
    under /periodic with their shapes, the CSV beside it; every family's first
    period is 2*pi/omega to 1e-6; residuals <= 1e-10; four multipliers at 1
    to 1e-8 on first orbits, their product 1 to 1e-8; stability and event texts from the contract;
- - --seed-file: a seed from that file's last orbit is found again;
+ - --seed-file: a seed from that file's last orbit is found again; continued in l
+   (--continue-in l) its h is held and l steps down from 3;
+ - --seeds-from-poincare: on a section of Richter's top at the h of an elliptic
+   orbit, the centre of its island (the mean of one orbit's crossings around
+   it) converges to that orbit: same period to 1e-8, elliptic, its point on
+   the section, and its crossings (SciPy's DOP853, periodic_crossings.py) are
+   the orbit's to 1e-7; a row of /events on the orbit converges to it too;
  - bad input: one line on stderr naming the flag, exit 2."""
 import math
 import os
+import sys
 
 import h5py
 import numpy as np
@@ -14,6 +21,9 @@ from lgi_cli import lgi, refused
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 GENERAL = os.path.join(ROOT, "experiments", "scenes", "general_top_richter.toml")
+sys.path.insert(0, os.path.join(ROOT, "scripts", "plots"))
+import periodic_crossings as pc  # noqa: E402
+
 COLUMNS = ["family", "index", "l", "h", "period", "angular_momentum", "gamma", "residual", "multipliers",
            "stability", "event", "degenerate"]
 
@@ -57,6 +67,68 @@ def test_families_of_a_general_top(tmp_path):
         assert abs(f["periodic/period"][0] - t["period"][-1]) <= 1e-8
         assert f["periodic/residual"][0] <= 1e-10
 
+    # The same seed continued in l at fixed h: h held, l moving down from 3, the same records.
+    out3 = str(tmp_path / "l.h5")
+    lgi("periodic", "--scene", GENERAL, "--l", "3", "--seed-file", seed, "--continue-in", "l", "--l-step", "-0.01",
+        "--steps", "2", "--no-events", "--out", out3, "--quiet")
+    with h5py.File(out3, "r") as f:
+        g = {k: f["periodic"][k][()] for k in f["periodic"]}
+        assert f["parameters"].attrs["continue_in"] == "l"
+    assert len(g["l"]) == 3 and np.all(g["h"] == g["h"][0]) and g["l"][0] == 3.0
+    assert np.all(np.diff(g["l"]) < 0) and abs(g["l"][1] - 2.99) <= 1e-12
+    assert np.all(g["residual"] <= 1e-10)
+    assert abs(g["period"][0] - t["period"][-1]) <= 1e-8
+
+
+def test_seeds_from_a_poincare_section(tmp_path):
+    a = str(tmp_path / "a.h5")
+    lgi("periodic", "--scene", GENERAL, "--l", "2.2", "--from-equilibria", "--steps", "1", "--h-step", "0.05",
+        "--no-branch-switching", "--out", a, "--quiet")
+    with h5py.File(a, "r") as f:
+        t = {k: f["periodic"][k][()] for k in ("family", "index", "h", "period", "angular_momentum", "gamma")}
+        J, w = pc.body_of(f["parameters"].attrs["scene_toml"])
+    r = int(np.flatnonzero((t["family"] == 0) & (t["index"] == 1))[0])  # elliptic, T = 8.60, h = h_e + 0.05
+    x0, T, h = np.concatenate([t["angular_momentum"][r], t["gamma"][r]]), float(t["period"][r]), float(t["h"][r])
+    e = w / np.linalg.norm(w)
+    crossings = pc.crossings(x0, T, J, w, e, True)
+    phi, theta, sheet = crossings[0]
+    # A section at the orbit's h: orbit 0 on the periodic orbit, orbit 1 around it in its island.
+    seeds = str(tmp_path / "seeds.csv")
+    with open(seeds, "w") as f:
+        f.write("phi,theta,sheet\n%r,%r,%d\n%r,%r,%d\n" % (phi, theta, sheet, phi, theta + 0.03, sheet))
+    s = str(tmp_path / "s.h5")
+    lgi("poincare", "--scene", GENERAL, "--l", "2.2", "--h", repr(h), "--seeds", seeds, "--t-end", "300",
+        "--out", s, "--quiet")
+    with h5py.File(s, "r") as f:
+        ev = {k: f["events"][k][()] for k in ("index", "phi", "theta", "sheet", "direction")}
+    first = np.flatnonzero(ev["index"] == 0)[0]
+    island = (ev["index"] == 1) & (ev["sheet"] == sheet)
+    directions = np.unique(ev["direction"][island])
+    island &= ev["direction"] == directions[0]
+    centre = (float(np.mean(ev["phi"][island])), float(np.mean(ev["theta"][island])))
+    assert 1e-3 < math.hypot(centre[0] - phi, centre[1] - theta) < 0.02  # a guess, not the orbit
+    q = str(tmp_path / "q.h5")
+    lgi("periodic", "--scene", GENERAL, "--seeds-from-poincare", s, "--poincare-point",
+        "%r,%r,%d" % (centre[0], centre[1], sheet), "--poincare-rows", str(first), "--steps", "0", "--out", q,
+        "--quiet")
+    with h5py.File(q, "r") as f:
+        p = {k: f["periodic"][k][()] for k in f["periodic"]}
+        assert f["parameters"].attrs["seeds_from_poincare"] == s
+    assert len(p["period"]) == 2
+    assert np.all(p["residual"] <= 1e-10) and np.all(p["l"] == 2.2) and np.all(p["h"] == h)
+    # The point: the island's orbit, elliptic, at the orbit's crossing.
+    pt = {c: p[c][1] for c in p}  # the --poincare-point family comes after the rows'
+    assert abs(pt["period"] - T) <= 1e-8
+    assert (pt["stability"].decode() if isinstance(pt["stability"], bytes) else pt["stability"]) == "elliptic"
+    assert abs(pt["section_phi"] - phi) <= 1e-7 and abs(pt["section_theta"] - theta) <= 1e-7
+    assert pt["section_sheet"] == sheet
+    mine = pc.crossings(np.concatenate([pt["angular_momentum"], pt["gamma"]]), pt["period"], J, w, e, True)
+    assert len(mine) == len(crossings)
+    for a_, b_ in zip(sorted(mine), sorted(crossings)):
+        assert abs(a_[0] - b_[0]) <= 1e-7 and abs(a_[1] - b_[1]) <= 1e-7 and a_[2] == b_[2]
+    # The row: a crossing of orbit 0, which lies on the periodic orbit, gives it again.
+    assert abs(p["period"][0] - T) <= 1e-8
+
 
 def test_bad_input(tmp_path):
     out = str(tmp_path / "x.h5")
@@ -70,4 +142,12 @@ def test_bad_input(tmp_path):
     with open(bad, "w") as s:
         s.write("1 2 3\n")
     assert "--seed-file" in refused("periodic", "--scene", GENERAL, "--l", "3", "--seed-file", bad, "--out", out)
+    assert "--continue-in" in refused("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria",
+                                      "--continue-in", "l", "--out", out)
+    assert "--manifolds" in refused("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria",
+                                    "--manifolds", "10", "--out", out)
+    assert "--seeds-from-poincare" in refused("periodic", "--scene", GENERAL, "--seeds-from-poincare", bad,
+                                              "--out", out)
+    assert bad in refused("periodic", "--scene", GENERAL, "--seeds-from-poincare", bad, "--poincare-rows", "0",
+                          "--out", out)
     assert not os.path.exists(out)

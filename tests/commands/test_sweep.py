@@ -24,6 +24,18 @@ def spec(tmp_path, text, name="spec.toml"):
     return str(p)
 
 
+def run_keys(scene, scheme, dt, t_end):
+    """The first lines of a spec: a shipped scene, the scheme, its step and the span."""
+    return f'scene = "SCENES/{scene}.toml"\nscheme = "{scheme}"\ndt = {dt}\nt_end = {t_end}\n'
+
+
+def swept(tmp_path, text, out_name):
+    """Runs the sweep of spec `text` quietly into tmp_path/out_name; returns that path."""
+    out = str(tmp_path / out_name)
+    sweep("--spec", spec(tmp_path, text), "--out", out, "--quiet")
+    return out
+
+
 def sweep(*args, check=True, **kw):
     r = subprocess.run([LGI, "sweep", *args], capture_output=True, text=True, timeout=300, **kw)
     if check:
@@ -114,6 +126,27 @@ def test_ranks_give_identical_results(tmp_path):
             assert f["provenance"].attrs["ranks"] == np_
 
 
+@pytest.mark.skipif(not LGI_MPI, reason="lgi-mpi is not built (MPI not installed)")
+def test_mismatched_resume_under_mpi_exits_2_and_keeps_the_file(tmp_path):
+    """Issue 50: rank 0's refusal of a resume file made with another spec is exit 2 for every
+    rank (mpirun passes it on), not an MPI_Abort with 1; the file is left byte for byte."""
+    other = spec(tmp_path, MIXED.replace("seed = 7", "seed = 8"), name="other.toml")
+    out = str(tmp_path / "m.h5")
+    p = subprocess.Popen([LGI, "sweep", "--spec", spec(tmp_path, LONG_SWEEP.replace("SCENES", SCENES)), "--out", out,
+                          "--threads", "1", "--quiet"])
+    wait_part_way(p, out + ".partial")
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    before = open(out + ".partial", "rb").read()
+    env = dict(os.environ, ASAN_OPTIONS="detect_leaks=0")
+    r = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "ASAN_OPTIONS", "-np", "2", LGI_MPI,
+                        "sweep", "--spec", other, "--out", out, "--threads", "1", "--quiet", "--resume"],
+                       capture_output=True, text=True, timeout=120, env=env)
+    assert r.returncode == 2, r.stderr
+    assert "different spec" in r.stderr and "MPI_ABORT" not in r.stderr, r.stderr
+    assert open(out + ".partial", "rb").read() == before
+
+
 def test_killed_sweep_is_readable_and_resumes_bit_for_bit(tmp_path):
     s = spec(tmp_path, LONG)
     full, cut = str(tmp_path / "full.h5"), str(tmp_path / "cut.h5")
@@ -166,17 +199,11 @@ def test_interrupt_keeps_the_partial_file(tmp_path):
 
 def test_failing_trajectory_is_recorded(tmp_path):
     # Explicit rkmk4 at dt = 0.01 is unstable for damping 1000 (c/J = 1000 s^-1), stable for 1.
-    s = spec(tmp_path, """
-scene = "SCENES/stiff_damped_spring.toml"
-scheme = "rkmk4"
-dt = 0.01
-t_end = 5.0
+    out = swept(tmp_path, run_keys("stiff_damped_spring", "rkmk4", 0.01, 5.0) + """
 [[vary]]
 key = "spring.damping"
 values = [1.0, 1000.0]
-""")
-    out = str(tmp_path / "fail.h5")
-    sweep("--spec", s, "--out", out, "--quiet")
+""", "fail.h5")
     with h5py.File(out, "r") as f:
         assert list(f["sweep/status"][()]) == [0, 1]
         reasons = [r.decode() for r in f["sweep/reason"][()]]
@@ -187,18 +214,12 @@ values = [1.0, 1000.0]
 def test_crossings_are_located_to_round_off(tmp_path):
     # The exact free-body flow: every crossing of Pi1 = 0 lies on the surface to
     # round-off, and crossings of one direction are one period of Pi apart.
-    s = spec(tmp_path, """
-scene = "SCENES/free_body_hlw.toml"
-scheme = "exact"
-dt = 0.1
-t_end = 60.0
+    out = swept(tmp_path, run_keys("free_body_hlw", "exact", 0.1, 60.0) + """
 [[event]]
 quantity = "angular_momentum"
 component = 1
 direction = "rising"
-""")
-    out = str(tmp_path / "ev.h5")
-    sweep("--spec", s, "--out", out, "--quiet")
+""", "ev.h5")
     with h5py.File(out, "r") as f:
         t = f["events/t"][()]
         Pi = f["events/angular_momentum"][()]

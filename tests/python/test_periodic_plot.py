@@ -3,7 +3,8 @@
 and /equilibria files made here with h5py (lgi periodic itself takes a minute),
 the refusals, and the crossings of a periodic orbit of Richter's top at
 l = 2.2 (found by lgi periodic, copied here to 17 digits) against those lgi
-poincare finds on the same orbit."""
+poincare finds on the same orbit; a /manifolds group drawn in a --zoom window, and a
+bad --zoom refused."""
 import os
 import subprocess
 import sys
@@ -139,6 +140,17 @@ def test_crossings_agree_with_lgi_poincare(tmp_path):
     r = run("poincare.py", "--out", tmp_path / "fig", "--periodic", tmp_path / "p.h5", tmp_path / "sec.h5")
     assert "2 periodic orbit(s)" in r.stderr
     assert (tmp_path / "fig" / "poincare_sec.png").stat().st_size > 1000
+    # /manifolds of the first orbit (as lgi periodic --manifolds writes it) drawn, in a --zoom window
+    with h5py.File(tmp_path / "p.h5", "a") as f:
+        g = f.create_group("manifolds")
+        g["family"], g["index"] = np.zeros(4, dtype=np.int64), np.zeros(4, dtype=np.int64)
+        g["branch"] = np.array(["unstable", "unstable", "stable", "stable"], dtype=h5py.string_dtype())
+        g["phi"], g["theta"], g["sheet"] = np.array([1.0, 1.1, 1.2, 1.3]), np.full(4, 2.0), np.array([1, 1, -1, -1])
+    r = run("poincare.py", "--out", tmp_path / "fig4", "--periodic", tmp_path / "p.h5", "--zoom", "0.5:2:1:5.5",
+            tmp_path / "sec.h5")
+    assert (tmp_path / "fig4" / "poincare_sec.png").stat().st_size > 1000
+    r = run("poincare.py", "--out", tmp_path / "fig5", "--zoom", "2:1:0:1", tmp_path / "sec.h5", code=1)
+    assert "--zoom" in r.stderr
     table = {"l": np.array([2.2, 2.2, 2.2]), "h": np.array([h, h + 0.008, h + 0.0005]),
              "family": np.array([0, 1, 1]), "event": np.array(["none"] * 3, dtype=object)}
     assert pc.orbits_at(table, 2.2, h, 1e-3) == [0, 2]  # of each family the nearest, within the tolerance

@@ -3,27 +3,17 @@
 default window of the (l, h) diagram frames the folds and class changes; the arcs of
 the Appelrot families are kept only where (h, k) is attained; poincare.py --colour
 direction and the accessible-region boundary; a bad range is refused by argparse."""
-import os
 import subprocess
 import sys
-from pathlib import Path
 
 import h5py
 import numpy as np
+from script_env import ENV, LGI, PLOTS, SCENES, lgi
 
-ROOT = Path(__file__).resolve().parents[2]
-LGI = Path(os.environ.get("LGI_EXECUTABLE", ROOT / "build" / "release" / "lgi"))
-ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1", MPLBACKEND="Agg")
-PLOTS = ROOT / "scripts" / "plots"
-SCENES = ROOT / "experiments" / "scenes"
 sys.path.insert(0, str(PLOTS))
 
 import bifurcation  # noqa: E402
 import lgi_plot_common  # noqa: E402
-
-
-def lgi(*args):
-    subprocess.run([str(LGI), *map(str, args), "--quiet"], check=True)
 
 
 def plot(script, out, *args, code=0):

@@ -4,19 +4,8 @@ with `lgi quantum --statistics --energy-window` and a small `lgi chaos-map`,
 make the comparison figure, its Markdown table and its LaTeX tabular; three
 runs of Richter's top at m = 0 make the levels-against-hbar figure; and
 quantum.py draws the Euler top's EBK panel from free-body /ebk files."""
-import os
 import subprocess
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[2]
-LGI = Path(os.environ.get("LGI_EXECUTABLE", ROOT / "build" / "release" / "lgi"))
-ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1", MPLBACKEND="Agg")
-SCENES = ROOT / "experiments" / "scenes"
-PLOTS = ROOT / "scripts" / "plots"
-
-
-def lgi(*args):
-    subprocess.run([str(LGI), *map(str, args), "--quiet"], check=True)
+from script_env import ENV, PLOTS, SCENES, lgi
 
 
 def script(name, *args):

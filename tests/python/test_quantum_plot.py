@@ -2,18 +2,8 @@
 against exact levels of the Lagrange top from `lgi quantum --ebk` files at two
 hbar, and the spacing histogram from a `lgi quantum --statistics` file; a file
 with neither group is refused."""
-import os
 import subprocess
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[2]
-LGI = Path(os.environ.get("LGI_EXECUTABLE", ROOT / "build" / "release" / "lgi"))
-ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1", MPLBACKEND="Agg")
-SCENES = ROOT / "experiments" / "scenes"
-
-
-def lgi(*args):
-    subprocess.run([str(LGI), *map(str, args), "--quiet"], check=True)
+from script_env import ENV, ROOT, SCENES, lgi
 
 
 def plot(out, *files):

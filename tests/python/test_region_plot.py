@@ -3,19 +3,8 @@
 --cells), scripts/plots/bifurcation.py on `lgi bifurcation --appelrot` (the
 Kovalevskaya (h, k) diagram) and scripts/plots/chaos_map.py on `lgi chaos-map`
 (experiments/REGION.md, EQUILIBRIA.md, CHAOS_MAP.md)."""
-import os
 import subprocess
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[2]
-LGI = Path(os.environ.get("LGI_EXECUTABLE", ROOT / "build" / "release" / "lgi"))
-ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1", MPLBACKEND="Agg")
-PLOTS = ROOT / "scripts" / "plots"
-SCENES = ROOT / "experiments" / "scenes"
-
-
-def lgi(*args):
-    subprocess.run([str(LGI), *map(str, args), "--quiet"], check=True)
+from script_env import ENV, PLOTS, ROOT, SCENES, lgi
 
 
 def plot(script, out, *args):

@@ -154,8 +154,9 @@ def test_poincare_scene_object_and_out(cli_poincare, tmp_path):
         lgi.poincare(scene, out=out, **POINCARE_FLAGS)
 
 
-def test_atlas_messages_match_cli(lgi_exe):
-    r = subprocess.run([lgi_exe, "region", "--scene", RICHTER, "--l", "1", "--h", "-5", "--quiet"],
+def test_atlas_messages_match_cli(lgi_exe, tmp_path):
+    r = subprocess.run([lgi_exe, "region", "--scene", RICHTER, "--l", "1", "--h", "-5", "--quiet", "--out",
+                        str(tmp_path / "r.h5")],
                        capture_output=True, text=True)
     assert r.returncode == 2
     with pytest.raises(ValueError) as e:

@@ -41,7 +41,9 @@ std::vector<int> indices_of(const std::vector<std::string>& names) {
   for (const auto& n : names) {
     const auto it = std::find(all.begin(), all.end(), n);
     if (it == all.end())
-      throw std::invalid_argument("unknown observable '" + n + "' (angular_momentum_1..3, gamma_1..3, angular_velocity_1..3)");
+      throw std::invalid_argument("unknown observable '" + n +
+                                  "' (angular_momentum_1..3, gamma_1..3, angular_velocity_1..3; Cardan scenes: "
+                                  "cardan_angle_1..3, cardan_momentum_1..3, cos_cardan_angle_1..3, sin_cardan_angle_1..3)");
     which.push_back(static_cast<int>(it - all.begin()));
   }
   return which;
@@ -64,8 +66,9 @@ std::optional<std::pair<std::string, std::string>> complex_pair(const std::strin
 
 std::vector<std::string> components_of(const std::vector<std::string>& observables) {
   std::vector<std::string> out;
+  const auto& cardan = cardan_observable_names();
   const auto add = [&](const std::string& name) {
-    indices_of({name});  // throws on an unknown name
+    if (std::find(cardan.begin(), cardan.end(), name) == cardan.end()) indices_of({name});  // throws on an unknown name
     if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
   };
   for (const auto& o : observables) {

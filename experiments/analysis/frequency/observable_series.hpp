@@ -18,9 +18,14 @@ namespace lgi::experiments::frequency {
 /// gamma_1..3 (Γ = Rᵀe3, the vertical in the body frame), angular_velocity_1..3 (Ω).
 const std::vector<std::string>& observable_names();
 
+/// The names of a Cardan top's observables (T³ × ℝ³, docs/cardan.md): cardan_angle_1..3 (q, not
+/// wrapped), cardan_momentum_1..3 (p), cos_cardan_angle_1..3 and sin_cardan_angle_1..3 (cos q, sin q:
+/// quasi-periodic whether an angle librates or circulates). Sampled by cardan_series.hpp.
+const std::vector<std::string>& cardan_observable_names();
+
 /// The real observables that `observables` need, each once, in order of first use: a name, or a
-/// complex pair "A+iB" (A + iB, e.g. angular_momentum_1+iangular_momentum_2) of two names.
-/// Throws std::invalid_argument naming an unknown observable.
+/// complex pair "A+iB" (A + iB, e.g. angular_momentum_1+iangular_momentum_2) of two names, of either
+/// list above. Throws std::invalid_argument naming an unknown observable.
 std::vector<std::string> components_of(const std::vector<std::string>& observables);
 
 /// The two names of a complex pair "A+iB", or nothing for a real observable.

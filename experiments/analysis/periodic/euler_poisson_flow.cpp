@@ -29,7 +29,7 @@ std::array<double, 9> composition_weights() {
 
 /// One implicit midpoint substep of size h: x ← x + h f((x + x')/2), X ← its derivative.
 /// Newton's method on the midpoint m: m − x − (h/2) f(m) = 0.
-bool midpoint_substep(const HeavyTopBody& body, Vec6& x, Mat6& X, double h) {
+bool midpoint_substep(const HeavyTopBody& body, Vec6& x, Mat6* X, double h) {
   Vec6 m = x + 0.5 * h * euler_poisson_field(body, x);
   for (int it = 0; it < 30; ++it) {
     const Vec6 r = m - x - 0.5 * h * euler_poisson_field(body, m);
@@ -40,8 +40,10 @@ bool midpoint_substep(const HeavyTopBody& body, Vec6& x, Mat6& X, double h) {
     if (dm.norm() <= 4.0 * std::numeric_limits<double>::epsilon() * (1.0 + m.norm())) break;
     if (it == 29 || !m.allFinite()) return false;
   }
-  const Mat6 A = 0.5 * h * euler_poisson_jacobian(body, m);
-  X = (Mat6::Identity() - A).partialPivLu().solve((Mat6::Identity() + A) * X);
+  if (X) {
+    const Mat6 A = 0.5 * h * euler_poisson_jacobian(body, m);
+    *X = (Mat6::Identity() - A).partialPivLu().solve((Mat6::Identity() + A) * *X);
+  }
   x = 2.0 * m - x;
   return x.allFinite();
 }
@@ -90,8 +92,15 @@ Shot shoot(const HeavyTopBody& body, const Vec6& x0, double T, double dt) {
   const long steps = n < 1 ? 1 : n;
   const double h = T / static_cast<double>(steps);
   for (long k = 0; k < steps && s.ok; ++k)
-    for (const double wi : w) s.ok = s.ok && midpoint_substep(body, s.end, s.monodromy, wi * h);
+    for (const double wi : w) s.ok = s.ok && midpoint_substep(body, s.end, &s.monodromy, wi * h);
   return s;
+}
+
+bool flow_step(const HeavyTopBody& body, Vec6& x, double h) {
+  static const std::array<double, 9> w = composition_weights();
+  bool ok = true;
+  for (const double wi : w) ok = ok && midpoint_substep(body, x, nullptr, wi * h);
+  return ok;
 }
 
 }  // namespace lgi::experiments

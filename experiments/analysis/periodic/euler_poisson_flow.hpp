@@ -43,4 +43,8 @@ struct Shot {
 /// φ_T(x0) and its derivative, with ⌈T/dt⌉ equal sixth-order steps (top of this file).
 Shot shoot(const HeavyTopBody& body, const Vec6& x0, double T, double dt);
 
+/// One step of size h (h < 0: backwards) of the same map, without the tangent flow;
+/// false if a midpoint solve failed or the state is not finite.
+bool flow_step(const HeavyTopBody& body, Vec6& x, double h);
+
 }  // namespace lgi::experiments

@@ -19,7 +19,7 @@ std::pair<std::size_t, std::size_t> last_regular_pair(const std::vector<FamilyOr
   return {a, b};
 }
 
-bool in_range(double h, const FamilySettings& s) { return h >= s.h_min && h <= s.h_max; }
+bool in_range(double p, const FamilySettings& s) { return p >= s.h_min && p <= s.h_max; }
 
 FamilyOrbit next_row(const FamilyOrbit& last, const PeriodicOrbit& o) {
   FamilyOrbit r = last;
@@ -33,23 +33,28 @@ std::string at_h(double h) {
   return buf;
 }
 
+/// "h = ..." or "l = ..." (the continued parameter) at p.
+std::string at_p(const FamilySettings& s, double p) { return (s.shooting.in_l ? "l = " : "h = ") + at_h(p); }
+
 /// The first step, natural in h: from one orbit (and its equilibrium, if any).
 /// Returns "" or why the family ends.
 std::string natural_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double dh, const Vec6* xe,
                          double h_e, const FamilySettings& s) {
   const FamilyOrbit last = rows.back();
+  const bool in_l = s.shooting.in_l;
   for (int tries = 0; tries < 5; ++tries, dh *= 0.5) {
-    const double h = last.orbit.h + dh;
-    if (!in_range(h, s)) return "h range reached";
+    const double p = parameter_of(last.orbit) + dh;
+    if (!in_range(p, s)) return in_l ? "l range reached" : "h range reached";
+    const double h = in_l ? last.orbit.h : p, l = in_l ? p : last.orbit.l;
     Vec6 x = last.orbit.x0;
     if (xe) x = *xe + std::sqrt((h - h_e) / (last.orbit.h - h_e)) * (last.orbit.x0 - *xe);  // amplitude ∝ √(h − h_e)
-    const PeriodicOrbit o = correct_orbit(body, x, last.orbit.period, h, last.orbit.l, s.shooting);
+    const PeriodicOrbit o = correct_orbit(body, x, last.orbit.period, h, l, s.shooting);
     if (o.converged) {
       rows.push_back(next_row(last, o));
       return "";
     }
   }
-  return "the corrector failed at h = " + at_h(last.orbit.h + 2.0 * dh) + " after 5 halvings of the first step";
+  return "the corrector failed at " + at_p(s, parameter_of(last.orbit) + 2.0 * dh) + " after 5 halvings of the first step";
 }
 
 /// One pseudo-arclength step of length ds (halved up to five times). Returns "" or why the family ends.
@@ -60,17 +65,17 @@ std::string arclength_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& r
   const FamilyPoint secant = zb - za;
   const FamilyPoint t = rows[b].orbit.tangent.dot(secant) >= 0.0 ? rows[b].orbit.tangent : -rows[b].orbit.tangent;
   for (int tries = 0; tries < 6; ++tries, ds *= 0.5) {
-    const PeriodicOrbit o = correct_on_family(body, zb + ds * t, t, rows[b].orbit.l, s.shooting);
+    const PeriodicOrbit o = correct_on_family(body, zb + ds * t, t, fixed_of(rows[b].orbit), s.shooting);
     if (!o.converged) continue;
     // Against branch jumping: the correction (orthogonal to t) stays below
     // 0.3 Δs, so the new secant turns by less than about 17 degrees.
     if ((family_point(o) - zb - ds * t).norm() > 0.3 * ds) continue;
-    if (!in_range(o.h, s)) return "h range reached";
+    if (!in_range(parameter_of(o), s)) return s.shooting.in_l ? "l range reached" : "h range reached";
     rows.push_back(next_row(rows.back(), o));
     ds = std::min(ds0, 2.0 * ds);
     return "";
   }
-  return "no step found beyond h = " + at_h(rows[b].orbit.h) + " (corrector or branch guard, 6 halvings)";
+  return "no step found beyond " + at_p(s, parameter_of(rows[b].orbit)) + " (corrector or branch guard, 6 halvings)";
 }
 
 struct Located {
@@ -90,7 +95,7 @@ Located locate(const HeavyTopBody& body, const PeriodicOrbit& a, const PeriodicO
   double best_g = std::min(std::abs(g0), std::abs(g1));
   for (int it = 0; it < 30; ++it) {
     const double sm = (s0 * g1 - s1 * g0) / (g1 - g0);
-    const PeriodicOrbit o = correct_on_family(body, za + sm * chord, chord, a.l, s.shooting);
+    const PeriodicOrbit o = correct_on_family(body, za + sm * chord, chord, fixed_of(a), s.shooting);
     if (!o.converged) break;
     const double gm = g(o);
     if (std::abs(gm) < best_g) best = {o, sm, false}, best_g = std::abs(gm);
@@ -124,20 +129,21 @@ void locate_events(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, std
     if (std::abs(g(oa)) <= 1e-8 || std::abs(g(ob)) <= 1e-8 || (g(oa) < 0.0) == (g(ob) < 0.0)) return;
     const Located found = locate(body, oa, ob, g, s);
     if (!found.found) {
-      notes += std::string(notes.empty() ? "" : "; ") + name + " between h = " + at_h(oa.h) + " and " + at_h(ob.h) +
-               " not located";
+      notes += std::string(notes.empty() ? "" : "; ") + name + " between " + at_p(s, parameter_of(oa)) + " and " +
+               at_h(parameter_of(ob)) + " not located";
       return;
     }
     FamilyOrbit r = rows[b];
     r.event = name, r.orbit = found.orbit;
-    // A fold: h turns at the orbit (it lies outside [h_a, h_b], or h's steps
-    // before a and after it differ in sign).
+    // A fold: the parameter p (h, or ℓ) turns at the orbit (it lies outside
+    // [p_a, p_b], or p's steps before a and after it differ in sign).
     if (shift > 0.0) {
-      bool turns = (found.orbit.h - oa.h) * (ob.h - found.orbit.h) < 0.0;
+      const double pa = parameter_of(oa), pb = parameter_of(ob), pf = parameter_of(found.orbit);
+      bool turns = (pf - pa) * (pb - pf) < 0.0;
       std::size_t p = a;
       while (p > 0 && rows[--p].event != "none") {
       }
-      if (p != a && rows[p].event == "none") turns = turns || ((oa.h - rows[p].orbit.h < 0.0) != (ob.h - oa.h < 0.0));
+      if (p != a && rows[p].event == "none") turns = turns || ((pa - parameter_of(rows[p].orbit) < 0.0) != (pb - pa < 0.0));
       if (turns) r.event = "fold";
     }
     events.emplace_back(found.s, r);
@@ -204,11 +210,11 @@ std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOr
   t.head<6>() = o.section_basis * v2;
   t = (t - t.dot(parent) * parent).normalized();
   FamilyPoint z_pd;
-  z_pd << o.x0, 2.0 * o.period, o.h;
+  z_pd << o.x0, 2.0 * o.period, parameter_of(o);
   std::vector<FamilyOrbit> rows;
   for (const double k : {1.0, 2.0}) {
     const double eps = k * s.switch_amplitude * o.x0.norm();
-    const PeriodicOrbit d = correct_on_family(body, z_pd + eps * t, t, o.l, s.shooting);
+    const PeriodicOrbit d = correct_on_family(body, z_pd + eps * t, t, fixed_of(o), s.shooting);
     if (!d.converged) {
       why_not = "the corrector failed at amplitude " + at_h(eps);
       return {};

@@ -1,5 +1,6 @@
 #pragma once
-// Continuation of a family of periodic orbits at fixed ℓ, the location of its
+// Continuation of a family of periodic orbits in h at fixed ℓ (or in ℓ at
+// fixed h: shooting.in_l; read p for h below), the location of its
 // bifurcations, and branch switching at period doublings
 // (experiments/PERIODIC.md "Families").
 //
@@ -50,7 +51,7 @@ struct FamilySettings {
   double switch_amplitude = 1e-3;  // ε of branch switching, relative to |x_pd|
   int steps = 10;                  // continuation steps after the first orbit
   double h_step = 0.0;             // the first step in h (> 0); later steps keep its arclength
-  double h_min = -INFINITY, h_max = INFINITY;  // the family stops outside
+  double h_min = -INFINITY, h_max = INFINITY;  // the family stops where p (h, or ℓ with shooting.in_l) leaves them
   bool locate_events = true;
   bool switch_branches = true;     // start the doubled family at each period doubling
 };

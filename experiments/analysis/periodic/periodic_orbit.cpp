@@ -21,21 +21,21 @@ struct Linearised {
 
 /// The eleven equations of the header at z and their Jacobian.
 Linearised linearise(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p, const FamilyPoint& t,
-                     const Vec6& f_ref, double l, double dt) {
+                     const Vec6& f_ref, double fixed, const ShootingSettings& s) {
   Linearised L;
   const Vec6 x0 = z.head<6>();
-  L.shot = shoot(body, x0, z(6), dt);
+  L.shot = shoot(body, x0, z(6), s.dt);
   const Invariants inv = euler_poisson_invariants(body, x0);
   L.r.head<6>() = L.shot.end - x0;
-  L.r(6) = f_ref.dot(x0 - z_p.head<6>());
-  L.r.segment<3>(7) = inv.value - Eigen::Vector3d(z(7), l, 1.0);
+  L.r(6) = s.section ? section_value(body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
+  L.r.segment<3>(7) = inv.value - (s.in_l ? Eigen::Vector3d(fixed, z(7), 1.0) : Eigen::Vector3d(z(7), fixed, 1.0));
   L.r(10) = t.dot(z - z_p);
   L.A.setZero();
   L.A.topLeftCorner<6, 6>() = L.shot.monodromy - Mat6::Identity();
   L.A.block<6, 1>(0, 6) = euler_poisson_field(body, L.shot.end);
-  L.A.block<1, 6>(6, 0) = f_ref.transpose();
+  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body, *s.section, x0) : f_ref).transpose();
   L.A.block<3, 6>(7, 0) = inv.gradients;
-  L.A(7, 7) = -1.0;
+  L.A(s.in_l ? 8 : 7, 7) = -1.0;
   L.A.row(10) = t.transpose();
   return L;
 }
@@ -59,33 +59,35 @@ Mat6 adapted_basis(const HeavyTopBody& body, const Vec6& x0) {
 
 FamilyPoint family_point(const PeriodicOrbit& o) {
   FamilyPoint z;
-  z << o.x0, o.period, o.h;
+  z << o.x0, o.period, parameter_of(o);
   return z;
 }
 
 PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, double T_guess, double h, double l,
                             const ShootingSettings& s) {
   FamilyPoint z_p, t = FamilyPoint::Zero();
-  z_p << x_guess, T_guess, h;
+  z_p << x_guess, T_guess, s.in_l ? l : h;
   t(7) = 1.0;
-  return correct_on_family(body, z_p, t, l, s);
+  return correct_on_family(body, z_p, t, s.in_l ? h : l, s);
 }
 
-PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double l,
+PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                 const ShootingSettings& s) {
   PeriodicOrbit o;
-  o.l = l;
+  o.in_l = s.in_l;
+  (s.in_l ? o.h : o.l) = fixed;
   FamilyPoint z = z_p;
   const Vec6 f_ref = euler_poisson_field(body, z_p.head<6>()).normalized();
   double best = INFINITY, previous = INFINITY;
   for (int it = 0; it <= s.max_iterations; ++it) {
-    Linearised L = linearise(body, z, z_p, t, f_ref, l, s.dt);
+    Linearised L = linearise(body, z, z_p, t, f_ref, fixed, s);
     if (!L.shot.ok || !L.r.allFinite()) break;
     const double res = residual_of(L.r);
     o.iterations = it;
     if (res < best) {
       best = res;
-      o.x0 = z.head<6>(), o.period = z(6), o.h = z(7), o.residual = res, o.monodromy = L.shot.monodromy;
+      o.x0 = z.head<6>(), o.period = z(6), o.residual = res, o.monodromy = L.shot.monodromy;
+      (s.in_l ? o.l : o.h) = z(7);
       const Eigen::Matrix<double, 8, 1> sv = Eigen::JacobiSVD<System>(L.A).singularValues();
       o.rank_ratio = sv(7) / sv(0);
       // The family's tangent: the null vector of the ten equations without the continuation row.

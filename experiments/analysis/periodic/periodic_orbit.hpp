@@ -4,9 +4,11 @@
 // (experiments/PERIODIC.md; R. Seydel, Practical Bifurcation and Stability
 // Analysis, 3rd ed. (2010), ch. 7).
 //
-// Unknowns z = (x0, T, h) ∈ ℝ⁸; equations (eleven)
+// Unknowns z = (x0, T, p) ∈ ℝ⁸, p = h (ℓ fixed) or, with in_l, p = ℓ (h
+// fixed); equations (eleven)
 //   φ_T(x0) − x0 = 0,                    (6)
-//   ⟨f(x_p), x0 − x_p⟩ = 0,              (phase: x0 on the hyperplane through the predictor x_p ⊥ the flow)
+//   ⟨f(x_p), x0 − x_p⟩ = 0,              (phase: x0 on the hyperplane through the predictor x_p ⊥ the flow;
+//                                          with a section, S(x0) = 0 instead: x0 on the Poincaré section)
 //   H(x0) = h, Π·Γ = ℓ, |Γ|² = 1,
 //   ⟨t, z − z_p⟩ = 0                     (continuation: t = e_h fixes h; t the family's tangent is
 //                                          pseudo-arclength, H. B. Keller (1977), Seydel §4.4).
@@ -24,17 +26,21 @@
 #include <complex>
 #include <string>
 
-#include "experiments/analysis/periodic/euler_poisson_flow.hpp"
+#include <optional>
+
+#include "experiments/analysis/periodic/section_crossings.hpp"
 
 namespace lgi::experiments {
 
-/// A point of a family in the unknowns of the corrector: (x0, T, h).
+/// A point of a family in the unknowns of the corrector: (x0, T, p), p = h or ℓ.
 using FamilyPoint = Eigen::Matrix<double, 8, 1>;
 
 struct ShootingSettings {
   double dt = 2e-3;          // the step bound; a shot takes ⌈T/dt⌉ equal steps
   double tolerance = 1e-10;  // on the residual (below)
   int max_iterations = 30;
+  std::optional<PhaseSection> section{};  // the phase condition S(x0) = 0 instead of the hyperplane
+  bool in_l = false;                      // the eighth unknown is ℓ (at fixed h), not h (at fixed ℓ)
 };
 
 struct PeriodicOrbit {
@@ -55,8 +61,13 @@ struct PeriodicOrbit {
   Eigen::Matrix<double, 8, 1> tangent = Eigen::Matrix<double, 8, 1>::Zero();  // the family's unit tangent in (x0, T, h), either sense
   bool degenerate = false;
   bool converged = false;
+  bool in_l = false;  // found with p = ℓ at fixed h (ShootingSettings::in_l)
   int iterations = 0;
 };
+
+/// The continued parameter p of the orbit (ℓ if in_l, else h) and the fixed one.
+inline double parameter_of(const PeriodicOrbit& o) { return o.in_l ? o.l : o.h; }
+inline double fixed_of(const PeriodicOrbit& o) { return o.in_l ? o.h : o.l; }
 
 /// Newton from (x_guess, T_guess) towards the orbit at (h, l); the phase
 /// hyperplane passes through x_guess.
@@ -64,11 +75,11 @@ PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, doubl
                             const ShootingSettings& s);
 
 /// Newton from the predictor z_p with the continuation condition ⟨t, z − z_p⟩ = 0
-/// (t need not be normalised; t = e_h is correct_orbit).
-PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double l,
+/// (t need not be normalised; t = e_p is correct_orbit); `fixed` is ℓ, or h with s.in_l.
+PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                 const ShootingSettings& s);
 
-/// (x0, T, h) of an orbit.
+/// (x0, T, p) of an orbit.
 FamilyPoint family_point(const PeriodicOrbit& o);
 
 /// Multipliers, their checks, the stability class and the degeneracy of a corrected orbit.

@@ -30,6 +30,7 @@ struct EbkRow {
   int n = 0, m = 0, k = 0;
   int j = -1;     // a free body: the level's j; −1 otherwise
   int axis = -1;  // a free asymmetric body: the frame axis (0, 1, 2) its torus circulates about; −1 otherwise
+  int n_fast = -1;  // Kovalevskaya: the fast libration's quantum number (n is the slow one's); −1 otherwise
   double energy_ebk = 0.0, energy_exact = 0.0;
   bool converged = false;  // the exact level's convergence in jmax
 };

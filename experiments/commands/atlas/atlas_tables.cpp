@@ -93,24 +93,17 @@ HeavyTopBody equilibria_body(const system::Scene& scene) {
   return body;
 }
 
+std::vector<TableColumn> shared_equilibrium_columns() {
+  return {{"omega"}, {"gamma", 3}, {"angular_momentum", 3}, {"l"},  {"h"},
+          {"branch", 1, true}, {"g1"}, {"g2"}, {"stability", 1, true}, {"nonlinearly_stable", 1, true},
+          {"fold", 1, true}, {"residual"}};
+}
+
 std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibrium>& rows) {
-  std::vector<TableColumn> c = {{"omega"},  {"gamma", 3}, {"angular_momentum", 3}, {"l"},
-                                {"h"},      {"branch", 1, true}, {"g1"}, {"g2"},
-                                {"stability", 1, true}, {"nonlinearly_stable", 1, true}, {"fold", 1, true},
-                                {"residual"}, {"class_change", 1, true}};
+  std::vector<TableColumn> c = shared_equilibrium_columns();
+  c.push_back({"class_change", 1, true});
   for (const auto& e : rows) {
-    c[0].real.push_back(e.omega);
-    c[1].real.insert(c[1].real.end(), e.gamma.data(), e.gamma.data() + 3);
-    c[2].real.insert(c[2].real.end(), e.angular_momentum.data(), e.angular_momentum.data() + 3);
-    c[3].real.push_back(e.l);
-    c[4].real.push_back(e.h);
-    c[5].whole.push_back(e.branch);
-    c[6].real.push_back(e.g1);
-    c[7].real.push_back(e.g2);
-    c[8].whole.push_back(static_cast<std::int64_t>(e.stability));
-    c[9].whole.push_back(e.nonlinearly_stable ? 1 : 0);
-    c[10].whole.push_back(e.fold ? 1 : 0);
-    c[11].real.push_back(e.residual);
+    push_shared_equilibrium_row(c, e, e.fold);
     c[12].whole.push_back(e.class_change ? 1 : 0);
   }
   return c;

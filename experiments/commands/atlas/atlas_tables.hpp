@@ -22,8 +22,28 @@ namespace lgi::experiments {
 HeavyTopBody equilibria_body(const system::Scene& scene);
 
 /// The /equilibria columns: omega, gamma, angular_momentum, l, h, branch, g1,
-/// g2, stability, nonlinearly_stable, fold, residual.
+/// g2, stability, nonlinearly_stable, fold, residual, class_change.
 std::vector<TableColumn> equilibria_columns(const std::vector<RelativeEquilibrium>& rows);
+
+/// The first 12 of those columns (omega … residual), which the Cardan top's
+/// /equilibria table shares (cardan_atlas.cpp), and a row of them from an
+/// equilibrium E of either kind.
+std::vector<TableColumn> shared_equilibrium_columns();
+template <class E>
+void push_shared_equilibrium_row(std::vector<TableColumn>& c, const E& e, bool fold) {
+  c[0].real.push_back(e.omega);
+  c[1].real.insert(c[1].real.end(), e.gamma.data(), e.gamma.data() + 3);
+  c[2].real.insert(c[2].real.end(), e.angular_momentum.data(), e.angular_momentum.data() + 3);
+  c[3].real.push_back(e.l);
+  c[4].real.push_back(e.h);
+  c[5].whole.push_back(e.branch);
+  c[6].real.push_back(e.g1);
+  c[7].real.push_back(e.g2);
+  c[8].whole.push_back(static_cast<std::int64_t>(e.stability));
+  c[9].whole.push_back(e.nonlinearly_stable ? 1 : 0);
+  c[10].whole.push_back(fold ? 1 : 0);
+  c[11].real.push_back(e.residual);
+}
 
 /// "id: kind" one a line (the /parameters branches attribute).
 std::string branch_listing(const std::vector<EquilibriumBranch>& branches);

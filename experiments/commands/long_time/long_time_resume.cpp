@@ -49,6 +49,7 @@ void create_resume_record(ResultsFile& file, const std::string& fingerprint) {
   a.fixed_text["fingerprint"] = fingerprint;
   file.write_group(resume_group, a);
   file.create_record(resume_group, record_name, 2 * checkpoint_slot_bytes);
+  file.keep_row_hashes(resume_group);
 }
 
 template <class S>
@@ -88,9 +89,17 @@ ResumedResults<S> reopen_for_resume(const std::string& out, bool force, const st
   r.file = std::make_unique<ResultsFile>(out, force, columns, options, ResultsFile::Reopen{});
   if (r.file->text_attribute(resume_group, "fingerprint") != fingerprint)  // changed since it was read
     throw OutputFileError("cannot resume results '" + partial + "': its fingerprint cannot be read (damaged)");
+  r.file->reopen_row_hashes(resume_group);
   r.checkpoint = newest_checkpoint<S>(r.file->read_record(resume_group, record_name), error_columns, r.file->rows(),
                                    r.next_sequence);
-  r.file->keep_rows(r.checkpoint ? r.checkpoint->rows : 0);
+  // Every row the run keeps against its checksum: a damaged one is refused (both files left as they are).
+  const std::int64_t kept = r.checkpoint ? r.checkpoint->rows : 0;
+  if (const std::int64_t bad = r.file->first_damaged_row(kept); bad >= 0)
+    throw OutputFileError("--resume: " + partial + ": row " + std::to_string(bad) + " of /series (or its line in " +
+                          r.file->csv_partial_path() +
+                          ") does not match the checksum written with it (changed or damaged since); both files are "
+                          "left as they are: remove them and run again without --resume");
+  r.file->keep_rows(kept);
   return r;
 }
 

@@ -160,7 +160,7 @@ void write_results_csv(const std::string& csv, const std::vector<SummaryRow>& ro
       << ',' << r.com_points << '\n';
   }
   f.close();
-  if (!f) throw OutputFileError("cannot write '" + csv_partial + "'");
+  if (!f) throw OutputWriteError("cannot write '" + csv_partial + "' (kept)");
   hdf5::publish(csv_partial, csv, force, "the table is");
 }
 

@@ -13,17 +13,21 @@
 namespace lgi::experiments::singularity {
 
 /// The study's file: attributes through the shared writers, plain (not
-/// chunked) datasets written once. Errors: "cannot write <what> in '<path>'".
+/// chunked) datasets written once. Errors once it exists: OutputWriteError
+/// (exit 1) "cannot write <what> in '<path>' (kept)".
 class H5 {
  public:
   explicit H5(const std::string& path)
-      : path_(path), fail_([this](const std::string& what) { throw OutputFileError(what + " in '" + path_ + "'"); }) {
+      : path_(path), fail_([this](const std::string& what) { throw OutputWriteError(what + " in '" + path_ + "' (kept)"); }) {
     file_ = hdf5::Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
     if (!file_.valid()) throw OutputFileError("cannot create '" + path + "'");
   }
   H5(const H5&) = delete;
   H5& operator=(const H5&) = delete;
-  void close() { file_.reset(); }
+  /// HDF5 writes small datasets and metadata at close: a close that fails is a failed write.
+  void close() {
+    if (file_.reset() < 0) fail_("cannot finish the file (a write failed; the file is incomplete)");
+  }
   hid_t file() const { return file_.get(); }
   const hdf5::Fail& fail() const { return fail_; }
 
@@ -55,7 +59,9 @@ class H5 {
     const hdf5::Handle type = hdf5::vlen_string_type(/*ascii=*/false, fail_);
     write_dataset(parent, name, type.get(), type.get(), {data.size()}, p.data(), data.size());
   }
-  void flush() { H5Fflush(file(), H5F_SCOPE_GLOBAL); }
+  void flush() {
+    if (H5Fflush(file(), H5F_SCOPE_GLOBAL) < 0) fail_("cannot flush");
+  }
 
  private:
   hdf5::Handle write_dataset(hid_t parent, const char* name, hid_t file_type, hid_t memory_type,

@@ -1,0 +1,26 @@
+#pragma once
+// The tables of `lgi periodic` (experiments/PERIODIC.md "Output"): /periodic,
+// one row per orbit, and /manifolds, the section points of the stable and
+// unstable manifolds of hyperbolic orbits.
+#include <optional>
+#include <vector>
+
+#include "experiments/analysis/periodic/family_continuation.hpp"
+#include "experiments/analysis/periodic/orbit_manifolds.hpp"
+#include "experiments/io/table_file.hpp"
+
+namespace lgi::experiments {
+
+/// The /periodic columns; with a section, section_phi, section_theta and
+/// section_sheet are the coordinates of each orbit's point (NaN, 0 without).
+std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::vector<FamilyOrbit>& rows,
+                                          const std::optional<PhaseSection>& section);
+
+/// The manifolds of the orbit of /periodic row (family, index).
+struct RowManifolds {
+  int family = 0, index = 0;
+  OrbitManifolds m;
+};
+TableGroup manifold_group(const std::vector<RowManifolds>& all);
+
+}  // namespace lgi::experiments

@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# The data, figures and numbers of the paper's section "Periodic orbits"
+# (paper/sections/periodic.tex): the families born at the stable relative
+# equilibria of Richter's top at l = 2.2 and 3 with their stability, and a
+# Poincaré section at l = 3 through the fold pair of one family (an elliptic
+# and a hyperbolic orbit) with the manifolds of the hyperbolic one
+# (experiments/PERIODIC.md). Called by scripts/build_paper.sh; every number
+# comes from lgi runs made here.
+#
+# Usage: scripts/paper_periodic.sh --lgi PATH --data DIR --figs DIR --gen DIR --mode quick|full
+# Writes DIR(data)/periodic/*.h5, figures periodic_period_l22, periodic_period_l3 and
+# poincare_section_l3 in --figs, and --gen/periodic_numbers.tex, --gen/periodic_commands.tex.
+set -euo pipefail
+
+section=periodic help_lines='2,12p'
+source "$(dirname "$0")/paper_section.sh" "$@"
+p="$out"
+scene="$scenes/general_top_richter.toml"
+
+# ── the families at l = 2.2 and 3 ───────────────────────────────────────────
+# l = 3 needs 7 steps of 0.06 for the family of the equilibrium at h = 5.32 to pass its fold.
+# The manifolds start at 1e-3 |x0| and are integrated for `periods` periods (|lambda|^periods
+# times further out) with steps of 0.01 (sixth order: the orbits' points agree to about 1e-10).
+if [ "$mode" = quick ]; then
+  f22=(--steps 2 --h-step 0.04 --no-branch-switching --dt 0.005) f3=(--steps 7 --h-step 0.06 --no-branch-switching --dt 0.005)
+  t_end=150 points=20 periods=8
+else
+  f22=(--steps 16 --h-step 0.02) f3=(--steps 24 --h-step 0.03)
+  t_end=600 points=60 periods=10
+fi
+run periodic --scene "$scene" --l 2.2 --from-equilibria "${f22[@]}" --out "$p/l22.h5"
+run periodic --scene "$scene" --l 3 --from-equilibria "${f3[@]}" --out "$p/l3.h5"
+
+# ── the section through a fold pair at l = 3 ────────────────────────────────
+# The family with a fold: its hyperbolic orbit past the fold nearest tr P = 2.5 gives h*; the
+# elliptic orbit at h* before the fold is interpolated between its two neighbours; their first
+# crossings of Richter's section are the seeds (phi,theta,sheet) of lgi periodic at h*. The
+# section's orbits start on rings about the elliptic orbit's crossing and beside the hyperbolic one's.
+pick=$("$PY" - "$plots" "$p/l3.h5" "$p/section_seeds.csv" <<'PYEOF'
+import sys
+import h5py
+import numpy as np
+sys.path.insert(0, sys.argv[1])
+import periodic_crossings as pc
+with h5py.File(sys.argv[2], "r") as f:
+    t = {k: f["periodic"][k][()] for k in f["periodic"]}
+    J, w = pc.body_of(f["parameters"].attrs["scene_toml"])
+text = lambda a: np.array([s.decode() if isinstance(s, bytes) else s for s in a])
+event, stab = text(t["event"]), text(t["stability"])
+folds = np.flatnonzero(event == "fold")
+if not len(folds):
+    sys.exit("paper_periodic: no fold at l = 3")
+fam, k = t["family"][folds[0]], folds[0]
+rows = np.flatnonzero((t["family"] == fam) & (event == "none"))
+hyp = [r for r in rows if r > k and stab[r] == "hyperbolic"]
+ell = [r for r in rows if r < k and stab[r] == "elliptic"]
+if not hyp or len(ell) < 2:
+    sys.exit("paper_periodic: no hyperbolic orbit past the fold, or no elliptic orbits before it")
+r = min(hyp, key=lambda r: abs(t["reduced_trace"][r] - 2.5))
+h = float(t["h"][r])
+x = lambda r: np.concatenate([t["angular_momentum"][r], t["gamma"][r]])
+e = w / np.linalg.norm(w)
+a, b = next(((a, b) for a, b in zip(ell[:-1], ell[1:]) if (t["h"][a] - h) * (t["h"][b] - h) <= 0), (ell[-2], ell[-1]))
+u = (h - t["h"][a]) / (t["h"][b] - t["h"][a])
+xe, Te = (1 - u) * x(a) + u * x(b), (1 - u) * t["period"][a] + u * t["period"][b]
+seeds = [pc.crossings(x(r), float(t["period"][r]), J, w, e, True)[0], pc.crossings(xe, Te, J, w, e, True)[0]]
+with open(sys.argv[3], "w") as f:
+    f.write("phi,theta,sheet\n")
+    (ph, th, sh), (pe, te, se) = seeds
+    for d in (0.01, 0.03, 0.06, 0.1, 0.15):
+        f.write("%r,%r,%d\n" % (pe, te + d, se))
+    for d in (-0.02, 0.02, 0.005):
+        f.write("%r,%r,%d\n" % (ph + d, th, sh))
+# The figure's window: about the two orbits' crossings on the hyperbolic one's sheet.
+y = lambda ph, th, sh: th if sh > 0 else 2 * np.pi - th
+ys = [y(*seeds[0]), y(*seeds[1])] if seeds[1][2] == seeds[0][2] else [y(*seeds[0])]
+xs = [seeds[0][0], seeds[1][0]] if seeds[1][2] == seeds[0][2] else [seeds[0][0]]
+zoom = "%.3f:%.3f:%.3f:%.3f" % (min(xs) - 0.9, max(xs) + 0.9, min(ys) - 0.6, max(ys) + 0.6)
+print(repr(h), *("%r,%r,%d" % s for s in seeds), zoom)
+PYEOF
+) || die "picking the fold pair failed"
+read -r hstar seed_hyp seed_ell zoom <<< "$pick"
+run poincare --scene "$scene" --l 3 --h "$hstar" --seeds "$p/section_seeds.csv" --t-end "$t_end" --threads 2 \
+  --out "$p/section_l3.h5"
+run periodic --scene "$scene" --seeds-from-poincare "$p/section_l3.h5" --poincare-point "$seed_hyp" \
+  --poincare-point "$seed_ell" --steps 0 --dt 0.01 --manifolds "$points" --manifold-periods "$periods" \
+  --manifold-epsilon 1e-3 --out "$p/orbits_l3.h5"
+
+# ── figures and numbers ─────────────────────────────────────────────────────
+"$PY" "$plots/periodic.py" --out "$figs" "$p/l22.h5" "$p/l3.h5" || die "periodic.py failed"
+"$PY" "$plots/poincare.py" --out "$figs" --periodic "$p/orbits_l3.h5" --periodic-h-tol 1e-9 --zoom "$zoom" \
+  --dot-size 2 "$p/section_l3.h5" \
+  || die "poincare.py failed"
+"$PY" - "$plots" "$gen" "$commands" "$p/l22.h5" "$p/l3.h5" "$p/orbits_l3.h5" <<'PYEOF' || die "the periodic numbers failed"
+# periodic_numbers.tex (macros for the text) and periodic_commands.tex (the runs, verbatim).
+import sys
+import h5py
+import numpy as np
+
+plots, gen, commands, l22, l3, orbits = sys.argv[1:7]
+
+
+def table(path, group="periodic"):
+    with h5py.File(path, "r") as f:
+        return {k: f[group][k][()] for k in f[group]}
+
+
+def text(a):
+    return np.array([s.decode() if isinstance(s, bytes) else s for s in a])
+
+
+macros = {}
+for name, path in (("A", l22), ("B", l3)):
+    t = table(path)
+    first = t["index"] == 0
+    ev = text(t["event"])
+    mu = t["multipliers"].reshape(-1, 6, 2)
+    z = mu[:, :, 0] + 1j * mu[:, :, 1]
+    macros[f"Per{name}Families"] = str(len(np.unique(t["family"])))
+    macros[f"Per{name}Orbits"] = str(len(t["h"]))
+    macros[f"Per{name}Folds"] = str(int(np.sum(ev == "fold")))
+    macros[f"Per{name}Doublings"] = str(int(np.sum(ev == "period_doubling")))
+    macros[f"Per{name}FirstPeriod"] = f"{np.max(np.abs(t['period'][first] - 2 * np.pi / t['omega'][first])):.1e}"
+    macros[f"Per{name}Residual"] = f"{np.max(t['residual']):.1e}"
+    macros[f"Per{name}Product"] = f"{np.max(np.abs(np.prod(z, axis=1) - 1)):.1e}"
+o, m = table(orbits), table(orbits, "manifolds")
+hyp = int(np.flatnonzero(text(o["stability"]) != "elliptic")[0])
+macros["PerSecH"] = f"{o['h'][hyp]:.6f}"
+macros["PerSecHypT"] = f"{o['period'][hyp]:.5f}"
+macros["PerSecEllT"] = f"{o['period'][1 - hyp]:.5f}"
+macros["PerSecLambda"] = f"{m['multiplier'][0]:.4f}"
+macros["PerSecReturns"] = str(int(m["returns"][0]))
+macros["PerSecPoints"] = str(len(m["s"]))
+with open(f"{gen}/periodic_numbers.tex", "w") as f:
+    for k, v in macros.items():
+        f.write(f"\\newcommand{{\\{k}}}{{{v}}}\n")
+sys.path.insert(0, plots)
+from atlas_tables import commands_block  # the same wrapped, pasteable block as the atlas section
+open(f"{gen}/periodic_commands.tex", "w").write(commands_block(commands))
+PYEOF
