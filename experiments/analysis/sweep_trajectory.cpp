@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
+#include "experiments/analysis/cardan_invariants.hpp"
+#include "experiments/io/scene_suspension.hpp"
 #include "lie/quaternion.hpp"
 
 namespace lgi::experiments {
@@ -42,10 +45,34 @@ class SpecEvents final : public integrators::EventFunctions {
   lie::Mat3 J_inv_;
 };
 
-/// Largest invariant errors over the observed samples; crossings as rows.
-class SweepObserver final : public integrators::Observer {
+/// The spec's surfaces on a Cardan top: the same functions of the body's
+/// state (R(q), Π = J E q̇; docs/cardan.md §7), so a row's crossings mean what
+/// they mean on SO(3) × ℝ³.
+class CardanSpecEvents final : public integrators::BasicEventFunctions<system::TorusState> {
  public:
-  SweepObserver(const system::SceneInvariants& invariants, const std::vector<int>& error_slots, std::int64_t index,
+  CardanSpecEvents(const SpecEvents& body, const system::CardanTop& top) : body_(body), top_(top) {}
+  int count() const override { return body_.count(); }
+  double value(int i, double t, const system::TorusState& x) const override {
+    return body_.value(i, t, top_.body_state(x));
+  }
+  int direction(int i) const override { return body_.direction(i); }
+
+ private:
+  const SpecEvents& body_;
+  const system::CardanTop& top_;
+};
+
+/// The body's state of a sample: itself on SO(3) × ℝ³, R(q) and Π on T³ × ℝ³.
+inline const system::State& body_of(const system::State& x, const system::CardanTop*) { return x; }
+inline system::State body_of(const system::TorusState& x, const system::CardanTop* top) { return top->body_state(x); }
+
+/// Largest invariant errors over the observed samples; crossings as rows. On
+/// a Cardan top (S = TorusState) the rows hold the body's state, the errors
+/// those of CardanInvariants.
+template <class S, class Invariants>
+class SweepObserver final : public integrators::BasicObserver<S> {
+ public:
+  SweepObserver(const Invariants& invariants, const std::vector<int>& error_slots, std::int64_t index,
                 std::int64_t max_events, std::int64_t trajectory_every, std::vector<double>& events,
                 std::vector<double>& max_errors, std::vector<double>& scratch)
       : invariants_(invariants),
@@ -56,8 +83,14 @@ class SweepObserver final : public integrators::Observer {
         events_(events),
         max_(max_errors),
         errors_(scratch) {}
+  SweepObserver(const Invariants& invariants, const system::CardanTop* top, const std::vector<int>& error_slots,
+                std::int64_t index, std::int64_t max_events, std::int64_t trajectory_every, std::vector<double>& events,
+                std::vector<double>& max_errors, std::vector<double>& scratch)
+      : SweepObserver(invariants, error_slots, index, max_events, trajectory_every, events, max_errors, scratch) {
+    top_ = top;
+  }
 
-  void observe(std::int64_t step, double t, const system::State& x) override {
+  void observe(std::int64_t step, double t, const S& x) override {
     if (trajectory_every_ > 0 && step % trajectory_every_ == 0) sample(step, t, x);
     const system::InvariantValues v = invariants_.evaluate(x);
     if (!have_initial_) {
@@ -72,14 +105,14 @@ class SweepObserver final : public integrators::Observer {
       if (std::isnan(e) || e > max_[k]) max_[k] = e;
     }
   }
-  void on_event(const integrators::EventHit& hit) override {
+  void on_event(const integrators::BasicEventHit<S>& hit) override {
     ++count_;
     if (count_ > max_events_) return;
-    append(hit.event, hit.direction, hit.step, hit.t, hit.state);
+    append(hit.event, hit.direction, hit.step, hit.t, body_of(hit.state, top_));
   }
   /// A state of the thinned trajectory (trajectory_every).
-  void sample(std::int64_t step, double t, const system::State& x) {
-    append(sample_row, 0, step, t, x);
+  void sample(std::int64_t step, double t, const S& x) {
+    append(sample_row, 0, step, t, body_of(x, top_));
     ++samples_;
     last_sample_ = step;
   }
@@ -96,16 +129,20 @@ class SweepObserver final : public integrators::Observer {
                                          x.Pi.x(), x.Pi.y(), x.Pi.z(), q[0], q[1], q[2], q[3], g.x(), g.y(), g.z()};
     events_.insert(events_.end(), row, row + event_row_width);
   }
-  const system::SceneInvariants& invariants_;
+  const Invariants& invariants_;
+  const system::CardanTop* top_ = nullptr;  // on T³ × ℝ³: R(q) and Π of each sample
   std::int64_t trajectory_every_, samples_ = 0, last_sample_ = -1;
   const std::vector<int>& slots_;
   std::int64_t index_, max_events_, count_ = 0;
   std::vector<double>& events_;
   std::vector<double>& max_;
   bool have_initial_ = false;
-  system::InvariantValues initial_{};
+  decltype(std::declval<const Invariants&>().evaluate(std::declval<const S&>())) initial_{};
   std::vector<double>& errors_;  // the runner's, reused (no allocation per trajectory)
 };
+
+using BodyObserver = SweepObserver<system::State, system::SceneInvariants>;
+using CardanObserver = SweepObserver<system::TorusState, CardanInvariants>;
 
 }  // namespace
 
@@ -114,6 +151,11 @@ struct SweepRunner::Context {
   system::AnyModel model;
   system::SceneInvariants invariants;
   SpecEvents events;
+  // A Cardan scene (T³ × ℝ³, docs/cardan.md §7): its top, invariants and
+  // events; the scheme's run_cardan runs it on the one time loop.
+  std::optional<system::CardanTop> cardan;
+  std::optional<CardanInvariants> cardan_invariants;
+  std::optional<CardanSpecEvents> cardan_events;
   std::vector<int> error_slots;  // for each sweep error column, its index in invariants.error_names() (−1: none)
   std::string refusal;           // why the scheme cannot run on this model (empty: it can)
   std::vector<double> inputs;    // the inputs it was built for
@@ -123,7 +165,12 @@ struct SweepRunner::Context {
         model(system::make_model(scene)),
         invariants(scene, model),
         events(spec_events, scene.inertia.inverse()) {
-    const auto names = invariants.error_names();
+    if (scene.suspension) {
+      cardan.emplace(cardan_top(scene));
+      cardan_invariants.emplace(*cardan);
+      cardan_events.emplace(events, *cardan);
+    }
+    const auto names = cardan ? cardan_invariants->error_names() : invariants.error_names();
     for (const auto& n : error_names) {
       const auto it = std::find(names.begin(), names.end(), n);
       error_slots.push_back(it == names.end() ? -1 : static_cast<int>(it - names.begin()));
@@ -151,9 +198,12 @@ void SweepRunner::prepare(std::int64_t i) {
     context_.reset();
     context_ = std::make_unique<Context>(plan_.scene(inputs_), spec_.events, error_names_);
     context_->inputs = inputs_;
-    context_->refusal = integrators::unsupported_reason(scheme_, context_->model);
+    if (!context_->cardan)
+      context_->refusal = integrators::unsupported_reason(scheme_, context_->model);
+    else if (!scheme_.run_cardan)
+      context_->refusal = "scheme '" + scheme_.name + "' runs on SO(3) x R^3 scenes only (this scene is a Cardan top)";
     const auto isa = integrators::ensemble::sweep_isa();
-    if (isa && context_->refusal.empty() && !scheme_.properties.adaptive && config_.dt > 0.0)
+    if (isa && context_->refusal.empty() && !context_->cardan && !scheme_.properties.adaptive && config_.dt > 0.0)
       context_->ensemble = integrators::ensemble::EnsembleStepper::make(scheme_.name, context_->model, *isa);
   }
 }
@@ -200,15 +250,18 @@ bool SweepRunner::begin_row(std::int64_t i, TrajectoryRow& row, system::State& x
 namespace {
 
 /// The rest of a row once its run ended: the final state, the counts and the status.
-void finish_row(const SweepSpec& spec, const integrators::RunStats& stats, const system::State& x,
-                SweepObserver& observer, std::size_t events_before, const std::vector<double>& events,
-                TrajectoryRow& row) {
+template <class S, class Invariants>
+void finish_row(const SweepSpec& spec, const integrators::RunStats& stats, const S& final_state,
+                SweepObserver<S, Invariants>& observer, const system::CardanTop* top, std::size_t events_before,
+                const std::vector<double>& events, TrajectoryRow& row) {
   row.interrupted = stats.interrupted;
   row.steps = stats.steps;
   row.rejected_steps = stats.work.rejected_steps;
   row.t_final = stats.t_final;
   // The thinned trajectory ends with the final state.
-  if (spec.trajectory_every > 0 && observer.last_sample() != stats.steps) observer.sample(stats.steps, stats.t_final, x);
+  if (spec.trajectory_every > 0 && observer.last_sample() != stats.steps)
+    observer.sample(stats.steps, stats.t_final, final_state);
+  const system::State x = body_of(final_state, top);
   row.sample_count = observer.samples();
   row.event_count = static_cast<std::int64_t>((events.size() - events_before) / event_row_width) - row.sample_count;
   std::copy(x.Pi.data(), x.Pi.data() + 3, row.angular_momentum.begin());
@@ -231,15 +284,33 @@ void SweepRunner::run_timed(std::int64_t i, std::vector<double>& events, const s
                             TrajectoryRow& row) {
   system::State x;
   if (!begin_row(i, row, x)) return;
+  if (context_->cardan) return run_cardan(i, events, stop, row);
   const std::size_t events_before = events.size();
-  SweepObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, spec_.trajectory_every,
+  BodyObserver observer(context_->invariants, context_->error_slots, i, spec_.max_events, spec_.trajectory_every,
                          events, row.max_errors, scratch_);
   integrators::RunConfig cfg = config_;
   cfg.stop = stop;
   cfg.cpu_clock = false;  // timed by run() and the chunk (sweep_trajectory.hpp)
   if (!spec_.events.empty()) cfg.events = &context_->events;
   const integrators::RunStats stats = scheme_.run(context_->model, x, cfg, observer);
-  finish_row(spec_, stats, x, observer, events_before, events, row);
+  finish_row(spec_, stats, x, observer, nullptr, events_before, events, row);
+}
+
+/// run_timed() on a Cardan scene: from the scene's state on T³ × ℝ³ (its
+/// body, suspension and term keys varied), by the scheme's run_cardan.
+void SweepRunner::run_cardan(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop,
+                             TrajectoryRow& row) {
+  const Context& c = *context_;
+  const std::size_t events_before = events.size();
+  CardanObserver observer(*c.cardan_invariants, &*c.cardan, c.error_slots, i, spec_.max_events,
+                          spec_.trajectory_every, events, row.max_errors, scratch_);
+  auto cfg = integrators::run_config_with<system::TorusState>(config_);
+  cfg.stop = stop;
+  cfg.cpu_clock = false;
+  if (!spec_.events.empty()) cfg.events = &*c.cardan_events;
+  system::TorusState x = c.scene.cardan_initial;
+  const integrators::RunStats stats = scheme_.run_cardan(*c.cardan, x, cfg, observer);
+  finish_row(spec_, stats, x, observer, &*c.cardan, events_before, events, row);
 }
 
 int SweepRunner::run_next(std::int64_t i, std::int64_t limit, std::vector<double>& events,
@@ -273,7 +344,7 @@ int SweepRunner::run_ensemble(std::int64_t i, std::int64_t limit, std::vector<do
   int rows = 0;
   std::size_t used = 0;
   int lane_of_row[integrators::ensemble::max_lanes];
-  std::optional<SweepObserver> observers[integrators::ensemble::max_lanes];
+  std::optional<BodyObserver> observers[integrators::ensemble::max_lanes];
   integrators::Observer* observer_of_lane[integrators::ensemble::max_lanes];
   auto add_lane = [&](std::int64_t index, TrajectoryRow& row, const system::State& initial) {
     std::vector<double>& buffer = lane_events_[used];
@@ -305,7 +376,7 @@ int SweepRunner::run_ensemble(std::int64_t i, std::int64_t limit, std::vector<do
     const int lane = lane_of_row[r];
     if (lane < 0) continue;
     const auto l = static_cast<std::size_t>(lane);
-    finish_row(spec_, stats_[l], states_[l], *observers[l], 0, lane_events_[l], rows_[static_cast<std::size_t>(r)]);
+    finish_row(spec_, stats_[l], states_[l], *observers[l], nullptr, 0, lane_events_[l], rows_[static_cast<std::size_t>(r)]);
     events.insert(events.end(), lane_events_[l].begin(), lane_events_[l].end());
   }
   return rows;

@@ -1,6 +1,7 @@
 #pragma once
 // One trajectory of a sweep, run through the registry and the one time loop
-// (integrators/stepper_loop.hpp), with an observer that keeps the largest
+// (integrators/stepper_loop.hpp) on the scene's state space (SO(3) × ℝ³, or
+// T³ × ℝ³ for a Cardan scene, docs/cardan.md §7), with an observer that keeps the largest
 // invariant errors and the located crossings. Fills one row of /sweep and
 // its /events rows (experiments/SWEEPS.md); writes no file.
 #include <array>
@@ -71,6 +72,7 @@ class SweepRunner {
   void prepare(std::int64_t i);
   bool begin_row(std::int64_t i, TrajectoryRow& row, system::State& x);
   void run_timed(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
+  void run_cardan(std::int64_t i, std::vector<double>& events, const std::atomic<bool>* stop, TrajectoryRow& row);
   int run_ensemble(std::int64_t i, std::int64_t limit, std::vector<double>& events, const std::atomic<bool>* stop);
   const SweepSpec& spec_;
   const SweepPlan& plan_;

@@ -22,6 +22,7 @@
 
 #include "experiments/analysis/frequency/cardan_series.hpp"
 #include "experiments/analysis/frequency/observable_frequencies.hpp"
+#include "experiments/cli/cardan_simulation.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
@@ -145,7 +146,7 @@ void print_records(const std::vector<fq::ObservableFrequencies>& records) {
 
 /// The sampling of a Cardan run (fixed-step T³ schemes only; the flags named in the refusals).
 fq::SamplingSettings cardan_sampling(const FrequenciesOptions& o, const system::Scene& scene,
-                                     const integrators::torus::TorusSchemeInfo& scheme) {
+                                     const integrators::SchemeInfo& scheme) {
   if (scheme.properties.adaptive)
     throw UsageError("--scheme: " + scheme.name + " is adaptive; lgi frequencies samples a Cardan top with a "
                      "fixed-step scheme (cardan-rk4, cardan-midpoint, cardan-dg)");
@@ -189,10 +190,7 @@ struct Analysis {
 Analysis analyse_cardan(const FrequenciesOptions& o, const system::Scene& scene, const std::vector<std::string>& names,
                         int threads) {
   const std::string name = o.scheme.empty() ? "cardan-rk4" : o.scheme;
-  const auto* scheme = integrators::torus::find_torus_scheme(name);
-  if (!scheme)
-    throw UsageError("--scheme: " + name + " runs on SO(3) x R^3 scenes only (scene " + scene.file +
-                     " is a Cardan top, state on T^3 x R^3): use cardan-rk4, cardan-midpoint or cardan-dg");
+  const integrators::SchemeInfo* scheme = &scheme_for_scene(scene, name, "--scheme");
   Analysis a;
   a.scheme = scheme->name;
   a.s = cardan_sampling(o, scene, *scheme);

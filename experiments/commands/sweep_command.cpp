@@ -14,6 +14,7 @@
 #include <string>
 
 #include "experiments/analysis/sweep_trajectory.hpp"
+#include "experiments/cli/cardan_simulation.hpp"
 #include "experiments/cli/thread_count.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/sweep_request.hpp"
@@ -65,12 +66,27 @@ integrators::RunConfig sweep_run_config(const SweepSpec& spec, const system::Sce
   return cfg;
 }
 
-const integrators::SchemeInfo& sweep_scheme(const SweepSpec& spec) {
+/// The spec's scheme for the scene's state space (a cardan-* scheme on a Cardan scene).
+const integrators::SchemeInfo& sweep_scheme(const SweepSpec& spec, const system::Scene& scene) {
   try {
-    return scheme_by_name(spec.scheme, "scheme");
+    return scheme_for_scene(scene, spec.scheme, "scheme");
   } catch (const UsageError& e) {
     throw InputError(spec.file + ": " + e.what());
   }
+}
+
+/// A Cardan scene's initial state is on T³ × ℝ³ (its [initial] cardan_angles
+/// and cardan_rates): the SO(3) initial keys and the (ℓ, h) level sets do not
+/// apply to it (docs/cardan.md §7).
+void check_cardan_spec(const SweepSpec& spec, const system::Scene& scene) {
+  if (!is_cardan_scene(scene)) return;
+  if (spec.level_set)
+    throw InputError(spec.file + ": level_set: draws SO(3) states; the scene " + scene.file +
+                     " is a Cardan top (state on T^3 x R^3): vary its suspension, body or term keys");
+  for (const auto& v : spec.vary)
+    if (v.initial_state())
+      throw InputError(spec.file + ": vary: key \"initial." + v.name + "\" sets an SO(3) state; the scene " +
+                       scene.file + " is a Cardan top (state on T^3 x R^3): vary its suspension, body or term keys");
 }
 
 /// --simd: the instruction set of the ensemble path (auto: the widest this
@@ -150,21 +166,23 @@ int run_sweep(const SweepOptions& o) {
   select_simd(o.simd);
   const SweepSpec spec = read_sweep_spec(o.spec);
   const system::Scene scene = read_scene(spec.scene_path);
-  refuse_cardan_scene(scene, "sweep");
-  const integrators::SchemeInfo& scheme = sweep_scheme(spec);
+  check_cardan_spec(spec, scene);
+  const integrators::SchemeInfo& scheme = sweep_scheme(spec, scene);
   const integrators::RunConfig cfg = sweep_run_config(spec, scene, scheme);
   if (!spec.events.empty() && !scheme.locates_events)
     throw InputError(spec.file + ": event: " + scheme.name +
                      " does not locate events (the baselines keep their own loop); use a Lie-group scheme");
   const system::AnyModel model = system::make_model(scene);
-  if (const std::string why = integrators::unsupported_reason(scheme, model); !why.empty())
+  if (const std::string why = is_cardan_scene(scene) ? "" : integrators::unsupported_reason(scheme, model); !why.empty())
     throw InputError(spec.file + ": scheme: " + why + "; the scene " + scene.file + " is not one");
   const SweepPlan plan(spec, scene);
 
   SweepLayout layout;
   layout.count = spec.count();
   layout.inputs = plan.input_columns();
-  layout.error_names = system::SceneInvariants(scene, model).error_names();
+  // A Cardan sweep's columns: H, and p1 (NaN in rows where it is no integral).
+  layout.error_names = is_cardan_scene(scene) ? std::vector<std::string>{"energy", "cardan_momentum_1"}
+                                              : system::SceneInvariants(scene, model).error_names();
   for (const auto& e : spec.events) layout.event_names.push_back(e.name);
   layout.trajectories = spec.trajectory_every > 0;
 

@@ -84,3 +84,64 @@ def test_a_scheme_of_the_other_state_space_is_refused(tmp_path):
         assert r.returncode == 2, (args, r.stderr)
         assert len(r.stderr.strip().splitlines()) == 1, r.stderr
         assert "SO(3) x R^3" in r.stderr and "T^3 x R^3" in r.stderr, r.stderr
+
+
+def write_cardan_spec(tmp_path, extra=""):
+    spec = tmp_path / "cardan_tilt.toml"
+    spec.write_text(f'''name = "Cardan tilt sweep"
+scene = "{os.path.join(SCENES, 'cardan_lagrange_horizontal.toml')}"
+scheme = "cardan-rk4"
+dt = 2.0e-3
+t_end = 0.5
+monitor_every = 5
+
+[[vary]]
+key = "suspension.tilt"
+values = [0.0, 0.4, 1.5707963267948966]
+
+[[event]]
+quantity = "gamma"
+component = 3
+value = 0.5
+name = "gamma3"
+{extra}''')
+    return str(spec)
+
+
+def test_sweep_on_a_cardan_scene(tmp_path):
+    spec = write_cardan_spec(tmp_path)
+    outs = []
+    for threads in ("1", "2"):
+        out = str(tmp_path / f"sweep{threads}.h5")
+        r = lgi("sweep", "--spec", spec, "--threads", threads, "--quiet", "--out", out)
+        assert r.returncode == 0, r.stderr
+        outs.append(out)
+    with h5py.File(outs[0], "r") as f, h5py.File(outs[1], "r") as g:
+        s = f["sweep"]
+        assert list(s["status"][()]) == [0, 0, 0]
+        assert list(s["steps"][()]) == [250, 250, 250]
+        # H is kept to the scheme's accuracy; p1 is an integral only with the outer axis vertical (tilt 0).
+        assert np.all(s["max_energy_error"][()] < 1e-6)
+        p1 = s["max_cardan_momentum_1_error"][()]
+        assert p1[0] < 1e-12 and np.isnan(p1[1]) and np.isnan(p1[2])
+        for column in ("angular_momentum", "orientation", "gamma", "max_energy_error"):
+            assert np.array_equal(s[column][()], g["sweep"][column][()], equal_nan=True)
+        assert np.array_equal(f["events/t"][()], g["events/t"][()])
+        assert np.all(np.abs(f["events/gamma"][()][:, 2] - 0.5) < 1e-9)
+        final_pi = s["angular_momentum"][()][2]
+    # Row 2 has the scene's own tilt: its final state is that of lgi simulate on the scene.
+    sim = str(tmp_path / "sim.h5")
+    r = lgi("simulate", "--scene", os.path.join(SCENES, "cardan_lagrange_horizontal.toml"), "--scheme", "cardan-rk4",
+            "--dt", "2e-3", "--t-end", "0.5", "--out", sim)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(sim, "r") as f:
+        assert np.array_equal(f["particles/body/angular_momentum_body/value"][()][-1], final_pi)
+
+
+def test_sweep_on_a_cardan_scene_refuses_so3_state_keys(tmp_path):
+    for extra, word in (('[[vary]]\nkey = "initial.angular_momentum"\nvalues = [[0.0, 0.0, 1.0]]\n', "initial.angular_momentum"),
+                        ('[level_set]\nh = 1.0\nl = 0.5\n', "level_set")):
+        r = lgi("sweep", "--spec", write_cardan_spec(tmp_path, extra), "--out", str(tmp_path / "x.h5"))
+        assert r.returncode == 2, r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1 and word in r.stderr and "T^3 x R^3" in r.stderr, r.stderr
+        assert not os.path.exists(tmp_path / "x.h5") and not os.path.exists(tmp_path / "x.h5.partial")

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/run_config.hpp"
+
 namespace lgi::experiments::frequency {
 namespace {
 
 /// Appends the requested components of each sampled state: q, p, cos q, sin q (name index / 3).
-class CardanSeriesObserver final : public integrators::torus::TorusObserver {
+class CardanSeriesObserver final : public integrators::TorusObserver {
  public:
   CardanSeriesObserver(const std::vector<int>& which, std::size_t expected) : which_(which), series_(which.size()) {
     for (auto& s : series_) s.reserve(expected);
@@ -40,7 +42,7 @@ const std::vector<std::string>& cardan_observable_names() {
   return names;
 }
 
-SampledRun sample_cardan_observables(const system::CardanTop& top, const integrators::torus::TorusSchemeInfo& scheme,
+SampledRun sample_cardan_observables(const system::CardanTop& top, const integrators::SchemeInfo& scheme,
                                      const SamplingSettings& settings, const system::TorusState& x0,
                                      const std::vector<std::string>& names, const std::atomic<bool>* stop) {
   const auto& all = cardan_observable_names();
@@ -61,7 +63,7 @@ SampledRun sample_cardan_observables(const system::CardanTop& top, const integra
   if (intervals < 15 || intervals > 100'000'000)
     throw std::invalid_argument("the run holds " + std::to_string(intervals + 1) +
                                 " output times; frequency analysis needs 16 to 1e8");
-  integrators::RunConfig cfg;
+  integrators::TorusRunConfig cfg;
   cfg.t0 = 0.0;
   cfg.dt = D / every;  // so that the grid lands on every multiple of D
   cfg.t_end = static_cast<double>(intervals) * D;
@@ -71,7 +73,7 @@ SampledRun sample_cardan_observables(const system::CardanTop& top, const integra
   system::TorusState x = x0;
   SampledRun run;
   run.output_dt = D;
-  run.stats = scheme.run(top, x, cfg, observer);
+  run.stats = scheme.run_cardan(top, x, cfg, observer);
   run.series = observer.take();
   if (run.stats.ok && !run.series.empty() && run.series[0].size() != intervals + 1) {
     run.stats.ok = false;

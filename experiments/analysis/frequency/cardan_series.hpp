@@ -8,7 +8,7 @@
 
 #include "experiments/analysis/frequency/observable_series.hpp"
 #include "integrators/system/cardan.hpp"
-#include "integrators/torus/torus_registry.hpp"
+#include "integrators/registry.hpp"
 
 namespace lgi::experiments::frequency {
 
@@ -16,7 +16,7 @@ namespace lgi::experiments::frequency {
 /// cardan_observable_names() at every multiple of D. Throws std::invalid_argument for an adaptive
 /// scheme, a D that is not a whole multiple of dt, fewer than 16 or more than 1e8 samples, or an
 /// unknown name. A run that fails (stats.ok false) returns what it sampled.
-SampledRun sample_cardan_observables(const system::CardanTop& top, const integrators::torus::TorusSchemeInfo& scheme,
+SampledRun sample_cardan_observables(const system::CardanTop& top, const integrators::SchemeInfo& scheme,
                                      const SamplingSettings& settings, const system::TorusState& x0,
                                      const std::vector<std::string>& names, const std::atomic<bool>* stop);
 
