@@ -17,6 +17,7 @@
 #include <string>
 
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
+#include "experiments/commands/periodic/critical_seeds.hpp"
 #include "experiments/commands/periodic/periodic_seeds.hpp"
 #include "experiments/commands/periodic/periodic_tables.hpp"
 #include "experiments/commands/all_commands.hpp"
@@ -32,7 +33,7 @@ namespace lgi::experiments {
 namespace {
 
 struct PeriodicOptions {
-  std::string scene, out, seed_file, h_range, l_range, poincare, poincare_rows, continue_in = "h";
+  std::string scene, out, seed_file, critical, h_range, l_range, poincare, poincare_rows, continue_in = "h";
   std::vector<std::string> poincare_points;
   std::optional<double> l;
   bool from_equilibria = false, no_events = false, no_branch_switching = false;
@@ -47,8 +48,8 @@ void check_flags(const PeriodicOptions& o) {
   const bool poincare = !o.poincare.empty();
   if (!poincare && (!o.l || !std::isfinite(*o.l))) throw UsageError("--l: must be a finite number");
   if (o.l && !std::isfinite(*o.l)) throw UsageError("--l: must be a finite number");
-  if (int(o.from_equilibria) + int(!o.seed_file.empty()) + int(poincare) != 1)
-    throw UsageError("--from-equilibria / --seed-file / --seeds-from-poincare: give exactly one of them");
+  if (int(o.from_equilibria) + int(!o.seed_file.empty()) + int(poincare) + int(!o.critical.empty()) != 1)
+    throw UsageError("--from-equilibria / --seed-file / --seeds-from-poincare / --from-critical: give exactly one of them");
   if (poincare == (o.poincare_rows.empty() && o.poincare_points.empty()))
     throw UsageError(poincare ? "--seeds-from-poincare: give --poincare-rows or --poincare-point"
                               : "--poincare-rows / --poincare-point: only with --seeds-from-poincare");
@@ -152,6 +153,8 @@ int run_periodic(const PeriodicOptions& o) {
     std::vector<SectionSeed> seeds;
     for (const auto& [x, T] : read_seeds(o.seed_file)) seeds.push_back({x, T, "", ""});
     rows = seed_families(body, seeds, l, direction, s, failures);
+  } else if (!o.critical.empty()) {
+    rows = seed_families(body, critical_seeds(body, scene.file, l, o.critical, o.dt), l, direction, s, failures);
   } else {
     const PoincareFile f = read_poincare_file(o.poincare);
     if (o.l && std::abs(*o.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
@@ -180,7 +183,7 @@ int run_periodic(const PeriodicOptions& o) {
                     {"continue_in", o.continue_in},
                     {"phase_condition", o.poincare.empty() ? "hyperplane through the guess, normal to the flow"
                                                            : "on the section of the poincare file"},
-                    {"seeds_from_poincare", o.poincare},
+                    {"seeds_from_poincare", o.poincare}, {"from_critical", o.critical},
                     {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
                     {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
                     {"failures", failures_text(failures)}},
@@ -199,6 +202,7 @@ int run_periodic(const PeriodicOptions& o) {
   if (degenerate)
     std::printf("note: %d orbit(s) degenerate: the Newton system is rank-deficient and all multipliers are at 1; "
                 "they lie on resonant tori (an integrable top) and are not isolated\n", degenerate);
+  if (const std::string k = appelrot_summary(body, rows); !k.empty()) std::printf("%s\n", k.c_str());
   for (const RowManifolds& m : manifolds)
     std::printf("manifolds of family=%d: multiplier %.9g, %d crossings a period, %zu section points\n", m.family,
                 m.m.lambda, m.m.returns, m.m.points.size());
@@ -219,6 +223,8 @@ Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--l", o->l, "The momentum l = Pi.Gamma (with --seeds-from-poincare: the file's, may be left out)");
   sub->add_flag("--from-equilibria", o->from_equilibria, "The Lyapunov families of every linearly stable equilibrium");
   sub->add_option("--seed-file", o->seed_file, "Seeds, one per line: Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T");
+  sub->add_option("--from-critical", o->critical,
+                  "H1,H2,...: a Kovalevskaya top's critical periodic orbits at these energies (one per critical value)");
   sub->add_option("--seeds-from-poincare", o->poincare,
                   "A file of lgi poincare: seeds on its section at its (l, h) (--poincare-rows, --poincare-point)");
   sub->add_option("--poincare-rows", o->poincare_rows, "Rows of its /events (from 0), comma-separated");

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "experiments/analysis/periodic/kovalevskaya_orbits.hpp"
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "python/src/bindings.hpp"
@@ -63,6 +64,21 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
   return d;
 }
 
+/// The Kovalevskaya columns of /periodic (k, appelrot_family, appelrot_distance,
+/// critical_rank_gap; NaN and -1 on other tops), added to d.
+void add_appelrot_columns(py::dict& d, const ex::HeavyTopBody& body, const std::vector<ex::FamilyOrbit>& rows) {
+  const std::size_t n = rows.size();
+  std::vector<double> k(n), distance(n), gap(n);
+  std::vector<std::int64_t> family(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto a = ex::appelrot_check(body, rows[i].orbit.x0, rows[i].orbit.l, rows[i].orbit.h);
+    k[i] = a.k, family[i] = a.family, distance[i] = a.distance, gap[i] = a.rank_gap;
+  }
+  const auto N = static_cast<py::ssize_t>(n);
+  d["k"] = to_numpy(std::move(k), {N}), d["appelrot_family"] = to_numpy(std::move(family), {N});
+  d["appelrot_distance"] = to_numpy(std::move(distance), {N}), d["critical_rank_gap"] = to_numpy(std::move(gap), {N});
+}
+
 py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_momentum, const py::object& gamma,
                         double period, std::optional<double> h, std::optional<double> l, double dt) {
   const auto scene = scene_argument(scene_arg);
@@ -82,6 +98,7 @@ py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_m
   }
   r.omega = 2.0 * std::acos(-1.0) / r.orbit.period;
   py::dict d = family_columns({r});
+  add_appelrot_columns(d, body, {r});
   d["converged"] = r.orbit.converged;
   d["iterations"] = r.orbit.iterations;
   std::vector<double> m(r.orbit.monodromy.data(), r.orbit.monodromy.data() + 36);
@@ -123,6 +140,7 @@ py::dict continue_family(const py::object& scene_arg, double l, const py::object
     rows = ex::continue_family(body, x, T, ex::euler_poisson_invariants(body, x).value(0), l, 1.0, 0, s, failures);
   }
   py::dict d = family_columns(rows);
+  add_appelrot_columns(d, body, rows);
   d["failures"] = failures;
   return d;
 }

@@ -2,7 +2,8 @@
 """The (l, h) bifurcation diagram of a heavy top from `lgi bifurcation` files
 (experiments/EQUILIBRIA.md: /equilibria, every branch of relative equilibria).
 
-Usage: bifurcation.py --out DIR [--l-range A:B] [--h-range A:B] [--k-range A:B] [--l-nonneg] BRANCHES.h5 ...
+Usage: bifurcation.py --out DIR [--l-range A:B] [--h-range A:B] [--k-range A:B] [--l-nonneg]
+                      [--periodic P.h5 ...] BRANCHES.h5 ...
 
 Writes DIR/bifurcation_<scene stem>.{pdf,png}: h against l along every branch,
 coloured by Grammel's stability class (docs/atlas.md §3), folds (the cusps,
@@ -29,13 +30,17 @@ the realised column existed gets the older drawing: the arcs inside the
 attained range (solid where they bound it, dotted inside). --l-range and
 --l-nonneg choose the panels (values of l), --h-range and --k-range the window
 (default: from the least energy to 1.5 above the highest relative equilibrium,
-and the realised arcs' k there).
+and the realised arcs' k there). --periodic P.h5 (repeatable; files of `lgi
+periodic` on the same top) draws their orbits at each panel's l into it, one
+line per family through its orbits' (h/(J3 c), k), coloured by stability
+(appelrot_orbits.py): the critical orbits lie on the realised arcs.
 """
 import os
 import tomllib
 
 import numpy as np
 
+import appelrot_orbits
 import lgi_plot_common as c
 
 CLASSES = {0: ("linearly stable", "tab:blue"), 1: ("singly unstable", "tab:red"),
@@ -270,6 +275,7 @@ def appelrot_panel(ax, l, cur, eq, rng, regions, args):
             ax.plot(h, np.where(where == 1, k, np.nan), color=colour, lw=0.9, ls=":")
     e = eq["l"] == l
     ax.plot(eq["h_scaled"][e], eq["k"][e], "ko", ms=3, label="relative equilibria", zorder=4)
+    appelrot_orbits.draw(ax, l, getattr(args, "appelrot_scale", 1.0), getattr(args, "periodic_tables", []))
     if args.h_range:
         h0, h1 = args.h_range
     elif np.any(r):  # from the least energy to 1.5 above the highest relative equilibrium: the critical arcs
@@ -304,6 +310,7 @@ def appelrot_figure(f, stem, out, args):
     rng = {k: np.asarray(f["appelrot_range"][k][()]) for k in f["appelrot_range"]}
     regions = ({k: np.asarray(f["appelrot_regions"][k][()]) for k in f["appelrot_regions"]}
                if "appelrot_regions" in f else None)
+    args.appelrot_scale = float(c.attrs(f["appelrot"]).get("J3", 1.0)) * float(c.attrs(f["appelrot"]).get("c", 1.0))
     ls = np.unique(cur["l"])
     if args.l_nonneg:
         ls = ls[ls >= 0]
@@ -325,8 +332,12 @@ def appelrot_figure(f, stem, out, args):
     if "realised" in cur:
         handles.append(c.plt.Line2D([], [], ls="none", marker="s", mfc="white", mec="0.5", ms=7))
         labels.append("A, B, ...: chambers between the realised arcs; A: n, n Liouville tori over each value")
+    for handle, label in appelrot_orbits.legend_entries(getattr(args, "periodic_tables", [])):
+        handles.append(handle)
+        labels.append(label)
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=6.5, bbox_to_anchor=(0.5, -0.02))
-    fig.tight_layout(rect=(0, 0.1 if rows == 1 else 0.06, 1, 1))
+    extra = max(0, -(-len(labels) // 3) - 3)  # room for a legend longer than three rows
+    fig.tight_layout(rect=(0, (0.1 if rows == 1 else 0.06) + 0.06 * extra / rows, 1, 1))
     c.save(fig, out, f"appelrot_{stem}")
 
 
@@ -368,7 +379,10 @@ def bifurcation_figure(t, J, w, name, labels, args, stem):
 
 def main():
     p = c.add_plane_options(c.parser(__doc__.split("\n\n")[0]), k_range=True)
+    p.add_argument("--periodic", action="append", metavar="FILE",
+                   help="an lgi periodic file of the same top: its orbits drawn into the (h, k) diagram (repeatable)")
     args = p.parse_args()
+    args.periodic_tables = appelrot_orbits.load(args.periodic)
     if not args.files:
         c.die("give at least one file written by lgi bifurcation")
     for path in args.files:

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "experiments/commands/periodic/critical_seeds.hpp"
+
 namespace lgi::experiments {
 
 std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::vector<FamilyOrbit>& rows,
@@ -29,6 +31,7 @@ std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::v
     const SectionPoint p = section ? section_coordinates(body, *section, o.x0) : SectionPoint{NAN, NAN, 0};
     c[20].real.push_back(p.phi), c[21].real.push_back(p.theta), c[22].whole.push_back(p.sheet);
   }
+  append_appelrot_columns(body, rows, c);  // k, appelrot_family, appelrot_distance, critical_rank_gap
   return c;
 }
 
