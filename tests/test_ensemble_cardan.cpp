@@ -1,5 +1,6 @@
 // The Cardan top's tangent flow in lanes (integrators/ensemble/cardan_tangent_ensemble.hpp,
-// docs/ensemble.md, "Cardan tangent flows"): the written-out field is CardanTop::field and
+// docs/ensemble.md, "Cardan tangent flows"): the lanes' cos and sin (lane_sincos.hpp) are
+// libm's to 3e-16 absolute; the written-out field is CardanTop::field and
 // its dual part the dual-number tangent of torus_tangent_flow.hpp to round-off; the scalar
 // step follows torus_tangent_step to round-off; every lane is the scalar step bit for bit
 // with one and six vectors on every instruction set this CPU has, and the indicators'
@@ -17,6 +18,7 @@
 #include "experiments/io/scene_suspension.hpp"
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 #include "integrators/ensemble/cardan_tangent_kernel.hpp"
+#include "integrators/ensemble/lane_sincos.hpp"
 #include "integrators/torus/torus_tangent_flow.hpp"
 
 using namespace lgi;
@@ -105,6 +107,33 @@ bool same_indicators(const integrators::ChaosIndicators& a, const integrators::C
 }
 
 }  // namespace
+
+TEST_CASE("the lanes' cos and sin are libm's to 3e-16 absolute", "[ensemble][cardan]") {
+  std::mt19937_64 gen(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst = 0.0, worst_small = 0.0;
+  for (int k = 0; k < 200000; ++k) {
+    const double scale = k % 4 == 0 ? 0.8 : k % 4 == 1 ? 10.0 : k % 4 == 2 ? 1e4 : 2e6;
+    const double x = scale * u(gen);
+    double c = 0.0, s = 0.0;
+    ensemble::cos_sin_poly(x, c, s);
+    const double e = std::max(std::abs(c - std::cos(x)), std::abs(s - std::sin(x)));
+    worst = std::max(worst, e / (3e-16 + std::abs(x) * 0x1p-75));
+    if (std::abs(x) < 0.78) worst_small = std::max(worst_small, std::abs(s - std::sin(x)) / (0x1p-52 * std::abs(std::sin(x))));
+  }
+  CHECK(worst <= 1.0);
+  CHECK(worst_small <= 1.0);  // within one ulp on [−π/4, π/4]
+  // Multiples of π/2 near the reduction's edges, and what goes to libm.
+  for (const double x : {0.0, -0.0, 1.5707963267948966, 3.141592653589793, 4.71238898038469, 1.5e6, -1.6e6, 1e300}) {
+    double c = 0.0, s = 0.0;
+    ensemble::cos_sin_poly(x, c, s);
+    CHECK(std::abs(c - std::cos(x)) <= 3e-16 + std::abs(x) * 0x1p-75);
+    CHECK(std::abs(s - std::sin(x)) <= 3e-16 + std::abs(x) * 0x1p-75);
+  }
+  double c = 0.0, s = 0.0;
+  ensemble::cos_sin_poly(std::nan(""), c, s);
+  CHECK((std::isnan(c) && std::isnan(s)));
+}
 
 TEST_CASE("the written-out Cardan field and its dual part are CardanTop's to round-off", "[ensemble][cardan]") {
   for (const char* name : cardan_scenes) {

@@ -7,10 +7,11 @@
 // The lane counterpart of integrators/system/dual.hpp (N = 1 there). Every
 // operation is a fixed sequence of T operations, so on Lanes each lane is the
 // double evaluation bit for bit (docs/ensemble.md, "Cardan tangent flows").
-// cos and sin of the value come from libm, lane by lane (cos_sin below).
+// cos and sin of the value come from lane_sincos.hpp (cos_sin below).
 #include <cmath>
 #include <cstddef>
 
+#include "integrators/ensemble/lane_sincos.hpp"
 #include "integrators/ensemble/lanes.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -82,13 +83,11 @@ inline DualN<T, N> reciprocal(const DualN<T, N>& x) {
   return r;
 }
 
-/// cos x and sin x of a lane number: libm's, lane by lane (lanes.hpp).
-inline void cos_sin(double x, double& c, double& s) { cos_sin_unless(false, x, c, s); }
+/// cos x and sin x of a lane number: lane_sincos.hpp's, the same operations on double and in lanes.
+inline void cos_sin(double x, double& c, double& s) { cos_sin_poly(x, c, s); }
 template <class B, int K>
 inline void cos_sin(const Lanes<B, K>& x, Lanes<B, K>& c, Lanes<B, K>& s) {
-  LaneMask<B, K> none;
-  for (int k = 0; k < K; ++k) none.b[k] = typename B::batch_bool_type(false);
-  cos_sin_unless(none, x, c, s);
+  cos_sin_poly(x, c, s);
 }
 
 /// cos and sin of a dual: (cos a, −sin a · b) and (sin a, cos a · b).
