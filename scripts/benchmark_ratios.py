@@ -30,7 +30,8 @@ the cheapest Lie-group scheme and the cheapest baseline reach the target error,
 log-log interpolated along each curve as in the paper's "cost at equal error"
 table (scripts/plots/cost_table.py), and their ratio.
 
-The tangent flow in SIMD lanes (bench_tangent_lanes.cpp, docs/ensemble.md): the chaos
+The tangent flow in SIMD lanes (bench_tangent_lanes.cpp; the Cardan top's in
+bench_cardan_tangent_lanes.cpp, tangent/cardan_*; docs/ensemble.md): the chaos
 indicators' loop per trajectory, in the lanes of each instruction set over the scalar loop
 (trajectories per second per core), and that speed-up as a fraction of the instruction set's
 vector ceiling (its packed peak over the scalar peak, from limits/).
@@ -65,8 +66,10 @@ def vector_peak_line(limits):
 
 
 def tangent_lines(tangents, limits):
-    """One line per tangent/<scene>/<loop>/<isa> benchmark (bench_tangent_lanes.cpp): trajectories
-    per second, the speed-up over .../scalar (the scalar loop, scalar_tangent_step) and, where
+    """One line per tangent/<scene>/<loop>/<isa> benchmark (bench_tangent_lanes.cpp,
+    bench_cardan_tangent_lanes.cpp): trajectories per second, the speed-up over .../scalar (the
+    scalar loop, scalar_tangent_step or scalar_cardan_tangent_step; .../eigen and .../torus are the
+    Eigen forms, no ceiling) and, where
     limits/ measured it, the fraction of that instruction set's vector ceiling (its packed peak over
     the scalar peak, vector_peak_line). Bars (issue 52): >= 3x on AVX-512, >= 0.7 of the ceiling on AVX2."""
     scalar = limits.get("limits/scalar_peak", {}).get("scalar_flops_per_ns")
@@ -78,7 +81,7 @@ def tangent_lines(tangents, limits):
         ratio = rate / tangents[base + "/scalar"]
         line = f"# {name}: {rate:.0f} trajectories/s, {ratio:.2f} x the scalar loop"
         peak = limits.get("limits/vector_peak/" + isa, {}).get("lane_flops_per_ns")
-        if scalar and peak and isa != "eigen":
+        if scalar and peak and isa not in ("eigen", "torus"):
             ceiling = peak / scalar
             line += f", {ratio / ceiling:.2f} of the {isa} ceiling ({ceiling:.2f} x)"
         if isa == "avx512":

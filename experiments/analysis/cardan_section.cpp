@@ -10,6 +10,7 @@
 #include "experiments/errors/exit_status.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -173,15 +174,47 @@ bool draw_cardan_level_point(const system::CardanTop& top, double l, double h, s
   return false;
 }
 
-void cardan_orbit_indicators(const system::CardanTop& top, const TorusState& x0, double t_end, double dt,
-                             std::uint64_t seed, std::int64_t index, double& lyapunov, double& megno,
-                             const std::atomic<bool>* stop) {
+namespace {
+
+/// The orbit's first tangent vector: a draw of the unit cube from (seed, index).
+system::Vec6 orbit_tangent(std::uint64_t seed, std::int64_t index) {
   CounterRng rng(seed, index, tangent_stream);
   system::Vec6 v;
   for (int k = 0; k < 6; ++k) v(k) = 2.0 * rng.uniform() - 1.0;
-  TorusState x = x0;
-  const auto ind = integrators::torus::torus_chaos_indicators(top, x, v, t_end, dt, stop);
+  return v;
+}
+
+}  // namespace
+
+void cardan_orbit_indicators(const system::CardanTop& top, const TorusState& x0, double t_end, double dt,
+                             std::uint64_t seed, std::int64_t index, double& lyapunov, double& megno,
+                             const std::atomic<bool>* stop) {
+  system::Vec6 x = system::stack(x0);
+  const auto ind = integrators::ensemble::scalar_cardan_chaos_indicators(integrators::ensemble::cardan_lane_model(top),
+                                                                         x, orbit_tangent(seed, index), t_end, dt, stop);
   lyapunov = ind.lyapunov, megno = ind.megno;
+}
+
+void cardan_orbit_indicators(const system::CardanTop& top, std::span<const TorusState> x0, double t_end, double dt,
+                             std::uint64_t seed, std::span<const std::int64_t> index,
+                             std::optional<integrators::ensemble::Isa> isa, std::span<double> lyapunov,
+                             std::span<double> megno, const std::atomic<bool>* stop) {
+  std::optional<integrators::ensemble::CardanTangentEnsemble> e;
+  if (isa && x0.size() > 1) e = integrators::ensemble::CardanTangentEnsemble::make(top, *isa);  // one orbit: the scalar step
+  if (!e) {
+    for (std::size_t k = 0; k < x0.size(); ++k)
+      cardan_orbit_indicators(top, x0[k], t_end, dt, seed, index[k], lyapunov[k], megno[k], stop);
+    return;
+  }
+  const auto width = static_cast<std::size_t>(e->lanes());
+  for (std::size_t first = 0; first < x0.size(); first += width) {
+    const std::size_t n = std::min(width, x0.size() - first);
+    for (std::size_t l = 0; l < n; ++l)
+      e->set_lane(static_cast<int>(l), system::stack(x0[first + l]), orbit_tangent(seed, index[first + l]));
+    integrators::ChaosIndicators r[integrators::ensemble::max_lanes];
+    e->chaos_indicators(0.0, t_end, dt, stop, {r, n});
+    for (std::size_t l = 0; l < n; ++l) lyapunov[first + l] = r[l].lyapunov, megno[first + l] = r[l].megno;
+  }
 }
 
 CardanOrbit cardan_orbit(const system::CardanTop& top, const TorusState& x0, const CardanOrbitRequest& r,

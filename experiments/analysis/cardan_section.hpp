@@ -29,9 +29,12 @@
 // located on the scheme's own step map by the loop's root finder.
 #include <atomic>
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "integrators/ensemble/ensemble.hpp"
 #include "integrators/system/cardan.hpp"
 
 namespace lgi::experiments {
@@ -73,12 +76,19 @@ void check_cardan_section_scheme(const std::string& name);
 bool draw_cardan_level_point(const system::CardanTop& top, double l, double h, std::uint64_t seed,
                              std::int64_t index, system::TorusState& x);
 
-/// λ and ⟨Y⟩(t_end) of the orbit from x0 (integrators/torus/torus_tangent_flow.hpp,
-/// RK4 with steps dt), the tangent vector drawn from (seed, index); NaN where
-/// the run blew up or a set `stop` flag ended it.
+/// λ and ⟨Y⟩(t_end) of the orbit from x0 (RK4 on the state and its tangent with
+/// steps dt: scalar_cardan_tangent_step, integrators/ensemble/cardan_tangent_ensemble.hpp),
+/// the tangent vector drawn from (seed, index); NaN where the run blew up or a
+/// set `stop` flag ended it.
 void cardan_orbit_indicators(const system::CardanTop& top, const system::TorusState& x0, double t_end, double dt,
                              std::uint64_t seed, std::int64_t index, double& lyapunov, double& megno,
                              const std::atomic<bool>* stop = nullptr);
+/// The same for the orbits x0[k] (index[k]), bit for bit, run together in the
+/// SIMD lanes of a CardanTangentEnsemble on `isa` (one orbit at a time without).
+void cardan_orbit_indicators(const system::CardanTop& top, std::span<const system::TorusState> x0, double t_end,
+                             double dt, std::uint64_t seed, std::span<const std::int64_t> index,
+                             std::optional<integrators::ensemble::Isa> isa, std::span<double> lyapunov,
+                             std::span<double> megno, const std::atomic<bool>* stop = nullptr);
 
 /// One orbit: its crossings and, on request, its indicators
 /// (integrators/torus/torus_tangent_flow.hpp, a separate pass).

@@ -10,7 +10,7 @@
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/system/model.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 
 namespace lgi::experiments {
 
@@ -141,11 +141,11 @@ std::array<double, 6> lyapunov_spectrum(const system::Scene& scene, const system
 
 StateIndicators cardan_state_indicators(const system::Scene& scene, const system::TorusState& x0,
                                         const IndicatorSettings& s, std::int64_t index) {
-  const system::CardanTop top = cardan_top(scene);
-  system::TorusState x = x0;
-  const StateIndicators loop = from_loop(integrators::torus::torus_chaos_indicators(
-                                            top, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
-                                        s);
+  const integrators::ensemble::CardanLaneModel m = integrators::ensemble::cardan_lane_model(cardan_top(scene));
+  system::Vec6 x = system::stack(x0);
+  const StateIndicators loop = from_loop(integrators::ensemble::scalar_cardan_chaos_indicators(
+                                             m, x, initial_tangent(s.seed, index), s.t_end, s.dt, &interrupt_requested),
+                                         s);
   const auto spectrum = [&] {
     // Not from the identity: δq₁ is exactly invariant where q₁ is cyclic, and
     // would hold the first Gram–Schmidt column at λ = 0.
@@ -154,7 +154,7 @@ StateIndicators cardan_state_indicators(const system::Scene& scene, const system
     integrators::Mat6 V = initial_deviation_vectors(s.seed, index);
     orthonormalise(V, unused);
     return spectrum_loop(
-        [&](double, double h, integrators::Mat6& W) { integrators::torus::torus_tangent_step(top, y, W, h); },
+        [&](double, double h, integrators::Mat6& W) { integrators::ensemble::scalar_cardan_tangent_step(m, y, W, h); },
         [&] { return y.allFinite(); }, V, s.t_end, s.dt, &interrupt_requested);
   };
   return with_requested(loop, s, spectrum, [&] { return cardan_gali_curves(scene, x0, s, index); });
@@ -162,11 +162,12 @@ StateIndicators cardan_state_indicators(const system::Scene& scene, const system
 
 GaliCurves cardan_gali_curves(const system::Scene& scene, const system::TorusState& x0, const IndicatorSettings& s,
                               std::int64_t index) {
-  const system::CardanTop top = cardan_top(scene);
+  const integrators::ensemble::CardanLaneModel m = integrators::ensemble::cardan_lane_model(cardan_top(scene));
   system::Vec6 y = system::stack(x0);
-  return gali_loop([&](double, double h, integrators::Mat6& V) { integrators::torus::torus_tangent_step(top, y, V, h); },
-                   [&] { return y.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s), s.t_end,
-                   s.dt, &interrupt_requested);
+  return gali_loop(
+      [&](double, double h, integrators::Mat6& V) { integrators::ensemble::scalar_cardan_tangent_step(m, y, V, h); },
+      [&] { return y.allFinite(); }, initial_deviation_vectors(s.seed, index), sample_times(s), s.t_end, s.dt,
+      &interrupt_requested);
 }
 
 }  // namespace lgi::experiments

@@ -18,8 +18,9 @@
 // GALI_k (k = 2 … 6) on request: six more deviation vectors, normalised
 // after every step, their volumes recorded at sample times (gali.hpp).
 //
-// Cardan scenes (T³ × ℝ³): the same indicators from the tangent flow of
-// integrators/torus/torus_tangent_flow.hpp (RK4 on ℝ⁶ × ℝ⁶), cardan_state_indicators.
+// Cardan scenes (T³ × ℝ³): the same indicators from the T³ tangent flow (RK4
+// on ℝ⁶ × ℝ⁶) in the scalar form of its SIMD-lane kernel
+// (integrators/ensemble/cardan_tangent_ensemble.hpp), cardan_state_indicators.
 #include <array>
 #include <cstdint>
 #include <optional>

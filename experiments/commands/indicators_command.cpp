@@ -230,7 +230,7 @@ int run_indicators(const IndicatorsOptions& o) {
       {"spectrum", o.spectrum ? "yes" : "no"}, {"gali", o.gali ? "yes" : "no"},
       {"gali_samples", std::to_string(o.gali_samples)}, {"gali_spacing", o.gali_spacing},
       {"converged_rule", "|lyapunov_last_half - lyapunov| <= rtol * max(|lyapunov_last_half|, |lyapunov|)"},
-      {"indicators", cardan ? "RK4 on the Cardan state and its tangent (integrators/torus/torus_tangent_flow.hpp); "
+      {"indicators", cardan ? "RK4 on the Cardan state and its tangent (integrators/ensemble/cardan_tangent_kernel.hpp); "
                               "experiments/INDICATORS.md"
                             : "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp, "
                               "integrators/ensemble/tangent_ensemble.hpp); experiments/INDICATORS.md"},

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "integrators/cayley_quaternion.hpp"
+#include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -149,6 +150,15 @@ TangentKernelSet tangent_kernels(Isa isa) {
 #endif
   (void)isa;
   return baseline_tangent_kernels();
+}
+
+CardanTangentKernelSet cardan_tangent_kernels(Isa isa) {
+#if defined(LGI_ENSEMBLE_X86)
+  if (isa == Isa::avx2) return avx2_cardan_tangent_kernels();
+  if (isa == Isa::avx512) return avx512_cardan_tangent_kernels();
+#endif
+  (void)isa;
+  return baseline_cardan_tangent_kernels();
 }
 
 bool has_kernel(std::string_view scheme) { return find(scheme) != nullptr; }

@@ -8,6 +8,7 @@
 // -Wmaybe-uninitialized where that inlining sits behind a branch).
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include "integrators/ensemble/cardan_tangent_kernel.hpp"
 #include "integrators/ensemble/kernel_set.hpp"
 
 namespace lgi::integrators::ensemble {
@@ -15,5 +16,9 @@ namespace lgi::integrators::ensemble {
 KernelSet avx512_kernels() { return kernel_set<Lanes<xsimd::batch<double, xsimd::avx512f>, 2>>("avx512"); }
 
 TangentKernelSet avx512_tangent_kernels() { return tangent_kernel_set<Lanes<xsimd::batch<double, xsimd::avx512f>, 2>>(); }
+
+CardanTangentKernelSet avx512_cardan_tangent_kernels() {
+  return cardan_tangent_kernel_set<Lanes<xsimd::batch<double, xsimd::avx512f>, 2>>();
+}
 
 }  // namespace lgi::integrators::ensemble

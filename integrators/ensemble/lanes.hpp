@@ -12,7 +12,8 @@
 //
 // Transcendentals never use xsimd's own: cos_sin_unless() calls the scalar
 // libm functions lane by lane, so a lane gets the very bits std::sin gives the
-// scalar scheme. Branches on a lane's value become select() of both sides,
+// scalar scheme (the Cardan kernel, whose scalar step is new, writes its cos
+// and sin in lane_sincos.hpp instead). Branches on a lane's value become select() of both sides,
 // with the costly side computed only where some lane needs it.
 //
 // This header is included by translation units compiled for one instruction

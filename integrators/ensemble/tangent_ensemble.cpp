@@ -105,33 +105,28 @@ void TangentEnsemble::chaos_indicators(double t0, double t_end, double dt, const
     set_lane(l, s, v);
     chaos_.running[l] = l < n ? 1.0 : 0.0;
   }
-  bool stopped = false;
-  while (chaos_.t < t_end) {  // 256 steps at a time: the scalar loop reads `stop` every 256 steps
-    kernels_.chaos(model_, block_, chaos_, t0, t_end, dt, 256);
-    if (stop != nullptr && chaos_.grid_steps % 256 == 0 && stop->load(std::memory_order_relaxed)) {
-      stopped = true;
-      break;
-    }
-    bool any_running = false;
-    for (int l = 0; l < n; ++l) any_running = any_running || chaos_.running[l] != 0.0;
-    if (!any_running) break;
-  }
+  const bool stopped = run_chaos_lanes(
+      chaos_, n, t_end, stop, [&](ChaosLanes& c) { kernels_.chaos(model_, block_, c, t0, t_end, dt, 256); });
+  chaos_lane_results(chaos_, stopped, out);
+}
+
+void chaos_lane_results(const ChaosLanes& c, bool stopped, std::span<ChaosIndicators> out) {
   const double nan = std::nan("");
-  for (int l = 0; l < n; ++l) {
-    ChaosIndicators& r = out[static_cast<std::size_t>(l)];
-    r.steps = static_cast<std::int64_t>(chaos_.steps[l]);
-    if (chaos_.running[l] == 0.0 || stopped) {
+  for (std::size_t l = 0; l < out.size(); ++l) {
+    ChaosIndicators& r = out[l];
+    r.steps = static_cast<std::int64_t>(c.steps[l]);
+    if (c.running[l] == 0.0 || stopped) {
       r.ok = false;
-      r.stopped = chaos_.running[l] != 0.0;
+      r.stopped = c.running[l] != 0.0;
       r.lyapunov = r.megno = r.megno_y = r.lyapunov_last_half = nan;
       continue;
     }
     // ChaosAccumulator's lyapunov(), lyapunov_since_mark(), mean_megno(), megno()
-    const double s = chaos_.s;
-    r.lyapunov = s > 0.0 ? chaos_.log_sum[l] / s : 0.0;
-    r.lyapunov_last_half = s > chaos_.marked_s ? (chaos_.log_sum[l] - chaos_.marked_log_sum[l]) / (s - chaos_.marked_s) : nan;
-    r.megno = s > 0.0 ? chaos_.mean_sum[l] / s : 0.0;
-    r.megno_y = chaos_.y[l];
+    const double s = c.s;
+    r.lyapunov = s > 0.0 ? c.log_sum[l] / s : 0.0;
+    r.lyapunov_last_half = s > c.marked_s ? (c.log_sum[l] - c.marked_log_sum[l]) / (s - c.marked_s) : nan;
+    r.megno = s > 0.0 ? c.mean_sum[l] / s : 0.0;
+    r.megno_y = c.y[l];
   }
 }
 

@@ -45,6 +45,24 @@ auto with_tangent_step(const system::AnyModel& model, F&& f) {
       model);
 }
 
+/// The driver of a chaos kernel (ChaosKernel, CardanChaosKernel): calls
+/// run_256_steps until the lanes 0 … n − 1 reach t_end or all stopped
+/// running, reading `stop` every 256 steps as the scalar loop does; true
+/// where the flag ended the run.
+template <class Run>
+bool run_chaos_lanes(ChaosLanes& c, int n, double t_end, const std::atomic<bool>* stop, Run&& run_256_steps) {
+  while (c.t < t_end) {
+    run_256_steps(c);
+    if (stop != nullptr && c.grid_steps % 256 == 0 && stop->load(std::memory_order_relaxed)) return true;
+    bool any_running = false;
+    for (int l = 0; l < n; ++l) any_running = any_running || c.running[l] != 0.0;
+    if (!any_running) break;
+  }
+  return false;
+}
+/// ChaosAccumulator's values for lanes 0 … out.size() − 1 of a finished run (NaN where not ok).
+void chaos_lane_results(const ChaosLanes& c, bool stopped, std::span<ChaosIndicators> out);
+
 /// The tangent kernels of an available instruction set (ensemble.cpp).
 TangentKernelSet tangent_kernels(Isa isa);
 

@@ -120,10 +120,11 @@ def test_resume_goes_on_bit_for_bit(one_thread, tmp_path):
 
 
 def test_signal_then_resume(tmp_path):
-    """Two orbits of about 0.75 s each (release build, one core) on one thread, stopped after 1 s, inside the
-    second one (or the first in a slower build: the wait is not scaled, so the run is cut earlier, never missed)."""
+    """Two orbits of about 0.75 s each (release build, one core; the scalar step of
+    integrators/ensemble/cardan_tangent_kernel.hpp) on one thread, stopped after 1 s, inside the second one (or
+    the first in a slower build: the wait is not scaled, so the run is cut earlier, never missed)."""
     args = ["chaos-map", "--scene", GENERAL_UP, "--vary", "suspension.tilt=0:0.5:2", "--h-range", "1:1:1",
-            "--ics", "1", "--t-end", "1500", "--dt", "0.01", "--threads", "1", "--quiet"]
+            "--ics", "1", "--t-end", "12000", "--dt", "0.01", "--threads", "1", "--quiet"]
     out = str(tmp_path / "s.h5")
     p = subprocess.Popen([LGI, *args, "--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     time.sleep(1.0)

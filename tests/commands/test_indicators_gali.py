@@ -70,7 +70,7 @@ def test_cardan_scene(tmp_path):
     assert "log10_gali_2..6=" in r.stdout
     d, p = table(out, "indicators")
     g, _ = gali_group(out)
-    assert p["scheme"] == "cardan-rk4" and "torus_tangent_flow" in p["indicators"]
+    assert p["scheme"] == "cardan-rk4" and "cardan_tangent_kernel" in p["indicators"]
     assert d["cardan_angles"].shape == (1, 3) and d["cardan_momenta"].shape == (1, 3)
     assert np.array_equal(d["cardan_angles"][0], [0.0, 1.0, 0.0])
     assert d["lyapunov"][0] > 0.2 and d["megno"][0] > 4  # the tilted Euler top's chaos (docs/cardan.md §9)

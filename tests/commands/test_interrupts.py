@@ -137,3 +137,58 @@ def test_indicators_sigterm_keeps_the_partial(tmp_path):
     assert code == 143, err
     assert "interrupted by signal" in err and out + ".partial" in err, err
     assert os.path.exists(out + ".partial") and not os.path.exists(out)
+
+
+CARDAN = os.path.join(SCENES, "cardan_general_asymmetric_up.toml")
+CARDAN_MAP = ["chaos-map", "--scene", CARDAN, "--vary", "suspension.tilt=0:0.5:2", "--h-range", "1:1:1", "--ics", "4",
+              "--dt", "0.01", "--threads", "1"]
+
+
+def test_cardan_chaos_map_sigint_inside_the_lanes(tmp_path):
+    """A Cardan map (issue 50): its orbits run 4 at a time in SIMD lanes far longer than the wait; SIGINT is
+    read by the lanes' loop within a second (every 256 steps), exit 130, <out>.partial kept, one line."""
+    out = str(tmp_path / "c.h5")
+    p = subprocess.Popen([LGI, *CARDAN_MAP, "--t-end", "1e7", "--out", out], stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5 * slowdown(LGI))
+    assert p.poll() is None, "the command ended before it could be interrupted"
+    p.send_signal(signal.SIGINT)
+    sent = time.monotonic()
+    _, err = p.communicate(timeout=60)
+    assert time.monotonic() - sent < 5.0 * slowdown(LGI), "the signal was not read within the orbits"
+    assert p.returncode == 130, err
+    assert "interrupted by signal" in err and out + ".partial" in err and err.strip().count("\n") == 0, err
+    assert os.path.exists(out + ".partial") and not os.path.exists(out)
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
+        assert (f["chaos_map/status"][()] == 3).all()  # no orbit finished: every cell not run
+
+
+def test_cardan_chaos_map_progress(tmp_path):
+    """The progress line on stderr as the heavy-top form prints it: a line at the end (and every 10 s) into a
+    pipe; in place (carriage return, erase line) on a terminal; none with --quiet."""
+    import pty
+    r = subprocess.run([LGI, *CARDAN_MAP, "--t-end", "20", "--out", str(tmp_path / "p.h5")], capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "chaos-map: 8/8 orbits" in r.stderr and "\r" not in r.stderr, r.stderr
+    leader, follower = pty.openpty()
+    p = subprocess.Popen([LGI, *CARDAN_MAP, "--t-end", "20", "--out", str(tmp_path / "t.h5")],
+                         stdout=subprocess.DEVNULL, stderr=follower)
+    os.close(follower)
+    seen = b""
+    while True:
+        try:
+            chunk = os.read(leader, 4096)
+        except OSError:  # the terminal closed with the process
+            break
+        if not chunk:
+            break
+        seen += chunk
+    p.wait(timeout=120)
+    os.close(leader)
+    assert p.returncode == 0
+    assert b"\r\033[Kchaos-map: 8/8 orbits" in seen, seen
+    q = subprocess.run([LGI, *CARDAN_MAP, "--t-end", "20", "--quiet", "--out", str(tmp_path / "q.h5")],
+                       capture_output=True, text=True, timeout=120)
+    assert q.returncode == 0 and q.stderr == "", q.stderr

@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "experiments/analysis/cardan_energy_draw.hpp"
 #include "experiments/analysis/cardan_section.hpp"
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/cli/grid_range.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/commands/chaos_map/cardan_chaos_resume.hpp"
 #include "experiments/commands/chaos_map/chaos_map_cells.hpp"
@@ -26,6 +28,7 @@
 #include "experiments/io/sweep_spec.hpp"
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"
+#include "integrators/ensemble/ensemble.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -73,30 +76,73 @@ Axis make_axis(const system::Scene& scene, const VaryAxis& v) {
   return a;
 }
 
-/// This rank's orbits among tasks [begin, end) (task t = cell · ics + index,
-/// t ≡ rank mod ranks) on `threads` threads; each a function of its cell and
-/// index alone.
-void run_orbits(const CardanChaosMapRequest& r, const Axis& axis, const std::vector<double>& hs,
-                std::vector<CardanMapOrbit>& orbits, std::int64_t begin, std::int64_t end, int rank, int ranks) {
-  const auto nh = static_cast<std::int64_t>(hs.size());
+/// The first task of each work item of this rank among tasks [begin, end)
+/// (task t = cell · ics + index, t ≡ rank mod ranks): runs of up to
+/// max_lanes of its tasks with one value of the key (one top), the last
+/// entry `end`.
+std::vector<std::int64_t> work_items(std::int64_t begin, std::int64_t end, int rank, int ranks, std::int64_t per_top) {
   const std::int64_t first = begin + ((rank - begin % ranks) % ranks + ranks) % ranks;  // the first t ≥ begin of this rank
-#pragma omp parallel for schedule(dynamic, 1) num_threads(r.threads)
-  for (std::int64_t t = first; t < end; t += ranks) {
-    CardanMapOrbit& o = orbits[static_cast<std::size_t>(t)];
-    if (o.done || interrupt_requested.load(std::memory_order_relaxed)) continue;
-    const std::int64_t cell = t / r.ics, index = t % r.ics, j = cell / nh;
-    const system::CardanTop& top = axis.tops[static_cast<std::size_t>(j)];
-    const double h = hs[static_cast<std::size_t>(cell % nh)];
-    if (!(h > axis.u_min[static_cast<std::size_t>(j)])) {
-      o.done = true;  // an empty cell (status 1): no draw
-      continue;
+  std::vector<std::int64_t> starts;
+  std::int64_t count = 0, top = -1;
+  for (std::int64_t t = first; t < end; t += ranks, ++count) {
+    if (count == integrators::ensemble::max_lanes || t / per_top != top) starts.push_back(t), count = 0, top = t / per_top;
+  }
+  starts.push_back(end);
+  return starts;
+}
+
+/// This rank's orbits among tasks [begin, end) on `threads` threads, each a
+/// function of its cell and index alone; a work item's drawn orbits run
+/// together in the SIMD lanes of the T³ tangent flow (the same values bit for
+/// bit; docs/ensemble.md, "Cardan tangent flows"). `done` counts the finished
+/// orbits for the progress line.
+void run_orbits(const CardanChaosMapRequest& r, const Axis& axis, const std::vector<double>& hs,
+                std::vector<CardanMapOrbit>& orbits, std::int64_t begin, std::int64_t end, int rank, int ranks,
+                SweepProgress& progress, std::int64_t& done) {
+  const auto nh = static_cast<std::int64_t>(hs.size());
+  const std::vector<std::int64_t> starts = work_items(begin, end, rank, ranks, nh * r.ics);
+  const auto items = static_cast<std::int64_t>(starts.size()) - 1;
+  const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
+#pragma omp parallel num_threads(r.threads)
+  {
+    std::vector<system::TorusState> x0;
+    std::vector<std::int64_t> index;
+    std::vector<CardanMapOrbit*> rows, touched;
+    std::vector<double> lyapunov, megno;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t item = 0; item < items; ++item) {
+      if (interrupt_requested.load(std::memory_order_relaxed)) continue;
+      x0.clear(), index.clear(), rows.clear(), touched.clear();
+      const std::int64_t j = starts[static_cast<std::size_t>(item)] / (nh * r.ics);
+      const system::CardanTop& top = axis.tops[static_cast<std::size_t>(j)];
+      std::int64_t count = 0;
+      for (std::int64_t t = starts[static_cast<std::size_t>(item)]; t < starts[static_cast<std::size_t>(item + 1)];
+           t += ranks) {
+        CardanMapOrbit& o = orbits[static_cast<std::size_t>(t)];
+        if (o.done) continue;
+        ++count;
+        const std::int64_t cell = t / r.ics, i = t % r.ics;
+        const double h = hs[static_cast<std::size_t>(cell % nh)];
+        if (!(h > axis.u_min[static_cast<std::size_t>(j)])) {
+          o.done = true;  // an empty cell (status 1): no draw
+          continue;
+        }
+        system::TorusState x;
+        if (draw_cardan_energy_point(top, h, r.seed, i, x)) {
+          o.drawn = true, o.x0 = x;
+          x0.push_back(x), index.push_back(i), rows.push_back(&o);
+        }
+        o.done = true;  // undone below if a signal cut the run short
+        touched.push_back(&o);
+      }
+      lyapunov.assign(x0.size(), NAN), megno.assign(x0.size(), NAN);
+      cardan_orbit_indicators(top, x0, r.t_end, r.dt, r.seed, index, isa, lyapunov, megno, &interrupt_requested);
+      const bool cut = interrupt_requested.load(std::memory_order_relaxed);
+      for (std::size_t k = 0; k < rows.size(); ++k) rows[k]->lyapunov = lyapunov[k], rows[k]->megno = megno[k];
+      for (CardanMapOrbit* o : touched) o->done = !cut;
+#pragma omp critical(cardan_chaos_map_progress)
+      progress.update(done += cut ? 0 : count, 0);
     }
-    system::TorusState x0;
-    if (draw_cardan_energy_point(top, h, r.seed, index, x0)) {
-      o.drawn = true, o.x0 = x0;
-      cardan_orbit_indicators(top, x0, r.t_end, r.dt, r.seed, index, o.lyapunov, o.megno, &interrupt_requested);
-    }
-    o.done = !interrupt_requested.load(std::memory_order_relaxed);
   }
 }
 
@@ -140,6 +186,14 @@ std::vector<TableGroup> result_groups(const CardanChaosMapRequest& r, const Vary
   return {map, TableGroup{"orbits", per}};
 }
 
+/// Where the orbits ran: "avx512 (16 lanes)" or "off" (docs/ensemble.md, "Cardan tangent flows").
+std::string simd_note() {
+  const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
+  if (!isa) return "off";
+  return std::string(integrators::ensemble::isa_name(*isa)) + " (" +
+         std::to_string(integrators::ensemble::isa_lanes(*isa)) + " lanes)";
+}
+
 std::map<std::string, std::string> parameters_of(const system::Scene& scene, const CardanChaosMapRequest& r,
                                                  const VaryAxis& v, double wall, int ranks, bool interrupted) {
   return {{"subcommand", "chaos-map"}, {"system", "cardan (T^3)"}, {"command_line", r.command_line},
@@ -149,7 +203,9 @@ std::map<std::string, std::string> parameters_of(const system::Scene& scene, con
           {"t_end", exact_number(r.t_end)}, {"dt", exact_number(r.dt)}, {"seed", std::to_string(r.seed)},
           {"threshold", exact_number(r.threshold)},
           {"measure", "microcanonical: the Liouville measure of {H = h} on T^3 x R^3 (docs/cardan.md section 9.4)"},
-          {"indicators", "RK4 on the state and its tangent (integrators/torus/torus_tangent_flow.hpp)"},
+          {"indicators", "RK4 on the state and its tangent (integrators/ensemble/cardan_tangent_kernel.hpp, "
+                         "cardan_tangent_ensemble.hpp)"},
+          {"simd", simd_note()},
           {"threads", std::to_string(r.threads)}, {"ranks", std::to_string(ranks)},
           {"wall_seconds", format_general(wall, 6)},
           {"status", interrupted ? "interrupted by signal" : "complete"}};
@@ -220,9 +276,15 @@ int run_cardan_chaos_map(const system::Scene& scene, const CardanChaosMapRequest
   const auto total = static_cast<std::int64_t>(orbits.size());
   const std::int64_t rounds = std::clamp<std::int64_t>(total / (8 * r.threads * ranks.size()), 1, 16);
   bool interrupted = false, checkpointed = false;
+  // Progress on stderr from rank 0 (cli/sweep_progress.hpp): in place on a terminal, else a line every
+  // 10 s; between the rounds' gathers it counts rank 0's own orbits (all of them on one rank).
+  SweepProgress progress(r.quiet || !ranks.root(), total, resumed, "chaos-map", "orbits");
+  std::int64_t done = resumed;
   for (std::int64_t k = 0; k < rounds && !interrupted; ++k) {
-    run_orbits(r, axis, hs, orbits, total * k / rounds, total * (k + 1) / rounds, ranks.rank(), ranks.size());
+    run_orbits(r, axis, hs, orbits, total * k / rounds, total * (k + 1) / rounds, ranks.rank(), ranks.size(),
+               progress, done);
     gather_orbits(orbits, ranks);
+    done = std::count_if(orbits.begin(), orbits.end(), [](const CardanMapOrbit& o) { return o.done; });
     interrupted = ranks.any(interrupt_signal() != 0);
     if (interrupted || k + 1 == rounds || !ranks.root()) continue;
     auto groups = result_groups(r, v, axis, hs, orbits);
@@ -232,6 +294,7 @@ int run_cardan_chaos_map(const system::Scene& scene, const CardanChaosMapRequest
     write_groups_file(partial, true, groups, parameters);
     checkpointed = true;
   }
+  progress.finish();
   const double wall = seconds();
   if (!ranks.root()) return interrupted ? interrupted_exit_status() : exit_ok;
   auto groups = result_groups(r, v, axis, hs, orbits);
