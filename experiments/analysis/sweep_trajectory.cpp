@@ -92,7 +92,7 @@ class SweepObserver final : public integrators::BasicObserver<S> {
 
   void observe(std::int64_t step, double t, const S& x) override {
     if (trajectory_every_ > 0 && step % trajectory_every_ == 0) sample(step, t, x);
-    const system::InvariantValues v = invariants_.evaluate(x);
+    const auto v = invariants_.evaluate(x);
     if (!have_initial_) {
       initial_ = v;
       have_initial_ = true;
