@@ -110,7 +110,7 @@ TEST_CASE("Multiple shooting retraces a family of single shooting", "[periodic]"
   }
 }
 
-TEST_CASE("A Lyapunov family continued in l from its equilibrium", "[periodic]") {
+TEST_CASE("A Lyapunov family continued in l from its equilibrium", "[periodic][slow]") {
   const HeavyTopBody body = body_of(testing::shipped_scene("general_top_richter"));
   experiments::FamilySettings s;
   s.shooting.in_l = true;

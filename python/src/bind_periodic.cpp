@@ -147,6 +147,7 @@ void starts_of(ex::PeriodicRequest& r, const py::object& seed, const py::object&
 
 struct FamilyOptions {
   int steps = 10, shooting_points = 1, returns = 1, manifolds = 0;
+  double direction = 1.0;
   double h_step = 0.01, l_step = 0.01, dt = 2e-3, amplitude = 1e-4, manifold_periods = 4.0, manifold_epsilon = 1e-5;
   std::string continue_in = "h";
   std::optional<std::pair<double, double>> h_range, l_range;
@@ -188,7 +189,8 @@ py::dict continue_family(const py::object& scene_arg, const py::object& l, const
   if (!l.is_none()) r.l = l.cast<double>();
   if ((r.l && !std::isfinite(*r.l)) || (!r.l && poincare.is_none())) throw py::value_error("l: must be a finite number");
   r.settings = settings_of(o);
-  r.direction = o.continue_in == "l" && o.l_step < 0.0 ? -1.0 : 1.0;
+  if (o.direction != 1.0 && o.direction != -1.0) throw py::value_error("direction: expected 1 or -1");
+  r.direction = o.continue_in == "l" ? (o.l_step < 0.0 ? -1.0 : 1.0) : o.direction;
   r.returns = o.returns;
   r.manifolds.points = o.manifolds, r.manifolds.periods = o.manifold_periods;
   r.manifolds.epsilon = o.manifold_epsilon, r.manifolds.dt = o.dt;
@@ -223,12 +225,12 @@ void bind_periodic(py::module_& m) {
          const std::string& continue_in, double l_step, std::optional<std::pair<double, double>> l_range,
          int shooting_points, const py::object& seeds_from_poincare, const py::object& poincare_rows,
          const py::object& poincare_points, int returns, int manifolds, double manifold_periods,
-         double manifold_epsilon) {
+         double manifold_epsilon, double direction) {
         FamilyOptions o;
         o.steps = steps, o.h_step = h_step, o.dt = dt, o.amplitude = amplitude, o.h_range = h_range;
         o.events = events, o.branch_switching = branch_switching, o.continue_in = continue_in, o.l_step = l_step;
         o.l_range = l_range, o.shooting_points = shooting_points, o.returns = returns, o.manifolds = manifolds;
-        o.manifold_periods = manifold_periods, o.manifold_epsilon = manifold_epsilon;
+        o.manifold_periods = manifold_periods, o.manifold_epsilon = manifold_epsilon, o.direction = direction;
         return continue_family(scene, l, seed, o, seeds_from_poincare, poincare_rows, poincare_points);
       },
       py::arg("scene"), py::arg("l") = py::none(), py::arg("seed") = py::none(), py::arg("steps") = 10,
@@ -237,9 +239,9 @@ void bind_periodic(py::module_& m) {
       py::arg("l_step") = 0.01, py::arg("l_range") = py::none(), py::arg("shooting_points") = 1,
       py::arg("seeds_from_poincare") = py::none(), py::arg("poincare_rows") = py::none(),
       py::arg("poincare_points") = py::none(), py::arg("returns") = 1, py::arg("manifolds") = 0,
-      py::arg("manifold_periods") = 4.0, py::arg("manifold_epsilon") = 1e-5,
+      py::arg("manifold_periods") = 4.0, py::arg("manifold_epsilon") = 1e-5, py::arg("direction") = 1.0,
       "Families of periodic orbits, continued by pseudo-arclength in h at fixed l (continue_in='h') or in l at "
-      "fixed h ('l', first step l_step), with their folds, period doublings and class changes, and the doubled "
+      "fixed h ('l', first step l_step; a seed's first step in h goes the sense of direction=+-1), with their folds, period doublings and class changes, and the doubled "
       "families (branch_switching): the Lyapunov families of every stable relative equilibrium (no seed), one "
       "family from seed=(angular_momentum, gamma, period), or one per seed of a `lgi poincare` file "
       "(seeds_from_poincare=path with poincare_rows=[...] and/or poincare_points=[(phi, theta, sheet), ...]; l "
