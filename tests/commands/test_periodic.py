@@ -10,6 +10,8 @@
    it) converges to that orbit: same period to 1e-8, elliptic, its point on
    the section, and its crossings (SciPy's DOP853, periodic_crossings.py) are
    the orbit's to 1e-7; a row of /events on the orbit converges to it too;
+ - --continue-in l with --from-equilibria at l = 3: each family's first orbit
+   at l = 3, one step of --h-step in h, then l steps down at that h;
  - --manifolds: the unstable and stable manifolds of a hyperbolic orbit of
    Richter's top at l = 3 past its fold, seeded from a section: N points a
    side and branch at crossing 0, s from eps|x0| to eps|x0||lambda|, the first
@@ -134,6 +136,22 @@ def test_seeds_from_a_poincare_section(tmp_path):
         assert abs(a_[0] - b_[0]) <= 1e-7 and abs(a_[1] - b_[1]) <= 1e-7 and a_[2] == b_[2]
     # The row: a crossing of orbit 0, which lies on the periodic orbit, gives it again.
     assert abs(p["period"][0] - T) <= 1e-8
+
+
+def test_families_from_equilibria_continued_in_l(tmp_path):
+    out = str(tmp_path / "l.h5")
+    lgi("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria", "--continue-in", "l", "--l-step", "-0.01",
+        "--steps", "2", "--h-step", "0.02", "--no-events", "--out", out, "--quiet")
+    with h5py.File(out, "r") as f:
+        t = {k: f["periodic"][k][()] for k in ("family", "index", "l", "h", "residual")}
+        assert f["parameters"].attrs["continue_in"] == "l"
+    families = np.unique(t["family"])
+    assert len(families) >= 2 and np.all(t["residual"] <= 1e-10)
+    for fam in families:
+        r = np.flatnonzero(t["family"] == fam)
+        assert list(t["index"][r]) == [0, 1, 2]
+        assert t["l"][r[0]] == 3.0 and t["l"][r[1]] == 3.0 and 2.98 < t["l"][r[2]] < 3.0
+        assert abs(abs(t["h"][r[1]] - t["h"][r[0]]) - 0.02) <= 1e-12 and abs(t["h"][r[2]] - t["h"][r[1]]) <= 1e-10
 
 
 # A hyperbolic orbit of Richter's top at l = 3 past the fold of test_periodic.cpp (tr P = 2.238).

@@ -1,6 +1,7 @@
 #pragma once
 // One periodic orbit of the Euler–Poisson flow in (Π, Γ) ∈ ℝ⁶ at fixed ℓ, by
-// single shooting with Newton's method, and its Floquet multipliers
+// single shooting with Newton's method (or multiple shooting,
+// ShootingSettings::shooting_points, multiple_shooting.hpp), and its Floquet multipliers
 // (experiments/PERIODIC.md; R. Seydel, Practical Bifurcation and Stability
 // Analysis, 3rd ed. (2010), ch. 7).
 //
