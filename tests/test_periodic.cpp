@@ -9,7 +9,9 @@
 //  - a period doubling on a family at ℓ = 2.2: located to |tr P + 2| ≤ 1e-8,
 //    confirmed by an independent monodromy (Boost.Odeint's Dormand–Prince on
 //    variational equations written out here) with a multiplier within 1e-6 of
-//    −1, and the doubled family branching off it with period ≈ 2T;
+//    −1, and the doubled family branching off it with period ≈ 2T, a new
+//    orbit (off the parent by ε along the eigenvector of −1, not closed after
+//    half its period);
 //  - a fold on a family at ℓ = 3: h turns there, |tr P − 2| ≤ 1e-8, and the
 //    independent monodromy's trace is 6 (= 4 trivial + tr P) to 1e-6;
 //  - one orbit re-integrated for one period by rkmk4 on SO(3) × ℝ³ (another
@@ -204,6 +206,18 @@ TEST_CASE("A period doubling on a family of Richter's top, and the doubled famil
   CHECK(std::abs(dh1) <= 1e-3);
   CHECK(dh1 * dh2 > 0.0);
   CHECK(std::abs(dh2 / dh1 - 4.0) <= 0.5);
+  // A genuine new orbit, not the parent run twice round: its point is off the
+  // parent's by ε = 2e-4 |x_pd| along the eigenvector of −1 (the corrector's
+  // condition, checked here from the orbits), and half its period does not close it.
+  const Eigen::Matrix2d A = pd->orbit.reduced_monodromy + Eigen::Matrix2d::Identity();
+  const Vec6 v = (pd->orbit.section_basis * A.col(A.col(0).norm() >= A.col(1).norm() ? 0 : 1)).normalized();
+  const double eps = 2e-4 * pd->orbit.x0.norm();
+  const Vec6 off = doubled[0].x0 - pd->orbit.x0;
+  INFO("offset along v " << off.dot(v) << ", across " << (off - off.dot(v) * v).norm() << ", eps " << eps);
+  CHECK(std::abs(std::abs(off.dot(v)) - eps) <= 0.2 * eps);
+  const auto half = experiments::shoot(body, doubled[0].x0, 0.5 * doubled[0].period, 2e-3);
+  CHECK((half.end - doubled[0].x0).norm() >= 0.5 * eps);
+  CHECK(doubled[0].residual <= 1e-10);
 }
 
 TEST_CASE("A fold on a family of Richter's top at l = 3", "[periodic]") {

@@ -16,10 +16,8 @@
 #include <sstream>
 #include <string>
 
-#include "experiments/analysis/periodic/lyapunov_families.hpp"
-#include "experiments/commands/periodic/critical_seeds.hpp"
+#include "experiments/commands/periodic/periodic_run.hpp"
 #include "experiments/commands/periodic/periodic_seeds.hpp"
-#include "experiments/commands/periodic/periodic_tables.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
@@ -36,8 +34,8 @@ struct PeriodicOptions {
   std::string scene, out, seed_file, critical, h_range, l_range, poincare, poincare_rows, continue_in = "h";
   std::vector<std::string> poincare_points;
   std::optional<double> l;
-  bool from_equilibria = false, no_events = false, no_branch_switching = false;
-  int steps = 10, returns = 1, manifolds = 0;
+  bool from_equilibria = false, no_events = false, no_branch_switching = false, switch_branches = false;
+  int steps = 10, returns = 1, manifolds = 0, shooting_points = 1;
   double h_step = 0.01, l_step = 0.01, dt = 2e-3, amplitude = 1e-4;
   double manifold_periods = 4.0, manifold_epsilon = 1e-5;
   bool force = false, quiet = false;
@@ -55,8 +53,9 @@ void check_flags(const PeriodicOptions& o) {
                               : "--poincare-rows / --poincare-point: only with --seeds-from-poincare");
   if (o.returns < 1 || o.returns > 1000) throw UsageError("--returns: must be in [1, 1000]");
   if (o.continue_in != "h" && o.continue_in != "l") throw UsageError("--continue-in: expected h or l");
-  if (o.continue_in == "l" && o.from_equilibria)
-    throw UsageError("--continue-in l: the families from equilibria are continued in h (give seeds)");
+  if (o.switch_branches && (o.no_branch_switching || o.no_events))
+    throw UsageError("--switch-branches: not with --no-branch-switching or --no-events (it needs the located doublings)");
+  if (o.shooting_points < 1 || o.shooting_points > 1000) throw UsageError("--shooting-points: must be in [1, 1000]");
   if (o.steps < 0 || o.steps > 100000) throw UsageError("--steps: must be in [0, 100000]");
   if (!(o.h_step > 0.0) || !std::isfinite(o.h_step)) throw UsageError("--h-step: must be a positive number");
   if (!(o.l_step != 0.0) || !std::isfinite(o.l_step)) throw UsageError("--l-step: must be a nonzero number");
@@ -94,42 +93,6 @@ std::string failures_text(const std::vector<std::string>& failures) {
   return t;
 }
 
-/// The families of the seeds (of a seed file or a poincare file), numbered from 0.
-std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
-                                       double direction, const FamilySettings& s, std::vector<std::string>& failures) {
-  std::vector<FamilyOrbit> rows;
-  int family = 0;
-  for (const SectionSeed& seed : seeds) {
-    if (!seed.failure.empty()) {
-      failures.push_back(seed.failure);
-      continue;
-    }
-    const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
-    const auto f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
-    for (const auto& r : f) family = std::max(family, r.family + 1);
-    rows.insert(rows.end(), f.begin(), f.end());
-  }
-  return rows;
-}
-
-/// The manifolds of each family's first orbit that is hyperbolic (--manifolds).
-std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSection& section,
-                                       const std::vector<FamilyOrbit>& rows, const PeriodicOptions& o,
-                                       std::vector<std::string>& failures) {
-  ManifoldSettings ms;
-  ms.points = o.manifolds, ms.periods = o.manifold_periods, ms.epsilon = o.manifold_epsilon, ms.dt = o.dt;
-  std::vector<RowManifolds> out;
-  for (const FamilyOrbit& r : rows) {
-    if (r.index != 0 || r.orbit.stability == "elliptic") continue;
-    RowManifolds m{r.family, r.index, orbit_manifolds(body, section, r.orbit, ms)};
-    if (!m.m.why_not.empty())
-      failures.push_back("manifolds of family " + std::to_string(r.family) + ": " + m.m.why_not);
-    else
-      out.push_back(std::move(m));
-  }
-  return out;
-}
-
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
   const bool in_l = o.continue_in == "l";
@@ -137,47 +100,37 @@ int run_periodic(const PeriodicOptions& o) {
   const system::Scene scene = read_scene(o.scene);
   if (scene.suspension) throw UsageError("--scene: " + scene.file + " is a Cardan top; lgi periodic takes a heavy top");
   const HeavyTopBody body = equilibria_body(scene);
-  FamilySettings s;
-  s.shooting.dt = o.dt, s.shooting.in_l = in_l, s.amplitude = o.amplitude, s.steps = o.steps;
+  PeriodicRequest req;
+  FamilySettings& s = req.settings;
+  s.shooting.dt = o.dt, s.shooting.in_l = in_l, s.shooting.shooting_points = o.shooting_points;
+  s.amplitude = o.amplitude, s.steps = o.steps;
   s.h_step = in_l ? std::abs(o.l_step) : o.h_step;
+  s.start_h_step = o.h_step;
   s.h_min = p_min, s.h_max = p_max;
   s.locate_events = !o.no_events, s.switch_branches = !o.no_branch_switching;
-  const double direction = in_l && o.l_step < 0.0 ? -1.0 : 1.0;
-  std::vector<FamilyOrbit> rows;
-  std::vector<std::string> failures;
-  std::vector<RowManifolds> manifolds;
-  double l = o.l.value_or(0.0);
-  if (o.from_equilibria) {
-    rows = lyapunov_families(body, l, s, failures);
-  } else if (!o.seed_file.empty()) {
-    std::vector<SectionSeed> seeds;
-    for (const auto& [x, T] : read_seeds(o.seed_file)) seeds.push_back({x, T, "", ""});
-    rows = seed_families(body, seeds, l, direction, s, failures);
-  } else if (!o.critical.empty()) {
-    rows = seed_families(body, critical_seeds(body, scene.file, l, o.critical, o.dt), l, direction, s, failures);
-  } else {
-    const PoincareFile f = read_poincare_file(o.poincare);
-    if (o.l && std::abs(*o.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
-      throw UsageError("--l: " + format_general(*o.l, 17) + " differs from the l of --seeds-from-poincare " + o.poincare +
-                       " (" + format_general(f.l, 17) + "); leave --l out");
-    l = f.l;
-    s.shooting.section = section_of(f);
-    // Every seed is put at the file's level; its family starts at the file's h.
-    std::vector<SectionSeed> seeds =
-        poincare_seeds(body, f, o.poincare_rows, o.poincare_points, o.returns, o.dt, 500.0 * o.returns);
-    for (SectionSeed& seed : seeds)
-      if (seed.failure.empty() && !project_to_level(body, seed.x, f.h, f.l, &*s.shooting.section))
-        seed.failure = seed.label + ": cannot be put on the level and the section";
-    rows = seed_families(body, seeds, l, direction, s, failures);
-    if (o.manifolds > 0) manifolds = manifolds_of(body, *s.shooting.section, rows, o, failures);
-  }
+  req.direction = in_l && o.l_step < 0.0 ? -1.0 : 1.0;
+  req.l = o.l, req.from_equilibria = o.from_equilibria;
+  req.critical = o.critical, req.scene_file = scene.file;
+  if (!o.seed_file.empty()) req.seeds = read_seeds(o.seed_file);
+  req.poincare = o.poincare, req.poincare_rows = o.poincare_rows, req.poincare_points = o.poincare_points;
+  req.returns = o.returns;
+  req.manifolds.points = o.manifolds, req.manifolds.periods = o.manifold_periods;
+  req.manifolds.epsilon = o.manifold_epsilon, req.manifolds.dt = o.dt;
+  const PeriodicResult result = periodic_families(body, req);
+  const std::vector<FamilyOrbit>& rows = result.rows;
+  const std::vector<std::string>& failures = result.failures;
+  const std::vector<RowManifolds>& manifolds = result.manifolds;
+  const double l = result.l;
   std::vector<TableGroup> extra;
   if (o.manifolds > 0) extra.push_back(manifold_group(manifolds));
-  write_table_file(o.out, o.force, "periodic", periodic_columns(body, rows, s.shooting.section),
+  write_table_file(o.out, o.force, "periodic", periodic_columns(body, rows, result.section),
                    {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
                     {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
                     {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
-                    {"integrator", "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"},
+                    {"integrator", o.shooting_points == 1
+                                       ? "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"
+                                       : "implicit midpoint, triple jump twice (order 6), ceil(T/(M dt)) equal steps a segment"},
+                    {"shooting_points", std::to_string(o.shooting_points)},
                     {"continuation", in_l ? "pseudo-arclength in (x0, T, l) at fixed h after a first natural step in l"
                                           : "pseudo-arclength in (x0, T, h) after a first natural step in h"},
                     {"continue_in", o.continue_in},
@@ -247,7 +200,12 @@ Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--h-step", o->h_step, "The first continuation step in h; later steps keep its arclength (halved on failure)")
       ->capture_default_str();
   sub->add_flag("--no-events", o->no_events, "Do not locate folds, period doublings and class changes");
+  sub->add_flag("--switch-branches", o->switch_branches,
+                "Start and continue the period-doubled family at each period doubling (the default)");
   sub->add_flag("--no-branch-switching", o->no_branch_switching, "Do not start the doubled family at a period doubling");
+  sub->add_option("--shooting-points", o->shooting_points,
+                  "M: segments of multiple shooting (1: single shooting); the monodromy is the product of theirs")
+      ->capture_default_str();
   sub->add_option("--dt", o->dt, "Step bound of the shooting integrator")->capture_default_str();
   sub->add_option("--amplitude", o->amplitude, "Start amplitude relative to |x_e| (--from-equilibria)")
       ->capture_default_str();

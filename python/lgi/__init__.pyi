@@ -255,13 +255,15 @@ def periodic_orbit(
     h: Optional[float] = None,
     l: Optional[float] = None,
     dt: float = 2e-3,
+    shooting_points: int = 1,
 ) -> dict[str, Any]:
-    """One periodic orbit by Newton's method from a point and a period guess (experiments/PERIODIC.md):
-    the /periodic columns for one row, plus converged, iterations and the (6, 6) monodromy."""
+    """One periodic orbit by Newton's method (single shooting, or multiple shooting on shooting_points
+    segments) from a point and a period guess (experiments/PERIODIC.md): the /periodic columns for one
+    row, plus converged, iterations and the (6, 6) monodromy."""
 
 def continue_family(
     scene: SceneLike,
-    l: float,
+    l: Optional[float] = None,
     seed: Optional[tuple[FloatArray, FloatArray, float]] = None,
     steps: int = 10,
     h_step: float = 0.01,
@@ -270,10 +272,24 @@ def continue_family(
     h_range: Optional[tuple[float, float]] = None,
     events: bool = True,
     branch_switching: bool = True,
+    continue_in: str = "h",
+    l_step: float = 0.01,
+    l_range: Optional[tuple[float, float]] = None,
+    shooting_points: int = 1,
+    seeds_from_poincare: Optional[str] = None,
+    poincare_rows: Optional[Sequence[int]] = None,
+    poincare_points: Optional[Sequence[tuple[float, float, int]]] = None,
+    returns: int = 1,
+    manifolds: int = 0,
+    manifold_periods: float = 4.0,
+    manifold_epsilon: float = 1e-5,
+    direction: float = 1.0,
 ) -> dict[str, Any]:
-    """Families of periodic orbits at momentum l with their events and doubled families: the Lyapunov
-    families of the stable relative equilibria (seed=None) or one family from a seed; the /periodic
-    columns of `lgi periodic` (experiments/PERIODIC.md)."""
+    """Families of periodic orbits with their events and doubled families, continued in h at fixed l or
+    in l at fixed h (continue_in): the Lyapunov families of the stable relative equilibria (no seed), one
+    family from a seed, or one per seed of a `lgi poincare` file (seeds_from_poincare, poincare_rows,
+    poincare_points), with the manifolds of its hyperbolic orbits (manifolds=N: d["manifolds"]); the
+    /periodic columns of `lgi periodic`, failures and l_file (experiments/PERIODIC.md)."""
 
 def tangent_flow(
     scene: SceneLike,

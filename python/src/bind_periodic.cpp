@@ -4,12 +4,14 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "experiments/analysis/periodic/kovalevskaya_orbits.hpp"
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
+#include "experiments/commands/periodic/periodic_run.hpp"
 #include "python/src/bindings.hpp"
 
 namespace lgi::python {
@@ -80,7 +82,8 @@ void add_appelrot_columns(py::dict& d, const ex::HeavyTopBody& body, const std::
 }
 
 py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_momentum, const py::object& gamma,
-                        double period, std::optional<double> h, std::optional<double> l, double dt) {
+                        double period, std::optional<double> h, std::optional<double> l, double dt,
+                        int shooting_points) {
   const auto scene = scene_argument(scene_arg);
   const ex::HeavyTopBody body = heavy_top(*scene, "periodic_orbit");
   const ex::Vec6 x = point_of(angular_momentum, gamma);
@@ -88,9 +91,10 @@ py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_m
   if (!(dt > 0.0) || !(dt <= 1.0)) throw py::value_error("dt: must be in (0, 1]");
   if (period / dt > 1e8) throw py::value_error("period, dt: more than 1e8 steps a shot");
   if ((h && !std::isfinite(*h)) || (l && !std::isfinite(*l))) throw py::value_error("h, l: must be finite numbers");
+  if (shooting_points < 1 || shooting_points > 1000) throw py::value_error("shooting_points: must be in [1, 1000]");
   const auto inv = ex::euler_poisson_invariants(body, x).value;
   ex::ShootingSettings s;
-  s.dt = dt;
+  s.dt = dt, s.shooting_points = shooting_points;
   ex::FamilyOrbit r;
   {
     const py::gil_scoped_release release;
@@ -106,29 +110,33 @@ py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_m
   return d;
 }
 
-py::dict continue_family(const py::object& scene_arg, double l, const py::object& seed, int steps, double h_step,
-                         double dt, double amplitude, std::optional<std::pair<double, double>> h_range, bool events,
-                         bool branch_switching) {
-  const auto scene = scene_argument(scene_arg);
-  const ex::HeavyTopBody body = heavy_top(*scene, "continue_family");
-  if (!std::isfinite(l)) throw py::value_error("l: must be a finite number");
-  if (steps < 0 || steps > 100000) throw py::value_error("steps: must be in [0, 100000]");
-  if (!(h_step > 0.0) || !std::isfinite(h_step)) throw py::value_error("h_step: must be a positive number");
-  if (!(dt > 0.0) || !(dt <= 1.0)) throw py::value_error("dt: must be in (0, 1]");
-  if (!(amplitude > 0.0) || !(amplitude <= 0.1)) throw py::value_error("amplitude: must be in (0, 0.1]");
-  ex::FamilySettings s;
-  s.shooting.dt = dt, s.amplitude = amplitude, s.steps = steps, s.h_step = h_step;
-  s.locate_events = events, s.switch_branches = branch_switching;
-  if (h_range) {
-    if (!(h_range->first < h_range->second)) throw py::value_error("h_range: need A < B");
-    s.h_min = h_range->first, s.h_max = h_range->second;
+/// /manifolds as a dict of columns (text columns as lists of str).
+py::dict manifold_columns(const std::vector<ex::RowManifolds>& manifolds) {
+  py::dict d;
+  for (ex::TableColumn& c : ex::manifold_group(manifolds).columns) {
+    const std::string name = c.name;
+    if (c.is_text) {
+      d[py::str(name)] = py::cast(c.text);
+      continue;
+    }
+    const auto w = static_cast<py::ssize_t>(c.width);
+    const auto rows = static_cast<py::ssize_t>(c.integer ? c.whole.size() : c.real.size()) / w;
+    std::vector<py::ssize_t> shape{rows};
+    if (w > 1) shape.push_back(w);
+    d[py::str(name)] = c.integer ? py::array(to_numpy(std::move(c.whole), shape)) : py::array(to_numpy(std::move(c.real), shape));
   }
-  std::vector<ex::FamilyOrbit> rows;
-  std::vector<std::string> failures;
-  if (seed.is_none()) {
-    const py::gil_scoped_release release;
-    rows = ex::lyapunov_families(body, l, s, failures);
-  } else {
+  return d;
+}
+
+/// The starts of continue_family: a seed (angular_momentum, gamma, period), or a poincare file's rows and points.
+void starts_of(ex::PeriodicRequest& r, const py::object& seed, const py::object& poincare,
+               const py::object& poincare_rows, const py::object& poincare_points) {
+  if (!seed.is_none() && !poincare.is_none()) throw py::value_error("seed, seeds_from_poincare: give at most one");
+  if (poincare.is_none()) {
+    if (!poincare_rows.is_none() || !poincare_points.is_none())
+      throw py::value_error("poincare_rows, poincare_points: only with seeds_from_poincare");
+    r.from_equilibria = seed.is_none();
+    if (seed.is_none()) return;
     if (!py::isinstance<py::tuple>(seed) && !py::isinstance<py::list>(seed))
       throw py::value_error("seed: expected (angular_momentum, gamma, period)");
     const auto t = seed.cast<py::tuple>();
@@ -136,12 +144,85 @@ py::dict continue_family(const py::object& scene_arg, double l, const py::object
     const ex::Vec6 x = point_of(t[0], t[1]);
     const double T = t[2].cast<double>();
     if (!(T > 0.0) || !std::isfinite(T)) throw py::value_error("seed: the period must be a positive number");
-    const py::gil_scoped_release release;
-    rows = ex::continue_family(body, x, T, ex::euler_poisson_invariants(body, x).value(0), l, 1.0, 0, s, failures);
+    r.seeds.push_back({x, T});
+    return;
   }
-  py::dict d = family_columns(rows);
-  add_appelrot_columns(d, body, rows);
-  d["failures"] = failures;
+  r.poincare = py::str(poincare).cast<std::string>();
+  if (!poincare_rows.is_none())
+    for (const auto row : poincare_rows.cast<std::vector<std::int64_t>>())
+      r.poincare_rows += (r.poincare_rows.empty() ? "" : ",") + std::to_string(row);
+  if (!poincare_points.is_none())
+    for (const auto& pt : poincare_points.cast<std::vector<std::vector<double>>>()) {
+      if (pt.size() != 3) throw py::value_error("poincare_points: expected (phi, theta, sheet) triples");
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g", pt[0], pt[1], pt[2]);
+      r.poincare_points.emplace_back(buf);
+    }
+  if (r.poincare_rows.empty() && r.poincare_points.empty())
+    throw py::value_error("seeds_from_poincare: give poincare_rows or poincare_points");
+}
+
+struct FamilyOptions {
+  int steps = 10, shooting_points = 1, returns = 1, manifolds = 0;
+  double direction = 1.0;
+  double h_step = 0.01, l_step = 0.01, dt = 2e-3, amplitude = 1e-4, manifold_periods = 4.0, manifold_epsilon = 1e-5;
+  std::string continue_in = "h";
+  std::optional<std::pair<double, double>> h_range, l_range;
+  bool events = true, branch_switching = true;
+};
+
+/// The settings of `lgi periodic` from continue_family's keywords (ValueError naming the keyword).
+ex::FamilySettings settings_of(const FamilyOptions& o) {
+  if (o.steps < 0 || o.steps > 100000) throw py::value_error("steps: must be in [0, 100000]");
+  if (!(o.h_step > 0.0) || !std::isfinite(o.h_step)) throw py::value_error("h_step: must be a positive number");
+  if (!(o.l_step != 0.0) || !std::isfinite(o.l_step)) throw py::value_error("l_step: must be a nonzero number");
+  if (!(o.dt > 0.0) || !(o.dt <= 1.0)) throw py::value_error("dt: must be in (0, 1]");
+  if (!(o.amplitude > 0.0) || !(o.amplitude <= 0.1)) throw py::value_error("amplitude: must be in (0, 0.1]");
+  if (o.shooting_points < 1 || o.shooting_points > 1000) throw py::value_error("shooting_points: must be in [1, 1000]");
+  if (o.continue_in != "h" && o.continue_in != "l") throw py::value_error("continue_in: expected 'h' or 'l'");
+  if (o.returns < 1 || o.returns > 1000) throw py::value_error("returns: must be in [1, 1000]");
+  if (o.manifolds < 0 || o.manifolds > 100000) throw py::value_error("manifolds: must be in [0, 100000]");
+  if (!(o.manifold_periods > 0.0) || !(o.manifold_periods <= 1000.0)) throw py::value_error("manifold_periods: must be in (0, 1000]");
+  if (!(o.manifold_epsilon > 0.0) || !(o.manifold_epsilon <= 0.1)) throw py::value_error("manifold_epsilon: must be in (0, 0.1]");
+  const bool in_l = o.continue_in == "l";
+  ex::FamilySettings s;
+  s.shooting.dt = o.dt, s.shooting.in_l = in_l, s.shooting.shooting_points = o.shooting_points;
+  s.amplitude = o.amplitude, s.steps = o.steps;
+  s.h_step = in_l ? std::abs(o.l_step) : o.h_step, s.start_h_step = o.h_step;
+  s.locate_events = o.events, s.switch_branches = o.branch_switching;
+  const auto& range = in_l ? o.l_range : o.h_range;
+  if (range) {
+    if (!(range->first < range->second)) throw py::value_error(in_l ? "l_range: need A < B" : "h_range: need A < B");
+    s.h_min = range->first, s.h_max = range->second;
+  }
+  return s;
+}
+
+py::dict continue_family(const py::object& scene_arg, const py::object& l, const py::object& seed, const FamilyOptions& o,
+                         const py::object& poincare, const py::object& poincare_rows, const py::object& poincare_points) {
+  const auto scene = scene_argument(scene_arg);
+  const ex::HeavyTopBody body = heavy_top(*scene, "continue_family");
+  ex::PeriodicRequest r;
+  if (!l.is_none()) r.l = l.cast<double>();
+  if ((r.l && !std::isfinite(*r.l)) || (!r.l && poincare.is_none())) throw py::value_error("l: must be a finite number");
+  r.settings = settings_of(o);
+  if (o.direction != 1.0 && o.direction != -1.0) throw py::value_error("direction: expected 1 or -1");
+  r.direction = o.continue_in == "l" ? (o.l_step < 0.0 ? -1.0 : 1.0) : o.direction;
+  r.returns = o.returns;
+  r.manifolds.points = o.manifolds, r.manifolds.periods = o.manifold_periods;
+  r.manifolds.epsilon = o.manifold_epsilon, r.manifolds.dt = o.dt;
+  if (o.manifolds > 0 && poincare.is_none()) throw py::value_error("manifolds: only with seeds_from_poincare");
+  starts_of(r, seed, poincare, poincare_rows, poincare_points);
+  ex::PeriodicResult result;
+  {
+    const py::gil_scoped_release release;
+    result = ex::periodic_families(body, r);
+  }
+  py::dict d = family_columns(result.rows);
+  add_appelrot_columns(d, body, result.rows);
+  d["failures"] = result.failures;
+  d["l_file"] = result.l;
+  if (o.manifolds > 0) d["manifolds"] = manifold_columns(result.manifolds);
   return d;
 }
 
@@ -150,17 +231,41 @@ py::dict continue_family(const py::object& scene_arg, double l, const py::object
 void bind_periodic(py::module_& m) {
   m.def("periodic_orbit", &periodic_orbit, py::arg("scene"), py::arg("angular_momentum"), py::arg("gamma"),
         py::arg("period"), py::arg("h") = py::none(), py::arg("l") = py::none(), py::arg("dt") = 2e-3,
+        py::arg("shooting_points") = 1,
         "One periodic orbit of a heavy top by Newton's method from a point and a period guess, at energy h and "
-        "momentum l (default: those of the point), with its Floquet multipliers and stability: the columns of "
-        "`lgi periodic`'s /periodic for one row, plus converged, iterations and the 6x6 monodromy "
-        "(experiments/PERIODIC.md).");
-  m.def("continue_family", &continue_family, py::arg("scene"), py::arg("l"), py::arg("seed") = py::none(),
-        py::arg("steps") = 10, py::arg("h_step") = 0.01, py::arg("dt") = 2e-3, py::arg("amplitude") = 1e-4,
-        py::arg("h_range") = py::none(), py::arg("events") = true, py::arg("branch_switching") = true,
-        "Families of periodic orbits at momentum l, continued by pseudo-arclength with their folds, period "
-        "doublings and class changes, and the doubled families: the Lyapunov families of every stable relative "
-        "equilibrium (seed=None), or one family from seed=(angular_momentum, gamma, period). The columns of "
-        "`lgi periodic`'s /periodic (experiments/PERIODIC.md).");
+        "momentum l (default: those of the point), by single (shooting_points=1) or multiple shooting, with its "
+        "Floquet multipliers and stability: the columns of `lgi periodic`'s /periodic for one row, plus converged, "
+        "iterations and the 6x6 monodromy (experiments/PERIODIC.md).");
+  m.def(
+      "continue_family",
+      [](const py::object& scene, const py::object& l, const py::object& seed, int steps, double h_step, double dt,
+         double amplitude, std::optional<std::pair<double, double>> h_range, bool events, bool branch_switching,
+         const std::string& continue_in, double l_step, std::optional<std::pair<double, double>> l_range,
+         int shooting_points, const py::object& seeds_from_poincare, const py::object& poincare_rows,
+         const py::object& poincare_points, int returns, int manifolds, double manifold_periods,
+         double manifold_epsilon, double direction) {
+        FamilyOptions o;
+        o.steps = steps, o.h_step = h_step, o.dt = dt, o.amplitude = amplitude, o.h_range = h_range;
+        o.events = events, o.branch_switching = branch_switching, o.continue_in = continue_in, o.l_step = l_step;
+        o.l_range = l_range, o.shooting_points = shooting_points, o.returns = returns, o.manifolds = manifolds;
+        o.manifold_periods = manifold_periods, o.manifold_epsilon = manifold_epsilon, o.direction = direction;
+        return continue_family(scene, l, seed, o, seeds_from_poincare, poincare_rows, poincare_points);
+      },
+      py::arg("scene"), py::arg("l") = py::none(), py::arg("seed") = py::none(), py::arg("steps") = 10,
+      py::arg("h_step") = 0.01, py::arg("dt") = 2e-3, py::arg("amplitude") = 1e-4, py::arg("h_range") = py::none(),
+      py::arg("events") = true, py::arg("branch_switching") = true, py::arg("continue_in") = "h",
+      py::arg("l_step") = 0.01, py::arg("l_range") = py::none(), py::arg("shooting_points") = 1,
+      py::arg("seeds_from_poincare") = py::none(), py::arg("poincare_rows") = py::none(),
+      py::arg("poincare_points") = py::none(), py::arg("returns") = 1, py::arg("manifolds") = 0,
+      py::arg("manifold_periods") = 4.0, py::arg("manifold_epsilon") = 1e-5, py::arg("direction") = 1.0,
+      "Families of periodic orbits, continued by pseudo-arclength in h at fixed l (continue_in='h') or in l at "
+      "fixed h ('l', first step l_step; a seed's first step in h goes the sense of direction=+-1), with their folds, period doublings and class changes, and the doubled "
+      "families (branch_switching): the Lyapunov families of every stable relative equilibrium (no seed), one "
+      "family from seed=(angular_momentum, gamma, period), or one per seed of a `lgi poincare` file "
+      "(seeds_from_poincare=path with poincare_rows=[...] and/or poincare_points=[(phi, theta, sheet), ...]; l "
+      "may be left out), with manifolds=N the stable and unstable manifolds of its hyperbolic orbits "
+      "(d['manifolds']); shooting_points=M > 1 corrects by multiple shooting. The columns of `lgi periodic`'s "
+      "/periodic, failures and l_file (the l used) (experiments/PERIODIC.md).");
 }
 
 }  // namespace lgi::python

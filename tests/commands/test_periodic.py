@@ -10,6 +10,14 @@
    it) converges to that orbit: same period to 1e-8, elliptic, its point on
    the section, and its crossings (SciPy's DOP853, periodic_crossings.py) are
    the orbit's to 1e-7; a row of /events on the orbit converges to it too;
+ - --continue-in l with --from-equilibria at l = 3: each family's first orbit
+   at l = 3, one step of --h-step in h, then l steps down at that h;
+ - --manifolds: the unstable and stable manifolds of a hyperbolic orbit of
+   Richter's top at l = 3 past its fold, seeded from a section: N points a
+   side and branch at crossing 0, s from eps|x0| to eps|x0||lambda|, the first
+   return of the unstable branch's inner point |lambda| times as far from x0
+   (to 3 %), the stable branch integrated backwards; and --shooting-points 3
+   finds the same orbit (period to 1e-9);
  - bad input: one line on stderr naming the flag, exit 2."""
 import math
 import os
@@ -130,6 +138,77 @@ def test_seeds_from_a_poincare_section(tmp_path):
     assert abs(p["period"][0] - T) <= 1e-8
 
 
+def test_families_from_equilibria_continued_in_l(tmp_path):
+    out = str(tmp_path / "l.h5")
+    lgi("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria", "--continue-in", "l", "--l-step", "-0.01",
+        "--steps", "2", "--h-step", "0.02", "--no-events", "--out", out, "--quiet")
+    with h5py.File(out, "r") as f:
+        t = {k: f["periodic"][k][()] for k in ("family", "index", "l", "h", "residual")}
+        assert f["parameters"].attrs["continue_in"] == "l"
+    families = np.unique(t["family"])
+    assert len(families) >= 2 and np.all(t["residual"] <= 1e-10)
+    for fam in families:
+        r = np.flatnonzero(t["family"] == fam)
+        assert list(t["index"][r]) == [0, 1, 2]
+        assert t["l"][r[0]] == 3.0 and t["l"][r[1]] == 3.0 and 2.98 < t["l"][r[2]] < 3.0
+        assert abs(abs(t["h"][r[1]] - t["h"][r[0]]) - 0.02) <= 1e-12 and abs(t["h"][r[2]] - t["h"][r[1]]) <= 1e-10
+
+
+# A hyperbolic orbit of Richter's top at l = 3 past the fold of test_periodic.cpp (tr P = 2.238).
+HYPERBOLIC = ([2.737126154036692, 0.8488396292006605, -1.033127987220866, 0.8115814748784526, 0.4064375267217684,
+               -0.4196951828487045], 4.535817543042772, 4.938876025487969)
+
+
+def test_manifolds_of_a_hyperbolic_orbit(tmp_path):
+    x0, T, h = np.array(HYPERBOLIC[0]), HYPERBOLIC[1], HYPERBOLIC[2]
+    with open(GENERAL) as f:
+        J, w = pc.body_of(f.read())
+    phi, theta, sheet = pc.crossings(x0, T, J, w, w / np.linalg.norm(w), True)[0]
+    seeds = str(tmp_path / "seeds.csv")
+    with open(seeds, "w") as f:
+        f.write("phi,theta,sheet\n%r,%r,%d\n" % (phi, theta, sheet))
+    s = str(tmp_path / "s.h5")
+    lgi("poincare", "--scene", GENERAL, "--l", "3", "--h", repr(h), "--seeds", seeds, "--t-end", "10",
+        "--out", s, "--quiet")
+    point = "%r,%r,%d" % (phi, theta, sheet)
+    n, eps = 6, 1e-5
+    q = str(tmp_path / "q.h5")
+    lgi("periodic", "--scene", GENERAL, "--seeds-from-poincare", s, "--poincare-point", point, "--steps", "0",
+        "--manifolds", str(n), "--manifold-periods", "2", "--manifold-epsilon", repr(eps), "--out", q, "--quiet")
+    with h5py.File(q, "r") as f:
+        p = {k: f["periodic"][k][()] for k in f["periodic"]}
+        m = {k: f["manifolds"][k][()] for k in f["manifolds"]}
+    assert len(p["period"]) == 1 and abs(p["period"][0] - T) <= 1e-8
+    assert p["stability"][0].decode() == "hyperbolic"
+    x = np.concatenate([p["angular_momentum"][0], p["gamma"][0]])
+    mu = p["multipliers"][0].reshape(6, 2)[4:, 0]
+    lam = float(mu[np.argmax(np.abs(mu))])
+    assert abs(m["multiplier"][0] - lam) <= 1e-12 and lam > 1.5
+    branch = np.array([b.decode() if isinstance(b, bytes) else b for b in m["branch"]])
+    ret = int(m["returns"][0])
+    state = np.concatenate([m["angular_momentum"], m["gamma"]], axis=1)
+    for b in ("unstable", "stable"):
+        for side in (1, -1):
+            start = (branch == b) & (m["side"] == side) & (m["crossing"] == 0)
+            assert sorted(m["point"][start]) == list(range(n))
+            s_ = np.sort(m["s"][start])
+            assert abs(s_[0] / (eps * np.linalg.norm(x)) - 1) <= 1e-12 and s_[-1] < s_[0] * lam
+            later = (branch == b) & (m["side"] == side) & (m["crossing"] > 0)
+            assert np.all(m["t"][later] > 0) if b == "unstable" else np.all(m["t"][later] < 0)
+            # The inner point's m-th crossing: one return of the map, |lambda| times as far from x0.
+            inner = (branch == b) & (m["side"] == side) & (m["point"] == 0)
+            d0 = np.linalg.norm(state[inner & (m["crossing"] == 0)][0] - x)
+            d1 = np.linalg.norm(state[inner & (m["crossing"] == ret)][0] - x)
+            assert abs(d1 / d0 / lam - 1) <= 0.03, (b, side, d1 / d0, lam)
+    # Multiple shooting finds the same orbit from the same section point.
+    r = str(tmp_path / "r.h5")
+    lgi("periodic", "--scene", GENERAL, "--seeds-from-poincare", s, "--poincare-point", point, "--steps", "0",
+        "--shooting-points", "3", "--out", r, "--quiet")
+    with h5py.File(r, "r") as f:
+        assert abs(f["periodic"]["period"][0] - p["period"][0]) <= 1e-9
+        assert f["parameters"].attrs["shooting_points"] == "3"
+
+
 def test_bad_input(tmp_path):
     out = str(tmp_path / "x.h5")
     assert "--l" in refused("periodic", "--scene", GENERAL, "--l", "nan", "--from-equilibria", "--out", out)
@@ -143,7 +222,11 @@ def test_bad_input(tmp_path):
         s.write("1 2 3\n")
     assert "--seed-file" in refused("periodic", "--scene", GENERAL, "--l", "3", "--seed-file", bad, "--out", out)
     assert "--continue-in" in refused("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria",
-                                      "--continue-in", "l", "--out", out)
+                                      "--continue-in", "x", "--out", out)
+    assert "--shooting-points" in refused("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria",
+                                          "--shooting-points", "0", "--out", out)
+    assert "--switch-branches" in refused("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria",
+                                          "--switch-branches", "--no-branch-switching", "--out", out)
     assert "--manifolds" in refused("periodic", "--scene", GENERAL, "--l", "3", "--from-equilibria",
                                     "--manifolds", "10", "--out", out)
     assert "--seeds-from-poincare" in refused("periodic", "--scene", GENERAL, "--seeds-from-poincare", bad,

@@ -51,6 +51,8 @@ struct FamilySettings {
   double switch_amplitude = 1e-3;  // ε of branch switching, relative to |x_pd|
   int steps = 10;                  // continuation steps after the first orbit
   double h_step = 0.0;             // the first step in h (> 0); later steps keep its arclength
+  double start_h_step = 0.0;       // with shooting.in_l, a Lyapunov family's step in h from its first orbit
+                                   // to the level h it is continued at in ℓ (0: h_step)
   double h_min = -INFINITY, h_max = INFINITY;  // the family stops where p (h, or ℓ with shooting.in_l) leaves them
   bool locate_events = true;
   bool switch_branches = true;     // start the doubled family at each period doubling

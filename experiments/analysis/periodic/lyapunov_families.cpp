@@ -61,6 +61,42 @@ void append_with_branches(const HeavyTopBody& body, std::vector<FamilyOrbit>& al
   }
 }
 
+/// The Lyapunov family from its first orbit at an equilibrium (x_e, h_e):
+/// continued in h, or (s.shooting.in_l) one natural step in h away from the
+/// equilibrium and then in ℓ at that h. Empty rows' family_end says why it ended early.
+std::vector<FamilyOrbit> family_from(const HeavyTopBody& body, const FamilyOrbit& first, const Vec6& xe, double h_e,
+                                     double direction, const FamilySettings& s) {
+  const double away = first.orbit.h >= h_e ? 1.0 : -1.0;
+  std::vector<FamilyOrbit> rows{first};
+  if (!s.shooting.in_l || s.steps == 0) {
+    continue_rows(body, rows, away * s.h_step, &xe, h_e, s);
+    return rows;
+  }
+  FamilySettings in_h = s;
+  in_h.shooting.in_l = false, in_h.steps = 1, in_h.locate_events = false;
+  in_h.h_min = -INFINITY, in_h.h_max = INFINITY;
+  continue_rows(body, rows, away * (s.start_h_step > 0.0 ? s.start_h_step : s.h_step), &xe, h_e, in_h);
+  if (rows.size() < 2) return rows;
+  // The level of the family: the second orbit, corrected again with ℓ as its parameter.
+  const PeriodicOrbit& o = rows[1].orbit;
+  FamilyOrbit second = rows[1];
+  second.family_end.clear();
+  second.orbit = correct_orbit(body, o.x0, o.period, o.h, o.l, s.shooting);
+  if (!second.orbit.converged) {
+    rows.resize(1);
+    rows[0].family_end = "the orbit at h = " + std::to_string(o.h) + " did not converge with l as the parameter";
+    return rows;
+  }
+  std::vector<FamilyOrbit> in_l{second};
+  FamilySettings rest = s;
+  rest.steps = s.steps - 1;
+  continue_rows(body, in_l, direction * s.h_step, nullptr, 0.0, rest);
+  rows.resize(1);
+  rows[0].family_end.clear();
+  for (FamilyOrbit& r : in_l) r.index += 1, rows.push_back(std::move(r));
+  return rows;
+}
+
 }  // namespace
 
 std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e) {
@@ -94,7 +130,7 @@ std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x
 }
 
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
-                                           std::vector<std::string>& failures) {
+                                           std::vector<std::string>& failures, double direction) {
   std::vector<FamilyOrbit> all;
   const EquilibriumSet set = equilibria_at(body, l);
   int family = 0;
@@ -105,7 +141,9 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
     for (const double omega : equilibrium_frequencies(e)) {
       const Vec6 start = project_to_leaf(body, xe + s.amplitude * xe.norm() * mode_direction(body, xe, omega), l);
       const double h0 = euler_poisson_invariants(body, start).value(0);
-      const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, s.shooting);
+      ShootingSettings at_l = s.shooting;  // the first orbit at ℓ, even for a family continued in ℓ
+      at_l.in_l = false;
+      const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, at_l);
       if (!o.converged) {
         failures.push_back("equilibrium " + std::to_string(i) + ", omega = " + std::to_string(omega) +
                            ": the first orbit did not converge (residual " + std::to_string(o.residual) + ")");
@@ -113,8 +151,7 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
       }
       FamilyOrbit first;
       first.family = family, first.equilibrium = static_cast<int>(i), first.omega = omega, first.orbit = o;
-      std::vector<FamilyOrbit> rows{first};
-      continue_rows(body, rows, (h0 >= e.h ? 1.0 : -1.0) * s.h_step, &xe, e.h, s);
+      const std::vector<FamilyOrbit> rows = family_from(body, first, xe, e.h, direction, s);
       int next = family + 1;
       append_with_branches(body, all, rows, next, s);
       family = next;

@@ -27,8 +27,12 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e);
 /// equilibria_at(body, l) then ascending ω, each followed by the doubled
 /// families of its period doublings (s.switch_branches); numbered from 0.
 /// A mode whose first orbit does not converge is listed in `failures`.
+/// With s.shooting.in_l: each family's first orbit (near the equilibrium, at
+/// ℓ) is followed by one natural step in h of start_h_step away from the
+/// equilibrium, and from there the family is continued in ℓ at that h, its
+/// first step direction · h_step in ℓ (experiments/PERIODIC.md).
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
-                                           std::vector<std::string>& failures);
+                                           std::vector<std::string>& failures, double direction = 1.0);
 
 /// One family from a start (x0, T) at h (a seed), numbered `family`, its
 /// first step `direction` · h_step in h; then its doubled families.

@@ -1,5 +1,7 @@
 #include "experiments/analysis/periodic/periodic_orbit.hpp"
 
+#include "experiments/analysis/periodic/multiple_shooting.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -23,20 +25,9 @@ struct Linearised {
 Linearised linearise(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p, const FamilyPoint& t,
                      const Vec6& f_ref, double fixed, const ShootingSettings& s) {
   Linearised L;
-  const Vec6 x0 = z.head<6>();
-  L.shot = shoot(body, x0, z(6), s.dt);
-  const Invariants inv = euler_poisson_invariants(body, x0);
-  L.r.head<6>() = L.shot.end - x0;
-  L.r(6) = s.section ? section_value(body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
-  L.r.segment<3>(7) = inv.value - (s.in_l ? Eigen::Vector3d(fixed, z(7), 1.0) : Eigen::Vector3d(z(7), fixed, 1.0));
-  L.r(10) = t.dot(z - z_p);
-  L.A.setZero();
-  L.A.topLeftCorner<6, 6>() = L.shot.monodromy - Mat6::Identity();
-  L.A.block<6, 1>(0, 6) = euler_poisson_field(body, L.shot.end);
-  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body, *s.section, x0) : f_ref).transpose();
-  L.A.block<3, 6>(7, 0) = inv.gradients;
-  L.A(s.in_l ? 8 : 7, 7) = -1.0;
-  L.A.row(10) = t.transpose();
+  L.shot = shoot(body, z.head<6>(), z(6), s.dt);
+  const CondensedSystem c = condensed_system(body, z, z_p, t, f_ref, fixed, s, L.shot.end, L.shot.monodromy);
+  L.r = c.r, L.A = c.A;
   return L;
 }
 
@@ -57,6 +48,37 @@ Mat6 adapted_basis(const HeavyTopBody& body, const Vec6& x0) {
 
 }  // namespace
 
+CondensedSystem condensed_system(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p,
+                                 const FamilyPoint& t, const Vec6& f_ref, double fixed, const ShootingSettings& s,
+                                 const Vec6& end, const Mat6& monodromy) {
+  CondensedSystem L;
+  const Vec6 x0 = z.head<6>();
+  const Invariants inv = euler_poisson_invariants(body, x0);
+  L.r.head<6>() = end - x0;
+  L.r(6) = s.section ? section_value(body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
+  L.r.segment<3>(7) = inv.value - (s.in_l ? Eigen::Vector3d(fixed, z(7), 1.0) : Eigen::Vector3d(z(7), fixed, 1.0));
+  L.r(10) = t.dot(z - z_p);
+  L.A.setZero();
+  L.A.topLeftCorner<6, 6>() = monodromy - Mat6::Identity();
+  L.A.block<6, 1>(0, 6) = euler_poisson_field(body, end);
+  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body, *s.section, x0) : f_ref).transpose();
+  L.A.block<3, 6>(7, 0) = inv.gradients;
+  L.A(s.in_l ? 8 : 7, 7) = -1.0;
+  L.A.row(10) = t.transpose();
+  return L;
+}
+
+void record_iterate(PeriodicOrbit& o, const FamilyPoint& z, double residual, const Mat6& monodromy,
+                    const Eigen::Matrix<double, 11, 8>& A) {
+  o.x0 = z.head<6>(), o.period = z(6), o.residual = residual, o.monodromy = monodromy;
+  (o.in_l ? o.l : o.h) = z(7);
+  const Eigen::Matrix<double, 8, 1> sv = Eigen::JacobiSVD<System>(A).singularValues();
+  o.rank_ratio = sv(7) / sv(0);
+  // The family's tangent: the null vector of the ten equations without the continuation row.
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 10, 8>> family(A.topRows<10>(), Eigen::ComputeFullV);
+  o.tangent = family.matrixV().col(7);
+}
+
 FamilyPoint family_point(const PeriodicOrbit& o) {
   FamilyPoint z;
   z << o.x0, o.period, parameter_of(o);
@@ -73,6 +95,7 @@ PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, doubl
 
 PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                 const ShootingSettings& s) {
+  if (s.shooting_points > 1) return correct_multiple(body, z_p, t, fixed, s);
   PeriodicOrbit o;
   o.in_l = s.in_l;
   (s.in_l ? o.h : o.l) = fixed;
@@ -86,19 +109,9 @@ PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p
     o.iterations = it;
     if (res < best) {
       best = res;
-      o.x0 = z.head<6>(), o.period = z(6), o.residual = res, o.monodromy = L.shot.monodromy;
-      (s.in_l ? o.l : o.h) = z(7);
-      const Eigen::Matrix<double, 8, 1> sv = Eigen::JacobiSVD<System>(L.A).singularValues();
-      o.rank_ratio = sv(7) / sv(0);
-      // The family's tangent: the null vector of the ten equations without the continuation row.
-      const Eigen::JacobiSVD<Eigen::Matrix<double, 10, 8>> family(L.A.topRows<10>(), Eigen::ComputeFullV);
-      o.tangent = family.matrixV().col(7);
+      record_iterate(o, z, res, L.shot.monodromy, L.A);
     }
-    // Stop well below the tolerance, or at it once round-off dominates (no
-    // tenfold gain left), or when Newton stalls.
-    if (res <= s.tolerance * 1e-2 || (res <= s.tolerance && res > 0.1 * previous) || (it > 8 && res > 0.5 * previous) ||
-        it == s.max_iterations)
-      break;
+    if (newton_done(it, res, previous, s)) break;
     previous = res;
     Eigen::CompleteOrthogonalDecomposition<System> cod;
     cod.setThreshold(1e-9);

@@ -1,6 +1,7 @@
 #pragma once
 // One periodic orbit of the Euler–Poisson flow in (Π, Γ) ∈ ℝ⁶ at fixed ℓ, by
-// single shooting with Newton's method, and its Floquet multipliers
+// single shooting with Newton's method (or multiple shooting,
+// ShootingSettings::shooting_points, multiple_shooting.hpp), and its Floquet multipliers
 // (experiments/PERIODIC.md; R. Seydel, Practical Bifurcation and Stability
 // Analysis, 3rd ed. (2010), ch. 7).
 //
@@ -41,6 +42,7 @@ struct ShootingSettings {
   int max_iterations = 30;
   std::optional<PhaseSection> section{};  // the phase condition S(x0) = 0 instead of the hyperplane
   bool in_l = false;                      // the eighth unknown is ℓ (at fixed h), not h (at fixed ℓ)
+  int shooting_points = 1;                // M: 1 is single shooting, M > 1 multiple shooting (multiple_shooting.hpp)
 };
 
 struct PeriodicOrbit {
@@ -81,6 +83,30 @@ PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p
 
 /// (x0, T, p) of an orbit.
 FamilyPoint family_point(const PeriodicOrbit& o);
+
+/// The residual vector of the eleven equations at z = (x0, T, p) and their
+/// Jacobian, given the shot φ_T(x0) and its monodromy (from one shot, or the
+/// product of the segments' of multiple shooting); f_ref is the phase
+/// hyperplane's normal (unused with a section).
+struct CondensedSystem {
+  Eigen::Matrix<double, 11, 1> r;
+  Eigen::Matrix<double, 11, 8> A;
+};
+CondensedSystem condensed_system(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p,
+                                 const FamilyPoint& t, const Vec6& f_ref, double fixed, const ShootingSettings& s,
+                                 const Vec6& end, const Mat6& monodromy);
+
+/// Newton's stop: well below the tolerance, or at it once round-off dominates
+/// (no tenfold gain left), or when it stalls, or at the iteration limit.
+inline bool newton_done(int it, double res, double previous, const ShootingSettings& s) {
+  return res <= s.tolerance * 1e-2 || (res <= s.tolerance && res > 0.1 * previous) || (it > 8 && res > 0.5 * previous) ||
+         it == s.max_iterations;
+}
+
+/// Records the iterate z of a corrector as the orbit's best: x0, T, p, the
+/// residual, the monodromy, rank_ratio and the family's tangent (from A).
+void record_iterate(PeriodicOrbit& o, const FamilyPoint& z, double residual, const Mat6& monodromy,
+                    const Eigen::Matrix<double, 11, 8>& A);
 
 /// Multipliers, their checks, the stability class and the degeneracy of a corrected orbit.
 ///

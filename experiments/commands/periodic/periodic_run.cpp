@@ -1,0 +1,89 @@
+#include "experiments/commands/periodic/periodic_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "experiments/commands/periodic/critical_seeds.hpp"
+#include "experiments/commands/periodic/periodic_seeds.hpp"
+#include "experiments/errors/exit_status.hpp"
+#include "experiments/io/number_format.hpp"
+
+namespace lgi::experiments {
+
+namespace {
+
+/// The families of the seeds (of a seed file or a poincare file), numbered from 0.
+std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
+                                       double direction, const FamilySettings& s, std::vector<std::string>& failures) {
+  std::vector<FamilyOrbit> rows;
+  int family = 0;
+  for (const SectionSeed& seed : seeds) {
+    if (!seed.failure.empty()) {
+      failures.push_back(seed.failure);
+      continue;
+    }
+    const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
+    const auto f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
+    for (const auto& r : f) family = std::max(family, r.family + 1);
+    rows.insert(rows.end(), f.begin(), f.end());
+  }
+  return rows;
+}
+
+/// The manifolds of each family's first orbit that is hyperbolic.
+std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSection& section,
+                                       const std::vector<FamilyOrbit>& rows, const ManifoldSettings& ms,
+                                       std::vector<std::string>& failures) {
+  std::vector<RowManifolds> out;
+  for (const FamilyOrbit& r : rows) {
+    if (r.index != 0 || r.orbit.stability == "elliptic") continue;
+    RowManifolds m{r.family, r.index, orbit_manifolds(body, section, r.orbit, ms)};
+    if (!m.m.why_not.empty())
+      failures.push_back("manifolds of family " + std::to_string(r.family) + ": " + m.m.why_not);
+    else
+      out.push_back(std::move(m));
+  }
+  return out;
+}
+
+}  // namespace
+
+PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest& r) {
+  PeriodicResult out;
+  out.l = r.l.value_or(0.0);
+  const FamilySettings& s = r.settings;
+  if (r.from_equilibria) {
+    out.rows = lyapunov_families(body, out.l, s, out.failures, r.direction);
+    return out;
+  }
+  if (!r.critical.empty()) {
+    const std::vector<SectionSeed> seeds = critical_seeds(body, r.scene_file, out.l, r.critical, s.shooting.dt);
+    out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures);
+    return out;
+  }
+  if (r.poincare.empty()) {
+    std::vector<SectionSeed> seeds;
+    for (const auto& [x, T] : r.seeds) seeds.push_back({x, T, "", ""});
+    out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures);
+    return out;
+  }
+  const PoincareFile f = read_poincare_file(r.poincare);
+  if (r.l && std::abs(*r.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
+    throw UsageError("--l: " + format_general(*r.l, 17) + " differs from the l of --seeds-from-poincare " + r.poincare +
+                     " (" + format_general(f.l, 17) + "); leave --l out");
+  out.l = f.l;
+  FamilySettings on_section = s;
+  on_section.shooting.section = section_of(f);
+  out.section = on_section.shooting.section;
+  // Every seed is put at the file's level; its family starts at the file's h.
+  std::vector<SectionSeed> seeds = poincare_seeds(body, f, r.poincare_rows, r.poincare_points, r.returns,
+                                                  s.shooting.dt, 500.0 * r.returns);
+  for (SectionSeed& seed : seeds)
+    if (seed.failure.empty() && !project_to_level(body, seed.x, f.h, f.l, &*out.section))
+      seed.failure = seed.label + ": cannot be put on the level and the section";
+  out.rows = seed_families(body, seeds, out.l, r.direction, on_section, out.failures);
+  if (r.manifolds.points > 0) out.manifolds = manifolds_of(body, *out.section, out.rows, r.manifolds, out.failures);
+  return out;
+}
+
+}  // namespace lgi::experiments

@@ -1,0 +1,42 @@
+#pragma once
+// The families of `lgi periodic` from its starts (experiments/PERIODIC.md):
+// the Lyapunov families of the equilibria, seeds (a point and a period), a
+// Kovalevskaya top's critical orbits (--from-critical), or
+// the seeds of a poincare file on its section, with the manifolds of their
+// hyperbolic first orbits. Shared by the command and the Python module.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "experiments/analysis/periodic/lyapunov_families.hpp"
+#include "experiments/commands/periodic/periodic_tables.hpp"
+
+namespace lgi::experiments {
+
+struct PeriodicRequest {
+  FamilySettings settings{};
+  std::optional<double> l;         // required unless poincare is given (then it must equal the file's)
+  bool from_equilibria = false;
+  std::vector<std::pair<Vec6, double>> seeds;  // points and period guesses
+  std::string critical, scene_file;             // --from-critical H1,H2,... (a Kovalevskaya top) and its scene
+  std::string poincare, poincare_rows;          // a poincare file and its rows (--poincare-rows)
+  std::vector<std::string> poincare_points;     // --poincare-point
+  int returns = 1;
+  double direction = 1.0;          // the sense of the first step (the sign of --l-step)
+  ManifoldSettings manifolds{};    // points = 0: none
+};
+
+struct PeriodicResult {
+  std::vector<FamilyOrbit> rows;
+  std::vector<RowManifolds> manifolds;
+  std::vector<std::string> failures;  // starts with no family, manifolds not grown
+  double l = 0.0;
+  std::optional<PhaseSection> section;
+};
+
+/// The families of exactly one kind of start of `r` (UsageError naming the
+/// flag on a poincare file that does not fit).
+PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest& r);
+
+}  // namespace lgi::experiments
