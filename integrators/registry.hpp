@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrators/ensemble/lane_mode.hpp"
 #include "integrators/scheme_facts.hpp"
 #include "integrators/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
@@ -34,6 +35,9 @@ struct SchemeInfo {
   bool locates_events = true;
   /// A run can be resumed from a checkpoint (RunConfig::checkpoints; scheme_interface.hpp, "Resume").
   bool resumable = false;
+  /// The SIMD lane kernel the scheme's facts declare (SchemeFacts::lane_kernel) and what the
+  /// ensemble runs it with; kernel none: one trajectory at a time (docs/ensemble.md).
+  LaneMode lanes{};
 };
 
 const std::vector<SchemeInfo>& scheme_registry();

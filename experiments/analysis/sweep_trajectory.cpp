@@ -154,7 +154,7 @@ void SweepRunner::prepare(std::int64_t i) {
     context_->refusal = integrators::unsupported_reason(scheme_, context_->model);
     const auto isa = integrators::ensemble::sweep_isa();
     if (isa && context_->refusal.empty() && !scheme_.properties.adaptive && config_.dt > 0.0)
-      context_->ensemble = integrators::ensemble::EnsembleStepper::make(scheme_.name, context_->model, *isa);
+      context_->ensemble = integrators::ensemble::EnsembleStepper::make(scheme_, context_->model, *isa);
   }
 }
 
