@@ -246,7 +246,8 @@ class Lgvi {
                      .conserves_spatial_momentum = true, .conserves_vertical_momentum = true, .implicit = true},
       .support = SceneSupport::conservative_only,
       .reference = "Lee, Leok & McClamroch, IEEE CCA (2005) and CMAME 196 (2007); Moser & Veselov, Commun. Math. "
-                   "Phys. 139 (1991)"};
+                   "Phys. 139 (1991)",
+      .lane_kernel = LaneKernel::dmv_diagonal};
   /// A run starts with no carried rounding error.
   template <class Model>
   void start(const Model& model, const State& /*initial*/, double /*t0*/) {
@@ -308,7 +309,8 @@ class Dmv : public Lgvi {
       .properties = {.symplectic = true, .symmetric = true, .conserves_energy = true,
                      .conserves_momentum_norm = true, .conserves_spatial_momentum = true, .implicit = true},
       .support = SceneSupport::free_body_only,
-      .reference = Lgvi::facts.reference};
+      .reference = Lgvi::facts.reference,
+      .lane_kernel = LaneKernel::dmv_diagonal};
 };
 
 }  // namespace lgi::integrators

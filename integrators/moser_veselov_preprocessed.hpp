@@ -58,6 +58,8 @@ template <int Order>
 class DmvPreprocessed {
  public:
   static constexpr int order = Order;
+  /// The highest power of h² of the modified-inertia series (the ensemble kernel's, dmv_fallback.hpp).
+  static constexpr int series_degrees = moser_veselov::ModifiedInertiaSeries<Order>::degrees;
   // Not symplectic for order > 2 (Hairer-Vilmart Table 2, Sect. 4.3): a Poisson integrator for Pi.
   static constexpr SchemeFacts facts{
       .order = Order,
@@ -66,7 +68,8 @@ class DmvPreprocessed {
                      .conserves_vertical_momentum = true, .implicit = true},
       .support = SceneSupport::conservative_only,
       .reference = "Hairer & Vilmart, J. Phys. A 39 (2006) 13225-13235, Algorithm 2.2; modified inertia: Table 1 "
-                   "and the authors' DMV10.f"};
+                   "and the authors' DMV10.f",
+      .lane_kernel = LaneKernel::dmv_diagonal};
 
   /// Per run: the series constants, the diagonal path's constants and, for a
   /// free body, the series as polynomials in h² at the initial H and |Π|²/2

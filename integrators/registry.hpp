@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrators/ensemble/lane_mode.hpp"
 #include "integrators/scheme_facts.hpp"
 #include "integrators/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
@@ -48,6 +49,9 @@ struct SchemeInfo {
   /// The fixed-step loop on the scheme's step(): for an adaptive scheme, its
   /// propagated solution on a fixed grid (order checks); otherwise run_cardan.
   CardanRunFunction run_cardan_fixed = nullptr;
+  /// The SIMD lane kernel the scheme's facts declare (SchemeFacts::lane_kernel) and what the
+  /// ensemble runs it with; kernel none: one trajectory at a time (docs/ensemble.md).
+  LaneMode lanes{};
 };
 
 const std::vector<SchemeInfo>& scheme_registry();

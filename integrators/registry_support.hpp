@@ -2,12 +2,14 @@
 // Registration from a scheme type's own facts (scheme_facts.hpp): a registry
 // line gives the name, the family and notes; order, properties, scene support
 // and references are read from Scheme::facts, and the run function is chosen
-// from them (fixed step or adaptive; the free body only where so stated).
+// from them (fixed step or adaptive; the free body only where so stated), as
+// is the lane mode of a scheme whose facts declare a lane kernel.
 #include <string>
 #include <type_traits>
 #include <variant>
 
 #include "integrators/composition.hpp"
+#include "integrators/ensemble/lane_mode_of.hpp"
 #include "integrators/processed_composition.hpp"
 #include "integrators/registry.hpp"
 
@@ -70,7 +72,8 @@ void add_scheme(std::vector<SchemeInfo>& registry, const SchemeEntry& entry) {
                       .base_scheme = entry.base_scheme,
                       // a processed composition's loop state is not the trajectory's between outputs
                       .locates_events = !detail::has_observable_state<Scheme, system::FreeBody>,
-                      .resumable = resumable_scheme<Scheme, system::FreeBody, facts.properties.adaptive>()});
+                      .resumable = resumable_scheme<Scheme, system::FreeBody, facts.properties.adaptive>(),
+                      .lanes = ensemble::lane_mode_of<Scheme>()});
 }
 
 /// The registry line of one composition of `base`: BASE@NAME, in the family

@@ -22,6 +22,7 @@
 // series below θ = 1, so no sin or cos in a usual step), whose source
 // lie/exp_series.hpp the ensemble kernel shares.
 #include <array>
+#include <type_traits>
 
 #include "integrators/flatten_policy.hpp"
 #include "integrators/rkmk_chart.hpp"
@@ -31,11 +32,27 @@
 
 namespace lgi::integrators {
 
+namespace rkmk_detail {
+/// The ensemble's RKMK kernel (ensemble/rkmk_kernel.hpp) is compiled for the
+/// classical RK4 tableau in exp coordinates (ensemble/kernel_set.hpp): rkmk4.
+template <const auto& Tableau, class Chart>
+constexpr LaneKernel lane_kernel() {
+  using Rk4 = std::remove_cvref_t<decltype(tableaus::classical_rk4)>;
+  if constexpr (std::is_same_v<std::remove_cvref_t<decltype(Tableau)>, Rk4> && std::is_same_v<Chart, ExponentialChart>)
+    return &Tableau == &tableaus::classical_rk4 ? LaneKernel::rkmk4 : LaneKernel::none;
+  else
+    return LaneKernel::none;
+}
+}  // namespace rkmk_detail
+
 template <const auto& Tableau, RkmkChart Chart = ExponentialChart>
 class Rkmk {
  public:
   static constexpr auto& tableau = Tableau;
-  static constexpr SchemeFacts facts{.order = Tableau.order, .reference = Chart::reference, .tableau = Tableau.citation};
+  static constexpr SchemeFacts facts{.order = Tableau.order,
+                                     .reference = Chart::reference,
+                                     .tableau = Tableau.citation,
+                                     .lane_kernel = rkmk_detail::lane_kernel<Tableau, Chart>()};
   static constexpr std::size_t stages = std::remove_cvref_t<decltype(Tableau)>::stages;
 
   // flatten: the maps, dexp⁻¹, the stage attitude and the torque inlined into

@@ -34,6 +34,17 @@ enum class SceneSupport {
   cardan_only,        // the Cardan top on T³ (integrators/torus/, docs/cardan.md): never an SO(3) scene
 };
 
+/// The SIMD lane kernel whose step is the scheme's, bit for bit (integrators/ensemble/,
+/// docs/ensemble.md): `lgi sweep` steps such a scheme's trajectories several at a time in
+/// lanes. The ensemble looks a scheme's kernel up here, through the registry, and has no
+/// table of scheme names; the registry builds the lane run from the scheme's own type.
+enum class LaneKernel {
+  none,
+  rkmk4,         // ensemble/rkmk_kernel.hpp on the classical RK4 tableau in exp coordinates; scenes without a spring
+  dmv_diagonal,  // ensemble/dmv_kernel.hpp: a DMV-family step on a free body with diagonal J, the scheme's
+                 // own step behind each lane for the steps the kernel leaves (ensemble/lane_fallback.hpp)
+};
+
 struct SchemeFacts {
   int order = 0;              // 0: not applicable (exact)
   int order_with_torque = 0;  // order on scenes with torques where it differs (Strang splitting); 0: the same
@@ -41,6 +52,7 @@ struct SchemeFacts {
   SceneSupport support = SceneSupport::any;
   const char* reference = "";  // the method's papers
   const char* tableau = "";    // the coefficients' source, where they come from a table
+  LaneKernel lane_kernel = LaneKernel::none;  // the ensemble's kernel of this step, if any
 };
 
 /// A scheme type that carries its facts.

@@ -204,7 +204,7 @@ void SweepRunner::prepare(std::int64_t i) {
       context_->refusal = "scheme '" + scheme_.name + "' runs on SO(3) x R^3 scenes only (this scene is a Cardan top)";
     const auto isa = integrators::ensemble::sweep_isa();
     if (isa && context_->refusal.empty() && !context_->cardan && !scheme_.properties.adaptive && config_.dt > 0.0)
-      context_->ensemble = integrators::ensemble::EnsembleStepper::make(scheme_.name, context_->model, *isa);
+      context_->ensemble = integrators::ensemble::EnsembleStepper::make(scheme_, context_->model, *isa);
   }
 }
 

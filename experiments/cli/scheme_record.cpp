@@ -45,6 +45,9 @@ std::vector<SchemeField> scheme_record(const integrators::SchemeInfo& s, std::op
   r.push_back({"adaptive", p.adaptive, true});
   r.push_back({"dense_output", p.dense_output, true});
   r.push_back({"scenes", std::string(scheme_support_text(s.support))});
+  // The SIMD lane kernel its facts declare (docs/ensemble.md), or null.
+  const char* lanes = integrators::lane_kernel_name(s.lanes.kernel);
+  r.push_back({"lane_kernel", *lanes ? Value{std::string(lanes)} : Value{}});
   r.push_back({"reference", s.reference});
   r.push_back({"notes", s.notes});
   return r;

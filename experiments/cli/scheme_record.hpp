@@ -29,7 +29,8 @@ int scheme_order_on(const integrators::SchemeInfo& s, bool has_torque);
 
 /// The fields in the order of `lgi schemes --json`: name, order, family,
 /// kind, base, the properties, order_with_torque, order_on_scene (only when
-/// `scene_has_torque` is given), implicit, adaptive, scenes, reference, notes.
+/// `scene_has_torque` is given), implicit, adaptive, dense_output, scenes,
+/// lane_kernel (the ensemble kernel its facts declare, or null), reference, notes.
 std::vector<SchemeField> scheme_record(const integrators::SchemeInfo& s, std::optional<bool> scene_has_torque);
 
 }  // namespace lgi::experiments

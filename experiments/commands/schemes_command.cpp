@@ -41,8 +41,10 @@ std::string lower(std::string s) {
   return s;
 }
 
-/// The properties a scheme claims; the compact view abbreviates them (its legend says how).
-std::string property_list(const integrators::SchemeProperties& p, bool long_names) {
+/// The properties a scheme claims, and "lanes" where it has an ensemble kernel; the compact
+/// view abbreviates them (its legend says how).
+std::string property_list(const SchemeInfo& scheme, bool long_names) {
+  const integrators::SchemeProperties& p = scheme.properties;
   std::string s;
   auto add = [&](bool on, const char* full, const char* brief) {
     if (!on) return;
@@ -58,6 +60,7 @@ std::string property_list(const integrators::SchemeProperties& p, bool long_name
   add(p.implicit, "implicit", "impl");
   add(p.adaptive, "adaptive", "adapt");
   add(p.dense_output, "dense-output", "dense");
+  add(scheme.lanes.kernel != integrators::LaneKernel::none, "lanes", "lanes");
   return s.empty() ? "-" : s;
 }
 
@@ -134,7 +137,7 @@ void print_table(const std::vector<const SchemeInfo*>& schemes, const std::optio
   for (const SchemeInfo* s : schemes) {
     w_name = std::max(w_name, s->name.size());
     w_family = std::max(w_family, s->family.size());
-    w_props = std::max(w_props, property_list(s->properties, long_view).size());
+    w_props = std::max(w_props, property_list(*s, long_view).size());
     any_split_order = any_split_order || s->order_with_torque != 0;
   }
   const auto col = [](std::size_t w) { return static_cast<int>(w + 2); };
@@ -143,7 +146,7 @@ void print_table(const std::vector<const SchemeInfo*>& schemes, const std::optio
   for (const SchemeInfo* s : schemes) {
     std::cout << std::left << std::setw(col(w_name)) << s->name << std::setw(7) << order_text(*s, scene)
               << std::setw(col(w_family)) << s->family << std::setw(col(w_props))
-              << property_list(s->properties, long_view)
+              << property_list(*s, long_view)
               << support_text(s->support) << '\n';
     if (long_view) {
       std::cout << "    reference: " << s->reference << '\n';
@@ -157,9 +160,11 @@ void print_table(const std::vector<const SchemeInfo*>& schemes, const std::optio
     std::cout << "order a/b: a on free bodies, b on scenes with torques\n";
   if (long_view)
     std::cout << "properties: exactly conserved where the quantity is an invariant of the scene "
-                 "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top)\n";
+                 "(|Pi|, spatial-momentum: free body; Pi.Gamma: heavy top); lanes: an ensemble kernel "
+                 "(lgi sweep steps its trajectories in SIMD lanes, docs/ensemble.md)\n";
   else
-    std::cout << "properties: sympl(ectic), sym(metric), impl(icit), adapt(ive), dense (output inside a step);\n"
+    std::cout << "properties: sympl(ectic), sym(metric), impl(icit), adapt(ive), dense (output inside a step),\n"
+                 "  lanes (an ensemble kernel: lgi sweep steps its trajectories in SIMD lanes);\n"
                  "  conserved exactly where an invariant:\n"
                  "  H energy, |Pi|, m spatial momentum (free body), Pi.G = Pi.Gamma (heavy top; p1 of a Cardan top)\n"
                  "--long: full names, references and notes\n";

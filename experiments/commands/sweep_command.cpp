@@ -113,7 +113,7 @@ std::string simd_used(const system::Scene& scene, const integrators::SchemeInfo&
   if (!isa) return "off";
   std::string used = std::string(integrators::ensemble::isa_name(*isa)) + " (" +
                      std::to_string(integrators::ensemble::isa_lanes(*isa)) + " lanes)";
-  std::string why = integrators::ensemble::unsupported_reason(scheme.name, system::make_model(scene));
+  std::string why = integrators::ensemble::unsupported_reason(scheme, system::make_model(scene));
   if (why.empty() && (scheme.properties.adaptive || !(cfg.dt > 0.0))) why = "no ensemble for adaptive steps";
   return why.empty() ? used : used + "; not used: " + why;
 }

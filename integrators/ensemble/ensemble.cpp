@@ -1,5 +1,6 @@
 // The ensemble stepper's dispatch (ensemble.hpp): which instruction sets this
-// CPU has, which schemes and models have kernels, and the lane block.
+// CPU has, which models the kernels apply to, and the lane block. Which
+// scheme has which kernel is its registry entry's (SchemeInfo::lanes).
 // Compiled for the baseline instruction set; it includes no xsimd header.
 #include "integrators/ensemble/ensemble.hpp"
 
@@ -11,6 +12,8 @@
 #include "integrators/cayley_quaternion.hpp"
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
+#include "integrators/moser_veselov_diagonal.hpp"
+#include "integrators/registry.hpp"
 
 namespace lgi::integrators::ensemble {
 
@@ -37,29 +40,22 @@ KernelSet kernels(Isa isa) {
   return baseline_kernels();
 }
 
-/// A scheme's kernel in a KernelSet, its cost per step, and whether it is the
-/// DMV family's (free body with diagonal J, a scalar scheme behind each lane).
-struct SchemeKernel {
-  std::string_view name;
-  StepKernel KernelSet::*kernel;
-  int rhs_per_step;
-  bool dmv = false;
+/// A kind of lane kernel's entry in a KernelSet and its cost per step.
+struct KindKernel {
+  StepKernel KernelSet::*kernel = nullptr;
+  int rhs_per_step = 0;
 };
-constexpr SchemeKernel scheme_kernels[] = {
-    {"rkmk4", &KernelSet::rkmk4, 4},
-    {"dmv", &KernelSet::dmv_pre, 1, true},
-    {"lgvi", &KernelSet::dmv_pre, 1, true},
-    {"dmv-pre4", &KernelSet::dmv_pre, 1, true},
-    {"dmv-pre6", &KernelSet::dmv_pre, 1, true},
-    {"dmv-pre8", &KernelSet::dmv_pre, 1, true},
-    {"dmv-pre10", &KernelSet::dmv_pre, 1, true},
-};
-
-const SchemeKernel* find(std::string_view scheme) {
-  for (const auto& k : scheme_kernels)
-    if (k.name == scheme) return &k;
-  return nullptr;
+KindKernel kernel_of(LaneKernel kind) {
+  switch (kind) {
+    case LaneKernel::rkmk4: return {&KernelSet::rkmk4, 4};
+    case LaneKernel::dmv_diagonal: return {&KernelSet::dmv_pre, 1};
+    case LaneKernel::none: break;
+  }
+  return {};
 }
+
+static_assert(12 + moser_veselov::CayleyPredictor::memory_size == static_cast<std::size_t>(dmv_rows::memory),
+              "dmv_rows must follow StepMemory::save (dmv_fallback.hpp copies one into the other)");
 
 void copy3(const lie::Vec3& v, double (&out)[3]) {
   for (int i = 0; i < 3; ++i) out[i] = v(i);
@@ -161,7 +157,12 @@ CardanTangentKernelSet cardan_tangent_kernels(Isa isa) {
   return baseline_cardan_tangent_kernels();
 }
 
-bool has_kernel(std::string_view scheme) { return find(scheme) != nullptr; }
+bool has_kernel(const SchemeInfo& scheme) { return scheme.lanes.kernel != LaneKernel::none; }
+
+bool has_kernel(std::string_view scheme) {
+  const SchemeInfo* s = find_scheme(scheme);
+  return s && has_kernel(*s);
+}
 
 /// Why the DMV kernel does not apply to this model, or empty.
 std::string dmv_unsupported(std::string_view scheme, const system::AnyModel& model) {
@@ -173,30 +174,46 @@ std::string dmv_unsupported(std::string_view scheme, const system::AnyModel& mod
   return {};
 }
 
-std::string unsupported_reason(std::string_view scheme, const system::AnyModel& model) {
-  const SchemeKernel* k = find(scheme);
-  if (!k) return "no ensemble kernel for " + std::string(scheme);
-  if (k->dmv) return dmv_unsupported(scheme, model);
+std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model) {
+  if (std::string why = integrators::unsupported_reason(scheme, model); !why.empty()) return why;
+  if (!has_kernel(scheme)) return "no ensemble kernel for " + scheme.name;
+  if (scheme.lanes.kernel == LaneKernel::dmv_diagonal) return dmv_unsupported(scheme.name, model);
   std::string why;
   if (!describe(model, &why)) return why;
   return {};
 }
 
-std::optional<EnsembleStepper> EnsembleStepper::make(std::string_view scheme, const system::AnyModel& model, Isa isa) {
-  const SchemeKernel* k = find(scheme);
-  if (!k || !isa_available(isa) || !unsupported_reason(scheme, model).empty()) return std::nullopt;
+std::string unsupported_reason(std::string_view scheme, const system::AnyModel& model) {
+  const SchemeInfo* s = find_scheme(scheme);
+  if (!s) return "unknown scheme '" + std::string(scheme) + "' (lgi schemes lists them)";
+  return ensemble::unsupported_reason(*s, model);
+}
+
+std::optional<EnsembleStepper> EnsembleStepper::make(const SchemeInfo& scheme, const system::AnyModel& model,
+                                                     Isa isa) {
+  if (!isa_available(isa) || !ensemble::unsupported_reason(scheme, model).empty()) return std::nullopt;
   std::optional<EnsembleModel> m = describe(model, nullptr);
-  if (!m) return std::nullopt;
+  const KindKernel k = kernel_of(scheme.lanes.kernel);
+  if (!m || !k.kernel || !scheme.lanes.run) return std::nullopt;
+  const bool with_fallback = scheme.lanes.fallback != nullptr;
+  if (with_fallback && !std::holds_alternative<system::FreeBody>(model)) return std::nullopt;
   const KernelSet set = kernels(isa);
   EnsembleStepper e;
-  if (k->dmv) e.fallback_ = make_dmv_fallback(k->name, std::get<system::FreeBody>(model), *m);
+  if (with_fallback) e.fallback_ = scheme.lanes.fallback(std::get<system::FreeBody>(model), *m);
   e.model_ = *m;
-  e.kernel_ = set.*(k->kernel);
-  e.scheme_ = k->name;
+  e.kernel_ = set.*(k.kernel);
+  e.run_lanes_ = scheme.lanes.run;
+  e.scheme_ = scheme.name;
   e.lanes_ = set.lanes;
-  e.rhs_per_step_ = k->rhs_per_step;
+  e.rhs_per_step_ = k.rhs_per_step;
   e.isa_ = isa;
   return e;
+}
+
+std::optional<EnsembleStepper> EnsembleStepper::make(std::string_view scheme, const system::AnyModel& model, Isa isa) {
+  const SchemeInfo* s = find_scheme(scheme);
+  if (!s) return std::nullopt;
+  return make(*s, model, isa);
 }
 
 void EnsembleStepper::set_lane(int lane, const State& s) {

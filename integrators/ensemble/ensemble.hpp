@@ -1,15 +1,17 @@
 #pragma once
 // The ensemble stepper: several trajectories of one scene advanced together
 // in SIMD lanes, each lane bit for bit the trajectory the scalar scheme
-// computes one at a time (docs/ensemble.md). Kernels exist for rkmk4 on the
-// free body and on scenes whose torques are gravity, the harmonic drive and
-// the magnetic dipole (not the spring), and for dmv, lgvi and dmv-pre4 …
-// dmv-pre10 on a free body with diagonal J (with the scalar scheme behind
-// each lane for the steps the kernel leaves, lane_fallback.hpp); they are
-// compiled for the baseline
-// instruction set (SSE2 on x86-64) and, on x86-64, for AVX2 and AVX-512F
-// (without FMA), chosen at run time from what the CPU supports. The tangent
-// flow of rkmk4 and the chaos indicators' loop have lanes of their own
+// computes one at a time (docs/ensemble.md). Which schemes have a kernel is
+// stated in their facts (SchemeFacts::lane_kernel) and read here from the
+// one registry (SchemeInfo::lanes); the ensemble keeps no list of names.
+// Kernels exist for rkmk4 on the free body and on scenes whose torques are
+// gravity, the harmonic drive and the magnetic dipole (not the spring), and
+// for dmv, lgvi and dmv-pre4 … dmv-pre10 on a free body with diagonal J
+// (with the scalar scheme behind each lane for the steps the kernel leaves,
+// lane_fallback.hpp); they are compiled for the baseline instruction set
+// (SSE2 on x86-64) and, on x86-64, for AVX2 and AVX-512F (without FMA),
+// chosen at run time from what the CPU supports. The tangent flow of rkmk4
+// and the chaos indicators' loop have lanes of their own
 // (tangent_ensemble.hpp).
 //
 // A step allocates nothing: the lanes live in a fixed-size block inside the
@@ -25,7 +27,12 @@
 
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_fallback.hpp"
+#include "integrators/ensemble/lane_mode.hpp"
 #include "integrators/system/model.hpp"
+
+namespace lgi::integrators {
+struct SchemeInfo;  // registry.hpp
+}
 
 namespace lgi::integrators::ensemble {
 
@@ -53,20 +60,32 @@ int isa_lanes(Isa isa);
 std::optional<Isa> sweep_isa();
 void set_sweep_isa(std::optional<Isa> isa);
 
-/// Whether `scheme` (a registry name) has an ensemble kernel.
+/// Whether the scheme's facts declare a lane kernel (SchemeInfo::lanes).
+bool has_kernel(const SchemeInfo& scheme);
+/// The same for a registry name; false for a name the registry does not know.
 bool has_kernel(std::string_view scheme);
-/// Empty if `scheme` has a kernel for this model, else why not.
+/// Empty if the scheme runs in lanes on this model, else why not: the
+/// registry's refusal of the scene (integrators::unsupported_reason), no lane
+/// kernel, or what the kernel cannot evaluate. Call it qualified: the
+/// registry's function of the same signature is found by ADL.
+std::string unsupported_reason(const SchemeInfo& scheme, const system::AnyModel& model);
+/// The same for a registry name (find_scheme); an unknown name gets
+/// "unknown scheme 'NAME' (lgi schemes lists them)".
 std::string unsupported_reason(std::string_view scheme, const system::AnyModel& model);
 
 class EnsembleStepper {
  public:
   /// nullopt unless unsupported_reason(scheme, model) is empty and isa is available.
+  static std::optional<EnsembleStepper> make(const SchemeInfo& scheme, const system::AnyModel& model, Isa isa);
+  /// make() for the registry's scheme of that name; nullopt for an unknown name.
   static std::optional<EnsembleStepper> make(std::string_view scheme, const system::AnyModel& model, Isa isa);
 
   int lanes() const { return lanes_; }
   Isa isa() const { return isa_; }
   /// The scheme's registry name.
   std::string_view scheme() const { return scheme_; }
+  /// The ensemble loop with the scheme's scalar hooks (its registry entry's LaneMode::run; run_ensemble).
+  RunLanes run_lanes() const { return run_lanes_; }
   /// Right-hand-side evaluations one step costs per lane (WorkCounters), for
   /// a scheme without memory; with memory, see outcome().
   int rhs_per_step() const { return rhs_per_step_; }
@@ -106,7 +125,8 @@ class EnsembleStepper {
   int active_count() const;
   EnsembleModel model_{};
   StepKernel kernel_ = nullptr;
-  std::string_view scheme_;
+  RunLanes run_lanes_ = nullptr;
+  std::string scheme_;
   int lanes_ = 0;
   int rhs_per_step_ = 0;
   Isa isa_ = Isa::baseline;

@@ -204,7 +204,7 @@ void integrate_fixed_ensemble(EnsembleStepper& e, const Model& model, std::span<
 }
 
 /// integrate_fixed_ensemble for the scheme e was made for, on the model's
-/// alternative (ensemble_run.cpp).
+/// alternative (EnsembleStepper::run_lanes, from the scheme's registry entry).
 void run_ensemble(EnsembleStepper& e, const system::AnyModel& model, std::span<State> states, const RunConfig& cfg,
                   std::span<Observer* const> observers, std::span<RunStats> stats, EnsembleWorkspace& ws);
 

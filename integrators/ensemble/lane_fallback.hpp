@@ -7,10 +7,10 @@
 // step exactly as a run of that trajectory alone would, and writes them back.
 // One scalar scheme object per lane holds the lane's per-run constants.
 // Called outside the kernels, at most once per lane and step; compiled for
-// the baseline instruction set only (dmv_fallback.cpp).
+// the baseline instruction set only (dmv_fallback.hpp, instantiated by the
+// registry for each scheme whose facts declare LaneKernel::dmv_diagonal).
 #include <memory>
 #include <span>
-#include <string_view>
 
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/scheme_interface.hpp"
@@ -37,10 +37,5 @@ class LaneFallback {
   virtual bool step_from(int lane, std::span<const double> snapshot, State& x, double t, double h, int retry_halving,
                          WorkCounters& work) = 0;
 };
-
-/// The fallback of dmv, lgvi and dmv-pre4 … dmv-pre10 on a free body; sets the kernel's
-/// constants in `constants`. nullptr for any other scheme name.
-std::unique_ptr<LaneFallback> make_dmv_fallback(std::string_view scheme, const system::FreeBody& model,
-                                                EnsembleModel& constants);
 
 }  // namespace lgi::integrators::ensemble

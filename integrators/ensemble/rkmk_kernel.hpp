@@ -60,9 +60,22 @@ inline void stage_sums(const V3<T>* k_algebra, const V3<T>* k_momentum, V3<T>& w
   (void)term;  // stage 0 sums nothing
 }
 
-template <const auto& Tableau, std::size_t I, class T>
+/// What stage I computes besides its k̃_i and K_i, for a caller that steps
+/// more than the state (tangent_kernel.hpp): Π_i, Ω_i = J⁻¹Π_i and the stage
+/// attitude R_i = R_n exp(w_i), nullptr on a free body (never formed there);
+/// with gravity alone only its row 2 (Γ = R_iᵀe3) holds values.
+template <class T>
+struct StageView {
+  const V3<T>& Pi_i;
+  const V3<T>& Omega_i;
+  const M3<T>* R_i;
+};
+
+/// Stage I of the RKMK step (top of this file): writes k̃_I and K_I, then
+/// calls on_stage(StageView) (a no-op for rkmk_step).
+template <const auto& Tableau, std::size_t I, class T, class OnStage>
 inline void stage(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, double t, double h,
-                  V3<T>* k_algebra, V3<T>* k_momentum) {
+                  V3<T>* k_algebra, V3<T>* k_momentum, OnStage&& on_stage) {
   V3<T> w = zero3<T>(), dPi = zero3<T>();
   stage_sums<Tableau, I>(k_algebra, k_momentum, w, dPi, std::make_index_sequence<I>{});
   w = scale(h, w);
@@ -78,26 +91,35 @@ inline void stage(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, d
   const V3<T> gyroscopic = cross(Pi_i, Omega_i);
   if (model.free_body) {
     k_momentum[I] = gyroscopic;
+    on_stage(StageView<T>{Pi_i, Omega_i, nullptr});
     return;
   }
   constexpr double c = Tableau.c[I];
-  V3<T> tau;
+  const auto at = [&](const M3<T>& R_i) {
+    k_momentum[I] = add(gyroscopic, scene_torque(model, R_i, t + c * h));
+    on_stage(StageView<T>{Pi_i, Omega_i, &R_i});
+  };
   if constexpr (I == 0) {
-    tau = scene_torque(model, R, t + c * h);
+    at(R);
   } else if (model.magnetic) {
-    tau = scene_torque(model, times_exp(R, w, m), t + c * h);
+    at(times_exp(R, w, m));
   } else {  // only row 2 of R_i = R_n exp(w_i) is read (gravity): the others are not formed
     M3<T> R_i;
     times_exp_row(R, 2, w, m, R_i);
-    tau = scene_torque(model, R_i, t + c * h);
+    at(R_i);
   }
-  k_momentum[I] = add(gyroscopic, tau);
 }
+
+/// stage() with nothing more to do.
+struct NoStageView {
+  template <class View>
+  void operator()(const View&) const {}
+};
 
 template <const auto& Tableau, class T, std::size_t... I>
 inline void rkmk_stages(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, double t, double h,
                         V3<T>* k_algebra, V3<T>* k_momentum, std::index_sequence<I...>) {
-  (stage<Tableau, I>(model, R, Pi, t, h, k_algebra, k_momentum), ...);
+  (stage<Tableau, I>(model, R, Pi, t, h, k_algebra, k_momentum, NoStageView{}), ...);
 }
 
 }  // namespace detail

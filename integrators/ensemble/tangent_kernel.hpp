@@ -7,10 +7,11 @@
 // bit the scalar step by construction; tests/test_ensemble_tangent.cpp checks
 // it, and that the state part is Rkmk4::step's.
 //
-// State: the stages of rkmk_kernel.hpp's detail::stage on the classical RK4
-// tableau, operation for operation (the same stage attitude rows, the same
-// torque). Tangent: with the stage state Y_i (Ω_i = J⁻¹Π_i, R_i) and
-// V_i = v + h (a_i W_{i−1}), the stage rate W_i = A(Y_i) V_i is
+// State: rkmk_kernel.hpp's detail::stage on the classical RK4 tableau, the
+// one function rkmk4's lanes use, which hands each stage's Π_i, Ω_i and
+// attitude rows to the tangent part (detail::StageView). Tangent: with the
+// stage state Y_i (Ω_i = J⁻¹Π_i, R_i) and V_i = v + h (a_i W_{i−1}), the
+// stage rate W_i = A(Y_i) V_i is
 //   ξ̇  = ξ × Ω + u,                       u = J⁻¹δΠ,
 //   δΠ̇ = Π × u + δΠ × Ω + δτ,
 //   δτ = (Γ × ξ) × m g χ  [gravity] + (B_b × ξ) × (−μ)  [magnetic dipole]
@@ -66,57 +67,36 @@ inline Tangent6<T> tangent_rate(const EnsembleModel& model, const V3<T>& Pi_i, c
   return w;
 }
 
-/// Stage I of the state (rkmk_kernel.hpp's detail::stage on RK4) and of the
-/// NV vectors: w holds W_{I−1} on entry and W_I on return, sum Σ_{j≤I} b_j W_j.
+/// Stage I of the state (rkmk_kernel.hpp's detail::stage on RK4, the same
+/// function) and of the NV vectors at that stage's Π_i, Ω_i and attitude:
+/// w holds W_{I−1} on entry and W_I on return, sum Σ_{j≤I} b_j W_j.
 template <std::size_t I, class T, std::size_t NV>
 inline void stage(const EnsembleModel& model, const M3<T>& R, const V3<T>& Pi, const Tangent6<T> (&v)[NV],
                   double t, double h, V3<T>* k_algebra, V3<T>* k_momentum, Tangent6<T> (&w)[NV],
                   Tangent6<T> (&sum)[NV]) {
-  V3<T> wv = zero3<T>(), dPi = zero3<T>();
-  detail::stage_sums<rk4, I>(k_algebra, k_momentum, wv, dPi, std::make_index_sequence<I>{});
-  wv = scale(h, wv);
-  const V3<T> Pi_i = add(Pi, scale(h, dPi));
-  const V3<T> Omega_i = mat_vec(model.J_inv, Pi_i);
-  Coefficients<T> m{T(0.0), T(0.0), T(0.0)};
-  if constexpr (I == 0) {
-    k_algebra[I] = Omega_i;
-  } else {
-    m = map_coefficients(lie::exp_series::squared_norm(wv.v), !model.free_body);
-    k_algebra[I] = dexpinv_body(wv, Omega_i, m);
-  }
-  const V3<T> gyroscopic = cross(Pi_i, Omega_i);
-  StageFrame<T> frame{zero3<T>(), zero3<T>()};
-  if (model.free_body) {
-    k_momentum[I] = gyroscopic;
-  } else {
-    constexpr double c = rk4.c[I];
-    M3<T> R_i;
-    if constexpr (I == 0) {
-      R_i = R;
-    } else if (model.magnetic) {
-      R_i = times_exp(R, wv, m);
-    } else {  // only row 2 of R_i is read (gravity), as rkmk_kernel.hpp forms it
-      times_exp_row(R, 2, wv, m, R_i);
+  detail::stage<rk4, I>(model, R, Pi, t, h, k_algebra, k_momentum, [&](const detail::StageView<T>& y) {
+    StageFrame<T> frame{zero3<T>(), zero3<T>()};
+    if (y.R_i) {
+      const M3<T>& R_i = *y.R_i;
+      if (model.gravity) frame.gamma = V3<T>{{R_i.m[2][0], R_i.m[2][1], R_i.m[2][2]}};
+      if (model.magnetic) frame.field = transposed_mat_vec(R_i, model.magnetic_field);
     }
-    k_momentum[I] = add(gyroscopic, scene_torque(model, R_i, t + c * h));
-    if (model.gravity) frame.gamma = V3<T>{{R_i.m[2][0], R_i.m[2][1], R_i.m[2][2]}};
-    if (model.magnetic) frame.field = transposed_mat_vec(R_i, model.magnetic_field);
-  }
-  constexpr double a = I == 0 ? 0.0 : rk4.a[I][I == 0 ? 0 : I - 1];  // RK4: a_ij = 0 but below the diagonal
-  constexpr double b = rk4.b[I];
-  for (std::size_t k = 0; k < NV; ++k) {
-    Tangent6<T> vi = v[k];
-    if constexpr (I > 0) {
-      vi.xi = add(v[k].xi, scale(h, scale(a, w[k].xi)));
-      vi.dPi = add(v[k].dPi, scale(h, scale(a, w[k].dPi)));
+    constexpr double a = I == 0 ? 0.0 : rk4.a[I][I == 0 ? 0 : I - 1];  // RK4: a_ij = 0 but below the diagonal
+    constexpr double b = rk4.b[I];
+    for (std::size_t k = 0; k < NV; ++k) {
+      Tangent6<T> vi = v[k];
+      if constexpr (I > 0) {
+        vi.xi = add(v[k].xi, scale(h, scale(a, w[k].xi)));
+        vi.dPi = add(v[k].dPi, scale(h, scale(a, w[k].dPi)));
+      }
+      w[k] = tangent_rate(model, y.Pi_i, y.Omega_i, frame, vi);
+      if constexpr (I == 0) {
+        sum[k] = Tangent6<T>{scale(b, w[k].xi), scale(b, w[k].dPi)};
+      } else {
+        sum[k] = Tangent6<T>{add(sum[k].xi, scale(b, w[k].xi)), add(sum[k].dPi, scale(b, w[k].dPi))};
+      }
     }
-    w[k] = tangent_rate(model, Pi_i, Omega_i, frame, vi);
-    if constexpr (I == 0) {
-      sum[k] = Tangent6<T>{scale(b, w[k].xi), scale(b, w[k].dPi)};
-    } else {
-      sum[k] = Tangent6<T>{add(sum[k].xi, scale(b, w[k].xi)), add(sum[k].dPi, scale(b, w[k].dPi))};
-    }
-  }
+  });
 }
 
 }  // namespace tangent_detail

@@ -1,16 +1,23 @@
-// The scalar DMV schemes behind the lanes of dmv_kernel.hpp (lane_fallback.hpp):
-// dmv, lgvi and the preprocessed dmv-pre4 … dmv-pre10.
+#pragma once
+// The scalar DMV scheme behind the lanes of dmv_kernel.hpp (lane_fallback.hpp)
+// for any scheme of the family whose facts declare LaneKernel::dmv_diagonal
+// (dmv, lgvi, the preprocessed dmv-pre4 … dmv-pre10): the registry makes it
+// from the scheme's type (lane_mode_of.hpp). A preprocessed scheme (one with
+// css_in_h2() and series_degrees) gives the kernel its series in h²; the
+// others, the moments J_ii (moser_veselov::DiagonalInertia).
 #include <array>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "integrators/ensemble/lane_fallback.hpp"
 #include "integrators/loop_support.hpp"
-#include "integrators/moser_veselov_preprocessed.hpp"
 
 namespace lgi::integrators::ensemble {
 
-namespace {
+namespace dmv_fallback_detail {
+
+namespace scalar = integrators::detail;  // the scalar loop's helpers (loop_support.hpp)
 
 template <class Scheme>
 class DmvFallback final : public LaneFallback {
@@ -21,7 +28,7 @@ class DmvFallback final : public LaneFallback {
   StepStatus start(int lane, const State& s, double t0, LaneMemory& memory) override {
     Scheme& scheme = schemes_[static_cast<std::size_t>(lane)];
     scheme = Scheme{};
-    const StepStatus st = detail::start(scheme, model_, s, t0);
+    const StepStatus st = scalar::start(scheme, model_, s, t0);
     save(lane, memory);
     // The lane's constants change: the kernel's table of moments starts empty.
     for (double& key : memory.moments_h) key = std::numeric_limits<double>::quiet_NaN();
@@ -46,8 +53,8 @@ class DmvFallback final : public LaneFallback {
     out.work = {};
     // The loop's step (detail::loop_step): the preprocessed schemes keep the
     // attitude in the lane's memory (dmv_rows::quaternion), and x.R is left.
-    out.status = retry_halving > 0 ? detail::step_with_halving(scheme, model_, x, t, h, retry_halving, out.work)
-                                   : detail::recorded_step(scheme, model_, x, t, h, out.work);
+    out.status = retry_halving > 0 ? scalar::step_with_halving(scheme, model_, x, t, h, retry_halving, out.work)
+                                   : scalar::recorded_step(scheme, model_, x, t, h, out.work);
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) block.row[3 * i + j][lane] = x.R(i, j);
       block.row[9 + i][lane] = x.Pi(i);
@@ -60,9 +67,9 @@ class DmvFallback final : public LaneFallback {
     Scheme copy = schemes_[static_cast<std::size_t>(lane)];
     if (!copy.restore_memory(snapshot)) return false;
     const bool stepped = retry_halving > 0
-                             ? detail::step_with_halving(copy, model_, x, t, h, retry_halving, work).converged
-                             : detail::loop_step(copy, model_, x, t, h, work).converged;
-    if constexpr (detail::keeps_attitude<Scheme, system::FreeBody>) copy.write_attitude(x);  // R(q), as the loop's
+                             ? scalar::step_with_halving(copy, model_, x, t, h, retry_halving, work).converged
+                             : scalar::loop_step(copy, model_, x, t, h, work).converged;
+    if constexpr (scalar::keeps_attitude<Scheme, system::FreeBody>) copy.write_attitude(x);  // R(q), as the loop's
     return stepped;
   }
 
@@ -83,33 +90,19 @@ class DmvFallback final : public LaneFallback {
   std::vector<double> buffer_;  // one lane's memory, reserved once: a step allocates nothing
 };
 
-template <int Order>
-std::unique_ptr<LaneFallback> make_for(const system::FreeBody& model, EnsembleModel& constants) {
-  constants.preprocessed = true;
-  constants.series_degrees = moser_veselov::ModifiedInertiaSeries<Order>::degrees;
-  return std::make_unique<DmvFallback<DmvPreprocessed<Order>>>(model);
-}
-/// dmv and lgvi: the moments of J (moser_veselov::DiagonalInertia).
+}  // namespace dmv_fallback_detail
+
+/// The lanes' scalar Scheme on a free body (LaneFallbackFactory); sets the kernel's constants.
 template <class Scheme>
-std::unique_ptr<LaneFallback> make_unprocessed(const system::FreeBody& model, EnsembleModel& constants) {
-  constants.preprocessed = false;
-  for (int i = 0; i < 3; ++i) constants.moments[i] = model.inertia.J(i, i);
-  return std::make_unique<DmvFallback<Scheme>>(model);
-}
-
-}  // namespace
-
-std::unique_ptr<LaneFallback> make_dmv_fallback(std::string_view scheme, const system::FreeBody& model,
-                                                EnsembleModel& constants) {
-  static_assert(12 + moser_veselov::CayleyPredictor::memory_size == static_cast<std::size_t>(dmv_rows::memory),
-                "dmv_rows must follow StepMemory::save");
-  if (scheme == "dmv") return make_unprocessed<Dmv>(model, constants);
-  if (scheme == "lgvi") return make_unprocessed<Lgvi>(model, constants);
-  if (scheme == "dmv-pre4") return make_for<4>(model, constants);
-  if (scheme == "dmv-pre6") return make_for<6>(model, constants);
-  if (scheme == "dmv-pre8") return make_for<8>(model, constants);
-  if (scheme == "dmv-pre10") return make_for<10>(model, constants);
-  return nullptr;
+std::unique_ptr<LaneFallback> make_dmv_fallback(const system::FreeBody& model, EnsembleModel& constants) {
+  if constexpr (requires { Scheme::series_degrees; }) {
+    constants.preprocessed = true;
+    constants.series_degrees = Scheme::series_degrees;
+  } else {
+    constants.preprocessed = false;
+    for (int i = 0; i < 3; ++i) constants.moments[i] = model.inertia.J(i, i);
+  }
+  return std::make_unique<dmv_fallback_detail::DmvFallback<Scheme>>(model);
 }
 
 }  // namespace lgi::integrators::ensemble
