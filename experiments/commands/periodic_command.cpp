@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "experiments/commands/periodic/critical_seeds.hpp"
 #include "experiments/commands/periodic/periodic_run.hpp"
 #include "experiments/commands/periodic/periodic_seeds.hpp"
 #include "experiments/commands/all_commands.hpp"
