@@ -215,7 +215,8 @@ void check_flags(const ActionsOptions& o) {
                    max_tori, "tori (--tori x the values of --l)");
   if (o.crossings < 16) throw UsageError("--crossings: must be at least 16");
   if (o.harmonics < 8 || o.harmonics > 512) throw UsageError("--harmonics: must be between 8 and 512");
-  if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
+  // The tori run to --crossings crossings, whatever their length: a step below 1e-6 is days of work (issue 50).
+  if (o.dt && !(*o.dt >= 1e-6 && *o.dt <= 1.0)) throw UsageError("--dt: must be in [1e-6, 1]");
   const integrators::SchemeInfo* info = integrators::find_scheme(o.scheme);
   if (info == nullptr) throw UsageError("--scheme: unknown scheme " + o.scheme);
   // The tori need every step on a fixed grid and their section crossings located (actions_torus.cpp).

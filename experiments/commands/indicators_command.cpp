@@ -36,6 +36,7 @@
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/ensemble/ensemble.hpp"
+#include "integrators/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -180,6 +181,8 @@ IndicatorSettings settings_of(const IndicatorsOptions& o, const system::Scene& s
   if (!(s.t_end > 0.0)) throw UsageError("--t-end: missing, and the scene " + scene.file + " has no [run] t_end > 0");
   s.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(s.dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  if (const std::string why = integrators::fixed_step_grid_problem(0.0, s.t_end, s.dt); !why.empty())
+    throw UsageError("--dt: " + why);
   s.seed = o.seed, s.spectrum = o.spectrum, s.rtol = o.rtol, s.gali = o.gali;
   s.gali_sampling = {o.gali_samples, o.gali_spacing == "log"};
   return s;

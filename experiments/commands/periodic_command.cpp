@@ -23,6 +23,8 @@
 #include "experiments/cli/run_options.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
@@ -59,7 +61,8 @@ void check_flags(const PeriodicOptions& o) {
   if (o.steps < 0 || o.steps > 100000) throw UsageError("--steps: must be in [0, 100000]");
   if (!(o.h_step > 0.0) || !std::isfinite(o.h_step)) throw UsageError("--h-step: must be a positive number");
   if (!(o.l_step != 0.0) || !std::isfinite(o.l_step)) throw UsageError("--l-step: must be a nonzero number");
-  if (!(o.dt > 0.0) || !(o.dt <= 1.0)) throw UsageError("--dt: must be in (0, 1]");
+  // ceil(T/dt) steps a shot, many shots a family: a step below 1e-6 is days of work (issue 50).
+  if (!(o.dt >= 1e-6) || !(o.dt <= 1.0)) throw UsageError("--dt: must be in [1e-6, 1]");
   if (!(o.amplitude > 0.0) || !(o.amplitude <= 0.1)) throw UsageError("--amplitude: must be in (0, 0.1]");
   if (o.manifolds < 0 || o.manifolds > 100000) throw UsageError("--manifolds: must be in [0, 100000]");
   if (o.manifolds > 0 && !poincare) throw UsageError("--manifolds: only with --seeds-from-poincare (its section)");
@@ -131,6 +134,7 @@ std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSect
 
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
+  hdf5::check_output_target(o.out, o.force);  // before the work, not after it
   const bool in_l = o.continue_in == "l";
   const auto [p_min, p_max] = bounds(in_l ? o.l_range : o.h_range, in_l ? "--l-range" : "--h-range");
   const system::Scene scene = read_scene(o.scene);
@@ -153,7 +157,13 @@ int run_periodic(const PeriodicOptions& o) {
     for (const auto& [x, T] : read_seeds(o.seed_file)) seeds.push_back({x, T, "", ""});
     rows = seed_families(body, seeds, l, direction, s, failures);
   } else {
-    const PoincareFile f = read_poincare_file(o.poincare);
+    const PoincareFile f = [&] {
+      try {
+        return read_poincare_file(o.poincare);
+      } catch (const InputError& e) {
+        throw UsageError(std::string("--seeds-from-poincare: ") + e.what());
+      }
+    }();
     if (o.l && std::abs(*o.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
       throw UsageError("--l: " + format_general(*o.l, 17) + " differs from the l of --seeds-from-poincare " + o.poincare +
                        " (" + format_general(f.l, 17) + "); leave --l out");
