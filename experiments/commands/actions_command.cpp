@@ -21,6 +21,7 @@
 #include "experiments/analysis/actions.hpp"
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/kovalevskaya_torus.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
@@ -174,8 +175,16 @@ std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& 
     }
     throw UsageError("--l: " + scene.file + " has no closed form; give the momenta l of the numerical tori");
   }
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): a torus takes up to seconds.
+  SweepProgress progress(o.quiet, static_cast<std::int64_t>(o.l.size()) * o.tori, 0, "actions", "tori");
+  std::int64_t done = 0, failed = 0;
   for (const double l : o.l)
-    for (const auto& x : level_set_states(body, l, h, o.tori)) rows.push_back(numerical_row(scene, x, o));
+    for (const auto& x : level_set_states(body, l, h, o.tori)) {
+      rows.push_back(numerical_row(scene, x, o));
+      failed += rows.back().ok ? 0 : 1;
+      progress.update(++done, failed);
+    }
+  progress.finish();
   return rows;
 }
 
