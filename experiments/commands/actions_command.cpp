@@ -27,6 +27,7 @@
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
@@ -241,6 +242,7 @@ int run_actions(const ActionsOptions& o) {
   check_flags(o);
   if (o.k && !kovalevskaya_scale(body))
     throw InputError("--k: " + scene.file + " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
+  hdf5::check_output_target(o.out, o.force);  // before the tori, not after them
   const std::vector<Row> rows = o.h ? energy_surface(scene, body, o) : single_torus(scene, body, o);
   std::map<std::string, std::string> parameters = {
       {"subcommand", "actions"},      {"command_line", o.command_line},  {"scene_file", scene.file},
