@@ -9,8 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -20,7 +24,9 @@
 #include "experiments/commands/periodic/periodic_seeds.hpp"
 #include "experiments/commands/periodic/periodic_tables.hpp"
 #include "experiments/commands/all_commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
@@ -28,6 +34,7 @@
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -90,6 +97,8 @@ std::pair<double, double> bounds(const std::string& text, const std::string& fla
   return {a, b};
 }
 
+using StartDone = std::function<bool(std::size_t, std::size_t)>;
+
 std::string failures_text(const std::vector<std::string>& failures) {
   std::string t = failures.empty() ? "none" : "";
   for (const std::string& f : failures) t += (t.empty() ? "" : "; ") + f;
@@ -97,11 +106,15 @@ std::string failures_text(const std::vector<std::string>& failures) {
 }
 
 /// The families of the seeds (of a seed file or a poincare file), numbered from 0.
+/// `seed_done` as lyapunov_families' mode_done: after each seed; false stops there.
 std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
-                                       double direction, const FamilySettings& s, std::vector<std::string>& failures) {
+                                       double direction, const FamilySettings& s, std::vector<std::string>& failures,
+                                       const StartDone& seed_done) {
   std::vector<FamilyOrbit> rows;
   int family = 0;
-  for (const SectionSeed& seed : seeds) {
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    if (k > 0 && !seed_done(k, seeds.size())) return rows;
+    const SectionSeed& seed = seeds[k];
     if (!seed.failure.empty()) {
       failures.push_back(seed.failure);
       continue;
@@ -111,6 +124,7 @@ std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vect
     for (const auto& r : f) family = std::max(family, r.family + 1);
     rows.insert(rows.end(), f.begin(), f.end());
   }
+  if (!seeds.empty()) seed_done(seeds.size(), seeds.size());
   return rows;
 }
 
@@ -132,6 +146,36 @@ std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSect
   return out;
 }
 
+/// The file's parameters: the command, the scene, the integrator and the continuation.
+std::map<std::string, std::string> periodic_parameters(const PeriodicOptions& o, const system::Scene& scene, double l,
+                                                       const std::vector<std::string>& failures) {
+  const bool in_l = o.continue_in == "l";
+  return {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
+          {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
+          {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
+          {"integrator", "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"},
+          {"continuation", in_l ? "pseudo-arclength in (x0, T, l) at fixed h after a first natural step in l"
+                                : "pseudo-arclength in (x0, T, h) after a first natural step in h"},
+          {"continue_in", o.continue_in},
+          {"phase_condition", o.poincare.empty() ? "hyperplane through the guess, normal to the flow"
+                                                 : "on the section of the poincare file"},
+          {"seeds_from_poincare", o.poincare},
+          {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
+          {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
+          {"failures", failures_text(failures)}};
+}
+
+/// Counts the starts on `progress` (made at the first call, when their number is known);
+/// false once a signal came.
+StartDone progress_of_starts(std::optional<SweepProgress>& progress, bool quiet) {
+  return [&progress, quiet](std::size_t done, std::size_t total) {
+    if (interrupt_requested.load()) return false;
+    if (!progress) progress.emplace(quiet, static_cast<std::int64_t>(total), 0, "periodic", "starts");
+    progress->update(static_cast<std::int64_t>(done), 0);
+    return true;
+  };
+}
+
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
   hdf5::check_output_target(o.out, o.force);  // before the work, not after it
@@ -150,12 +194,18 @@ int run_periodic(const PeriodicOptions& o) {
   std::vector<std::string> failures;
   std::vector<RowManifolds> manifolds;
   double l = o.l.value_or(0.0);
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the starts (an equilibrium's
+  // modes or the seeds), each continued with its doubled families. A signal stops after the
+  // current start; nothing is written (the file is written only at the end).
+  const InterruptGuard interrupt_guard;
+  std::optional<SweepProgress> progress;
+  const StartDone start_done = progress_of_starts(progress, o.quiet);
   if (o.from_equilibria) {
-    rows = lyapunov_families(body, l, s, failures);
+    rows = lyapunov_families(body, l, s, failures, start_done);
   } else if (!o.seed_file.empty()) {
     std::vector<SectionSeed> seeds;
     for (const auto& [x, T] : read_seeds(o.seed_file)) seeds.push_back({x, T, "", ""});
-    rows = seed_families(body, seeds, l, direction, s, failures);
+    rows = seed_families(body, seeds, l, direction, s, failures, start_done);
   } else {
     const PoincareFile f = [&] {
       try {
@@ -175,26 +225,18 @@ int run_periodic(const PeriodicOptions& o) {
     for (SectionSeed& seed : seeds)
       if (seed.failure.empty() && !project_to_level(body, seed.x, f.h, f.l, &*s.shooting.section))
         seed.failure = seed.label + ": cannot be put on the level and the section";
-    rows = seed_families(body, seeds, l, direction, s, failures);
-    if (o.manifolds > 0) manifolds = manifolds_of(body, *s.shooting.section, rows, o, failures);
+    rows = seed_families(body, seeds, l, direction, s, failures, start_done);
+    if (o.manifolds > 0 && !interrupt_requested.load()) manifolds = manifolds_of(body, *s.shooting.section, rows, o, failures);
+  }
+  if (progress) progress->finish();
+  if (interrupt_signal() != 0) {
+    std::cerr << "lgi: periodic: interrupted by signal; nothing written\n";
+    return interrupted_exit_status();
   }
   std::vector<TableGroup> extra;
   if (o.manifolds > 0) extra.push_back(manifold_group(manifolds));
   write_table_file(o.out, o.force, "periodic", periodic_columns(body, rows, s.shooting.section),
-                   {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
-                    {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
-                    {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
-                    {"integrator", "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"},
-                    {"continuation", in_l ? "pseudo-arclength in (x0, T, l) at fixed h after a first natural step in l"
-                                          : "pseudo-arclength in (x0, T, h) after a first natural step in h"},
-                    {"continue_in", o.continue_in},
-                    {"phase_condition", o.poincare.empty() ? "hyperplane through the guess, normal to the flow"
-                                                           : "on the section of the poincare file"},
-                    {"seeds_from_poincare", o.poincare},
-                    {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
-                    {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
-                    {"failures", failures_text(failures)}},
-                   extra);
+                   periodic_parameters(o, scene, l, failures), extra);
   // Starts that failed are said even with --quiet: they are missing families.
   for (const std::string& f : failures) std::cerr << "lgi: periodic: no family from " << f << '\n';
   if (o.quiet) return exit_ok;

@@ -12,6 +12,8 @@
 // back onto Π·Γ = ℓ, |Γ| = 1; h = H(x0); period guess 2π/ω. The first row's
 // period differs from 2π/ω by O(ε²).
 // Continuation, events and branch switching: family_continuation.hpp.
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,8 +29,11 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e);
 /// equilibria_at(body, l) then ascending ω, each followed by the doubled
 /// families of its period doublings (s.switch_branches); numbered from 0.
 /// A mode whose first orbit does not converge is listed in `failures`.
+/// `mode_done`, if given, is called after each mode with the modes done and
+/// their number; false stops there (a signal).
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
-                                           std::vector<std::string>& failures);
+                                           std::vector<std::string>& failures,
+                                           const std::function<bool(std::size_t, std::size_t)>& mode_done = {});
 
 /// One family from a start (x0, T) at h (a seed), numbered `family`, its
 /// first step `direction` · h_step in h; then its doubled families.
