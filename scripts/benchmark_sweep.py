@@ -5,7 +5,10 @@
    (1e5 trajectories of 100 rkmk4 steps) and on the same spec with 2e5, CPU
    seconds of the whole process on one thread, against the bare stepping of
    the same trajectories measured by lgi_bench (sweep/bare: initial state +
-   run function, null observer). The per-trajectory cost is the difference of
+   run function, null observer). The sweeps run with --simd off, one
+   trajectory at a time as sweep/bare steps them; the default path (SIMD
+   lanes of the ensemble kernels, docs/ensemble.md) is timed beside them end
+   to end. The per-trajectory cost is the difference of
    the two sweeps over 1e5 (what one more trajectory costs); the end-to-end
    figure also carries the per-sweep costs (process start, files). Each is the
    minimum over --repeat runs, interleaved.
@@ -47,8 +50,8 @@ def bare_microseconds(bench):
     return b["cpu_time"] * {"ns": 1e-3, "us": 1.0, "ms": 1e3}[b["time_unit"]]
 
 
-def sweep_cmd(lgi, spec, out, threads, mpi=None, ranks=1):
-    cmd = [lgi, "sweep", "--spec", spec, "--out", out, "--threads", str(threads), "--quiet", "--force"]
+def sweep_cmd(lgi, spec, out, threads, mpi=None, ranks=1, simd="auto"):
+    cmd = [lgi, "sweep", "--spec", spec, "--out", out, "--threads", str(threads), "--simd", simd, "--quiet", "--force"]
     if mpi:
         cmd = [shutil.which("mpirun"), "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), mpi] + cmd[1:]
     return cmd
@@ -75,17 +78,19 @@ def main():
     with open(short) as f, open(double, "w") as g:
         g.write(f.read().replace("samples = 100000", "samples = 200000").replace(
             '"../scenes/', '"' + os.path.join(ROOT, "experiments", "scenes") + "/"))
-    bare, e2e, e2e2 = [], [], []
+    bare, e2e, e2e2, lanes = [], [], [], []
     for k in range(a.repeat):
         print(f"overhead: run {k + 1}/{a.repeat}", file=sys.stderr)
         bare.append(bare_microseconds(bench))
-        e2e.append(run_timed(sweep_cmd(lgi, short, out, 1))[1])
-        e2e2.append(run_timed(sweep_cmd(lgi, double, out, 1))[1])
+        e2e.append(run_timed(sweep_cmd(lgi, short, out, 1, simd="off"))[1])
+        e2e2.append(run_timed(sweep_cmd(lgi, double, out, 1, simd="off"))[1])
+        lanes.append(run_timed(sweep_cmd(lgi, short, out, 1))[1])
     res["bare_us_per_trajectory"] = min(bare)
     res["sweep_us_per_trajectory"] = 1e6 * min(e2e) / n
     res["sweep_us_per_extra_trajectory"] = 1e6 * (min(e2e2) - min(e2e)) / n
     res["overhead"] = res["sweep_us_per_extra_trajectory"] / res["bare_us_per_trajectory"] - 1.0
     res["overhead_end_to_end"] = res["sweep_us_per_trajectory"] / res["bare_us_per_trajectory"] - 1.0
+    res["ensemble_us_per_trajectory"] = 1e6 * min(lanes) / n
 
     for name, spec in (() if a.overhead_only else (("short", short), ("long", a.long))):
         for label, make in (("threads", lambda p: sweep_cmd(lgi, spec, out, p)),
@@ -104,7 +109,8 @@ def main():
     print(f"per-trajectory overhead (100 rkmk4 steps each, 1 thread): bare {res['bare_us_per_trajectory']:.2f} us, "
           f"lgi sweep {res['sweep_us_per_extra_trajectory']:.2f} us per trajectory (2e5 - 1e5): "
           f"{100 * res['overhead']:+.1f} %; end to end at 1e5 (with process start and files): "
-          f"{res['sweep_us_per_trajectory']:.2f} us, {100 * res['overhead_end_to_end']:+.1f} %")
+          f"{res['sweep_us_per_trajectory']:.2f} us, {100 * res['overhead_end_to_end']:+.1f} % (--simd off); "
+          f"the default SIMD lanes end to end: {res['ensemble_us_per_trajectory']:.2f} us")
     for name in ("short", "long"):
         for label in ("threads", "ranks"):
             key = f"{name}_{label}_efficiency"

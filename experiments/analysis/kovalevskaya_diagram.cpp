@@ -246,7 +246,8 @@ std::vector<KRange> kovalevskaya_k_range(const HeavyTopBody& body, const Kovalev
 }
 
 std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const KovalevskayaScale& scale,
-                                        const std::vector<double>& ls, const std::vector<double>& hs) {
+                                        const std::vector<double>& ls, const std::vector<double>& hs,
+                                        const std::function<bool(std::size_t)>& l_done) {
   TableGroup curves{"appelrot"}, equilibria{"appelrot_equilibria"}, range{"appelrot_range"},
       criticals{"appelrot_critical"}, regions{"appelrot_regions"};
   std::vector<TableColumn> c = {{"l"}, {"l_scaled"}, {"family", 1, true}, {"branch", 1, true},
@@ -304,6 +305,7 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
       t[0].real.push_back(l), t[1].real.push_back(l_scaled), t[2].real.push_back(q.h), t[3].real.push_back(q.k);
       t[4].whole.push_back(q.tori), t[5].whole.push_back(q.points);
     }
+    if (l_done && !l_done(static_cast<std::size_t>(&l - ls.data()) + 1)) break;
   }
   const std::string scaling = "h_scaled = H/(J3 c), l_scaled = l/(J3 sqrt(c)), k = K/c^2 (docs/atlas.md section 9)";
   curves.columns = c, equilibria.columns = e, range.columns = r, criticals.columns = v;

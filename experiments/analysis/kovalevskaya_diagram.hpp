@@ -17,6 +17,8 @@
 //   (at G = 0 family 2 itself is the line k = 1).
 // Only arcs of them are critical values; the range of k on an energy surface
 // component (a connected 3-manifold, so an interval) is bounded by them.
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -68,7 +70,10 @@ std::vector<KRange> kovalevskaya_k_range(const HeavyTopBody& body, const Kovalev
 /// The /appelrot, /appelrot_equilibria and /appelrot_range groups of
 /// `lgi bifurcation --appelrot` at each ℓ of `ls` (unscaled), with the
 /// range of k at each h of `hs` (unscaled) above the minimum energy.
+/// `l_done`, if given, is called after each ℓ with the count done; false stops
+/// there (a signal: the groups then hold only the values of ℓ done).
 std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const KovalevskayaScale& scale,
-                                        const std::vector<double>& ls, const std::vector<double>& hs);
+                                        const std::vector<double>& ls, const std::vector<double>& hs,
+                                        const std::function<bool(std::size_t)>& l_done = {});
 
 }  // namespace lgi::experiments

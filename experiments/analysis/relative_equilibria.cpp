@@ -342,10 +342,12 @@ RelativeEquilibrium class_change(const HeavyTopBody& body, const Principal& f, c
 
 }  // namespace
 
-EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples) {
+EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples,
+                                    const std::function<bool(std::size_t, std::size_t)>& branch_done) {
   const Principal f = principal_frame(body);
   EquilibriumSet out;
-  for (const Branch& br : make_branches(f)) {
+  const auto branches = make_branches(f);
+  for (const Branch& br : branches) {
     out.branches.push_back({br.id, br.kind, br.label});
     std::vector<double> taus, ls;
     std::vector<Point> pts;
@@ -378,6 +380,7 @@ EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples) {
       classify(body, fold);
       out.rows.push_back(fold);
     }
+    if (branch_done && !branch_done(out.branches.size(), branches.size())) break;
   }
   return out;
 }

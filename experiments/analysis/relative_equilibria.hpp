@@ -18,6 +18,8 @@
 // g2 = (tr M²)²/8 − tr M⁴/4; the class follows from g1, g2 (docs/atlas.md §3).
 // Nonlinear stability (energy–Casimir): Γ is a strict minimum of the amended
 // potential U_ℓ(γ) = ℓ²/(2γ·Jγ) + mgχ·γ on the sphere.
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,8 +74,10 @@ EquilibriumSet equilibria_at(const HeavyTopBody& body, double l);
 /// located (fold = true, golden section) and every change of Grammel's class
 /// between neighbouring samples located (class_change = true, bisection to
 /// round-off in the branch parameter; the row has the class of the far side),
-/// in branch order and along each branch.
-EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples);
+/// in branch order and along each branch. `branch_done`, if given, is called
+/// after each branch with the branches done and their number; false stops there.
+EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples,
+                                    const std::function<bool(std::size_t, std::size_t)>& branch_done = {});
 
 /// Grammel's coefficients and class, and the energy–Casimir test, of an
 /// equilibrium (fills g1, g2, stability, nonlinearly_stable, residual).

@@ -1,30 +1,49 @@
 #include "experiments/cli/simulation.hpp"
 
+#include <sys/statvfs.h>
+
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #include "experiments/cli/output_grid.hpp"
 #include "experiments/cli/run_parameters.hpp"
 #include "experiments/cli/step_settings.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/h5md_writer.hpp"  // OutputFileError
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/output_timing.hpp"
 
 namespace lgi::experiments {
 namespace {
 
+/// Refuses a trajectory larger than the free space of its file system (README.md, "Limits";
+/// statvfs's space for unprivileged users), even with --quiet: the .partial is renamed, not copied.
+void refuse_if_it_cannot_fit(const std::string& path, double bytes, const std::string& flag) {
+  struct statvfs fs {};
+  if (::statvfs(hdf5::parent_directory(path).c_str(), &fs) != 0) return;  // the create reports what is wrong
+  const double free_bytes = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+  if (bytes <= free_bytes) return;
+  throw OutputFileError("--out: " + path + ": the samples need about " + format_general(std::ceil(bytes / 1e9), 6) +
+                        " GB and the file system has " + format_general(std::floor(free_bytes / 1e9), 6) +
+                        " GB free; give " + flag + " for fewer samples");
+}
+
 /// About 128 bytes a sample (time, step, quaternion, Pi, Omega, energy,
-/// invariants); a file over 100 MB deserves a word before it is written.
+/// invariants); a file over 100 MB deserves a word before it is written,
+/// and one larger than the free space is refused.
 void warn_if_large(const integrators::RunConfig& cfg, const system::SceneInvariants& invariants, bool adaptive,
-                   bool quiet) {
-  if (quiet || (!cfg.output_times && (adaptive || cfg.dt <= 0.0))) return;
+                   bool quiet, const std::string& path) {
+  if (!cfg.output_times && (adaptive || cfg.dt <= 0.0)) return;
   const double samples = cfg.output_times
                              ? static_cast<double>(cfg.output_times->size())
                              : static_cast<double>(integrators::fixed_step_count(cfg.t_end - cfg.t0, cfg.dt)) /
                                        static_cast<double>(cfg.save_every) + 1.0;
   const double bytes_per_sample = 8.0 * (16.0 + static_cast<double>(invariants.scalar_names().size()));
   const double megabytes = samples * bytes_per_sample / 1e6;
-  if (megabytes < 100.0) return;
+  refuse_if_it_cannot_fit(path, samples * bytes_per_sample, cfg.output_times ? "a larger --output-dt" : "--save-every N");
+  if (quiet || megabytes < 100.0) return;
   if (cfg.output_times)
     std::cerr << "lgi: warning: --output-dt writes " << format_general(samples, 3) << " samples, about "
               << format_general(megabytes, 3) << " MB; give a larger --output-dt for fewer\n";
@@ -109,7 +128,7 @@ SimulationOutcome run_simulation(const system::Scene& scene, const integrators::
   }
   std::optional<TrajectoryWriter> writer;
   if (!request.out.empty()) {
-    warn_if_large(c, invariants, scheme.properties.adaptive, request.quiet);
+    warn_if_large(c, invariants, scheme.properties.adaptive, request.quiet, request.out);
     writer.emplace(request.out, request.force, trajectory_layout(invariants, scheme.properties.euler_angle_chart),
                    run_provenance(scene, scheme, c, request));
   }

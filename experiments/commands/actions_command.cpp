@@ -21,11 +21,13 @@
 #include "experiments/analysis/actions.hpp"
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/kovalevskaya_torus.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
@@ -174,8 +176,16 @@ std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& 
     }
     throw UsageError("--l: " + scene.file + " has no closed form; give the momenta l of the numerical tori");
   }
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): a torus takes up to seconds.
+  SweepProgress progress(o.quiet, static_cast<std::int64_t>(o.l.size()) * o.tori, 0, "actions", "tori");
+  std::int64_t done = 0, failed = 0;
   for (const double l : o.l)
-    for (const auto& x : level_set_states(body, l, h, o.tori)) rows.push_back(numerical_row(scene, x, o));
+    for (const auto& x : level_set_states(body, l, h, o.tori)) {
+      rows.push_back(numerical_row(scene, x, o));
+      failed += rows.back().ok ? 0 : 1;
+      progress.update(++done, failed);
+    }
+  progress.finish();
   return rows;
 }
 
@@ -215,7 +225,8 @@ void check_flags(const ActionsOptions& o) {
                    max_tori, "tori (--tori x the values of --l)");
   if (o.crossings < 16) throw UsageError("--crossings: must be at least 16");
   if (o.harmonics < 8 || o.harmonics > 512) throw UsageError("--harmonics: must be between 8 and 512");
-  if (o.dt && !(*o.dt > 0.0 && std::isfinite(*o.dt))) throw UsageError("--dt: must be a positive number");
+  // The tori run to --crossings crossings, whatever their length: a step below 1e-6 is days of work (issue 50).
+  if (o.dt && !(*o.dt >= 1e-6 && *o.dt <= 1.0)) throw UsageError("--dt: must be in [1e-6, 1]");
   const integrators::SchemeInfo* info = integrators::find_scheme(o.scheme);
   if (info == nullptr) throw UsageError("--scheme: unknown scheme " + o.scheme);
   // The tori need every step on a fixed grid and their section crossings located (actions_torus.cpp).
@@ -231,6 +242,7 @@ int run_actions(const ActionsOptions& o) {
   check_flags(o);
   if (o.k && !kovalevskaya_scale(body))
     throw InputError("--k: " + scene.file + " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
+  hdf5::check_output_target(o.out, o.force);  // before the tori, not after them
   const std::vector<Row> rows = o.h ? energy_surface(scene, body, o) : single_torus(scene, body, o);
   std::map<std::string, std::string> parameters = {
       {"subcommand", "actions"},      {"command_line", o.command_line},  {"scene_file", scene.file},

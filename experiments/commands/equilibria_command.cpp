@@ -11,6 +11,8 @@
 
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/relative_equilibria.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/grid_range.hpp"
@@ -18,9 +20,11 @@
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/commands/cardan_atlas.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -65,7 +69,36 @@ std::vector<TableGroup> appelrot(const EquilibriaOptions& o, const system::Scene
     throw UsageError("--appelrot: " + scene.file +
                      " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
   const std::vector<double> hs = appelrot_energies(*scale, o.appelrot_h);
-  return appelrot_groups(body, *scale, o.appelrot, hs);
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the curves take seconds per l.
+  // A signal stops after the current l; the command then writes nothing.
+  SweepProgress progress(o.quiet, static_cast<std::int64_t>(o.appelrot.size()), 0, o.subcommand.c_str(), "values of l");
+  auto groups = appelrot_groups(body, *scale, o.appelrot, hs, [&](std::size_t done) {
+    if (interrupt_requested.load()) return false;
+    progress.update(static_cast<std::int64_t>(done), 0);
+    return true;
+  });
+  progress.finish();
+  return groups;
+}
+
+/// Every branch sampled (without --l), with a progress line per branch on stderr
+/// (cli/sweep_progress.hpp; issue 50, item 8); a signal stops after the current branch.
+EquilibriumSet sampled_branches(const EquilibriaOptions& o, const HeavyTopBody& body) {
+  std::optional<SweepProgress> progress;
+  EquilibriumSet set = equilibrium_branches(body, o.samples, [&](std::size_t done, std::size_t total) {
+    if (interrupt_requested.load()) return false;
+    if (!progress) progress.emplace(o.quiet, static_cast<std::int64_t>(total), 0, o.subcommand.c_str(), "branches");
+    progress->update(static_cast<std::int64_t>(done), 0);
+    return true;
+  });
+  if (progress) progress->finish();
+  return set;
+}
+
+/// A signal's end: one line, nothing written (the file is written only at the end).
+int interrupted(const EquilibriaOptions& o) {
+  std::cerr << "lgi: " << o.subcommand << ": interrupted by signal; nothing written\n";
+  return interrupted_exit_status();
 }
 
 int run_equilibria(const EquilibriaOptions& o) {
@@ -79,7 +112,10 @@ int run_equilibria(const EquilibriaOptions& o) {
   if (o.omega_max) throw UsageError("--omega-max: only for a Cardan top (a scene with [suspension])");
   const HeavyTopBody body = equilibria_body(scene);
   check_flags(o);
-  const EquilibriumSet set = o.l ? equilibria_at(body, *o.l) : equilibrium_branches(body, o.samples);
+  if (!o.l) hdf5::check_output_target(o.out, o.force);  // before the work, not after it
+  const InterruptGuard interrupt_guard;
+  const EquilibriumSet set = o.l ? equilibria_at(body, *o.l) : sampled_branches(o, body);
+  if (interrupt_signal() != 0) return interrupted(o);
   std::map<std::string, std::string> parameters = {
       {"subcommand", "equilibria"}, {"command_line", o.command_line}, {"scene_file", scene.file},
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
@@ -92,7 +128,9 @@ int run_equilibria(const EquilibriaOptions& o) {
     for (const double l : o.appelrot) ls += (ls.empty() ? "" : ",") + format_general(l, 17);
     parameters["appelrot_l"] = ls;
   }
-  write_table_file(o.out, o.force, "equilibria", equilibria_columns(set.rows), parameters, appelrot(o, scene, body));
+  const std::vector<TableGroup> curves = appelrot(o, scene, body);
+  if (interrupt_signal() != 0) return interrupted(o);
+  write_table_file(o.out, o.force, "equilibria", equilibria_columns(set.rows), parameters, curves);
   if (o.quiet) return exit_ok;
   for (const auto& e : set.rows)
     if (o.l || e.fold || e.class_change) print_row(e);

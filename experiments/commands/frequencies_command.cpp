@@ -24,6 +24,7 @@
 #include "experiments/analysis/frequency/observable_frequencies.hpp"
 #include "experiments/cli/cardan_simulation.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/scheme_lookup.hpp"
 #include "experiments/cli/thread_count.hpp"
@@ -205,6 +206,9 @@ Analysis analyse_cardan(const FrequenciesOptions& o, const system::Scene& scene,
   std::vector<std::string> failures(x0.size());
   const InterruptGuard interrupt_guard;
   const auto n = static_cast<std::int64_t>(x0.size());
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): in place on a terminal, else every 10 s.
+  SweepProgress progress(o.quiet, n, 0, "frequencies", "states");
+  std::int64_t finished = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
@@ -216,8 +220,12 @@ Analysis analyse_cardan(const FrequenciesOptions& o, const system::Scene& scene,
     }
     a.states[k] = fq::observable_frequencies(run, names, {o.terms, o.window_order}, 1);
 #pragma omp critical(lgi_frequencies_samples)
-    a.samples = run.series[0].size();
+    {
+      a.samples = run.series[0].size();
+      progress.update(++finished, 0);
+    }
   }
+  progress.finish();
   for (std::size_t k = 0; k < failures.size(); ++k)
     if (!failures[k].empty() || interrupt_requested.load()) {
       std::cerr << "lgi: " << scheme->name << " on " << scene.file << ", state " << k << ": "
@@ -244,6 +252,10 @@ Analysis analyse_so3(const FrequenciesOptions& o, const system::Scene& scene, co
     const InterruptGuard interrupt_guard;
     run = fq::sample_observables(scene, scheme, a.s, fq::components_of(names), &interrupt_requested);
   }
+  // One state: its line comes when the run is done (the same line as a Cardan top's states).
+  SweepProgress progress(o.quiet, 1, 0, "frequencies", "states");
+  if (run.stats.ok) progress.update(1, 0);
+  progress.finish();
   if (!run.stats.ok) {
     std::cerr << "lgi: " << scheme.name << " on " << scene.file << ": " << run.stats.status << '\n';
     a.exit = run.stats.interrupted ? interrupted_exit_status() : exit_run_failed;

@@ -28,6 +28,7 @@
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
 #include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
@@ -36,6 +37,7 @@
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/ensemble/ensemble.hpp"
+#include "integrators/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -180,6 +182,8 @@ IndicatorSettings settings_of(const IndicatorsOptions& o, const system::Scene& s
   if (!(s.t_end > 0.0)) throw UsageError("--t-end: missing, and the scene " + scene.file + " has no [run] t_end > 0");
   s.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(s.dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  if (const std::string why = integrators::fixed_step_grid_problem(0.0, s.t_end, s.dt); !why.empty())
+    throw UsageError("--dt: " + why);
   s.seed = o.seed, s.spectrum = o.spectrum, s.rtol = o.rtol, s.gali = o.gali;
   s.gali_sampling = {o.gali_samples, o.gali_spacing == "log"};
   return s;
@@ -208,6 +212,9 @@ int run_indicators(const IndicatorsOptions& o) {
   constexpr std::int64_t batch = integrators::ensemble::max_lanes;
   const auto n = static_cast<std::int64_t>(states.size());
   const std::optional<integrators::ensemble::Isa> isa = integrators::ensemble::sweep_isa();
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): in place on a terminal, else every 10 s.
+  SweepProgress progress(o.quiet, n, 0, "indicators", "states");
+  std::int64_t finished = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (std::int64_t first = 0; first < n; first += batch) {
     if (interrupt_requested.load(std::memory_order_relaxed)) continue;
@@ -215,8 +222,12 @@ int run_indicators(const IndicatorsOptions& o) {
     std::vector<StateIndicators> part(m, not_run);
     if (cardan) part[0] = cardan_state_indicators(scene, scene.cardan_initial, s, first);
     else state_indicators(scene, std::span(states).subspan(u, m), s, first, isa, std::span(part));
-    if (!interrupt_requested.load()) std::copy(part.begin(), part.end(), results.begin() + first);  // else: maybe cut short
+    if (interrupt_requested.load()) continue;  // maybe cut short: neither kept nor counted
+    std::copy(part.begin(), part.end(), results.begin() + first);
+#pragma omp critical(indicators_progress)
+    progress.update(finished += static_cast<std::int64_t>(m), 0);
   }
+  progress.finish();
   const bool interrupted = interrupt_signal() != 0;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t failed = 0;

@@ -9,8 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -20,12 +24,17 @@
 #include "experiments/commands/periodic/periodic_run.hpp"
 #include "experiments/commands/periodic/periodic_seeds.hpp"
 #include "experiments/commands/all_commands.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -60,7 +69,8 @@ void check_flags(const PeriodicOptions& o) {
   if (o.steps < 0 || o.steps > 100000) throw UsageError("--steps: must be in [0, 100000]");
   if (!(o.h_step > 0.0) || !std::isfinite(o.h_step)) throw UsageError("--h-step: must be a positive number");
   if (!(o.l_step != 0.0) || !std::isfinite(o.l_step)) throw UsageError("--l-step: must be a nonzero number");
-  if (!(o.dt > 0.0) || !(o.dt <= 1.0)) throw UsageError("--dt: must be in (0, 1]");
+  // ceil(T/dt) steps a shot, many shots a family: a step below 1e-6 is days of work (issue 50).
+  if (!(o.dt >= 1e-6) || !(o.dt <= 1.0)) throw UsageError("--dt: must be in [1e-6, 1]");
   if (!(o.amplitude > 0.0) || !(o.amplitude <= 0.1)) throw UsageError("--amplitude: must be in (0, 0.1]");
   if (o.manifolds < 0 || o.manifolds > 100000) throw UsageError("--manifolds: must be in [0, 100000]");
   if (o.manifolds > 0 && !poincare) throw UsageError("--manifolds: only with --seeds-from-poincare (its section)");
@@ -88,14 +98,50 @@ std::pair<double, double> bounds(const std::string& text, const std::string& fla
   return {a, b};
 }
 
+using StartDone = std::function<bool(std::size_t, std::size_t)>;
+
 std::string failures_text(const std::vector<std::string>& failures) {
   std::string t = failures.empty() ? "none" : "";
   for (const std::string& f : failures) t += (t.empty() ? "" : "; ") + f;
   return t;
 }
 
+/// The file's parameters: the command, the scene, the integrator and the continuation.
+std::map<std::string, std::string> periodic_parameters(const PeriodicOptions& o, const system::Scene& scene, double l,
+                                                       const std::vector<std::string>& failures) {
+  const bool in_l = o.continue_in == "l";
+  return {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
+          {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
+          {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
+          {"integrator", o.shooting_points == 1
+                             ? "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"
+                             : "implicit midpoint, triple jump twice (order 6), ceil(T/(M dt)) equal steps a segment"},
+          {"shooting_points", std::to_string(o.shooting_points)},
+          {"continuation", in_l ? "pseudo-arclength in (x0, T, l) at fixed h after a first natural step in l"
+                                : "pseudo-arclength in (x0, T, h) after a first natural step in h"},
+          {"continue_in", o.continue_in},
+          {"phase_condition", o.poincare.empty() ? "hyperplane through the guess, normal to the flow"
+                                                 : "on the section of the poincare file"},
+          {"seeds_from_poincare", o.poincare}, {"from_critical", o.critical},
+          {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
+          {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
+          {"failures", failures_text(failures)}};
+}
+
+/// Counts the starts on `progress` (made at the first call, when their number is known);
+/// false once a signal came.
+PeriodicRequest::StartDone progress_of_starts(std::optional<SweepProgress>& progress, bool quiet) {
+  return [&progress, quiet](std::size_t done, std::size_t total) {
+    if (interrupt_requested.load()) return false;
+    if (!progress) progress.emplace(quiet, static_cast<std::int64_t>(total), 0, "periodic", "starts");
+    progress->update(static_cast<std::int64_t>(done), 0);
+    return true;
+  };
+}
+
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
+  hdf5::check_output_target(o.out, o.force);  // before the work, not after it
   const bool in_l = o.continue_in == "l";
   const auto [p_min, p_max] = bounds(in_l ? o.l_range : o.h_range, in_l ? "--l-range" : "--h-range");
   const system::Scene scene = read_scene(o.scene);
@@ -117,7 +163,18 @@ int run_periodic(const PeriodicOptions& o) {
   req.returns = o.returns;
   req.manifolds.points = o.manifolds, req.manifolds.periods = o.manifold_periods;
   req.manifolds.epsilon = o.manifold_epsilon, req.manifolds.dt = o.dt;
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the starts (an equilibrium's
+  // modes or the seeds), each continued with its doubled families. A signal stops after the
+  // current start; nothing is written (the file is written only at the end).
+  const InterruptGuard interrupt_guard;
+  std::optional<SweepProgress> progress;
+  req.start_done = progress_of_starts(progress, o.quiet);
   const PeriodicResult result = periodic_families(body, req);
+  if (progress) progress->finish();
+  if (interrupt_signal() != 0) {
+    std::cerr << "lgi: periodic: interrupted by signal; nothing written\n";
+    return interrupted_exit_status();
+  }
   const std::vector<FamilyOrbit>& rows = result.rows;
   const std::vector<std::string>& failures = result.failures;
   const std::vector<RowManifolds>& manifolds = result.manifolds;
@@ -125,23 +182,7 @@ int run_periodic(const PeriodicOptions& o) {
   std::vector<TableGroup> extra;
   if (o.manifolds > 0) extra.push_back(manifold_group(manifolds));
   write_table_file(o.out, o.force, "periodic", periodic_columns(body, rows, result.section),
-                   {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
-                    {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
-                    {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
-                    {"integrator", o.shooting_points == 1
-                                       ? "implicit midpoint, triple jump twice (order 6), ceil(T/dt) equal steps"
-                                       : "implicit midpoint, triple jump twice (order 6), ceil(T/(M dt)) equal steps a segment"},
-                    {"shooting_points", std::to_string(o.shooting_points)},
-                    {"continuation", in_l ? "pseudo-arclength in (x0, T, l) at fixed h after a first natural step in l"
-                                          : "pseudo-arclength in (x0, T, h) after a first natural step in h"},
-                    {"continue_in", o.continue_in},
-                    {"phase_condition", o.poincare.empty() ? "hyperplane through the guess, normal to the flow"
-                                                           : "on the section of the poincare file"},
-                    {"seeds_from_poincare", o.poincare}, {"from_critical", o.critical},
-                    {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
-                    {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
-                    {"failures", failures_text(failures)}},
-                   extra);
+                   periodic_parameters(o, scene, l, failures), extra);
   // Starts that failed are said even with --quiet: they are missing families.
   for (const std::string& f : failures) std::cerr << "lgi: periodic: no family from " << f << '\n';
   if (o.quiet) return exit_ok;

@@ -41,6 +41,7 @@
 #include "experiments/io/sweep_extra_columns.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "lgi/build_info.hpp"
+#include "integrators/loop_support.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -233,6 +234,8 @@ int run_cardan(const PoincareOptions& o, const system::Scene& scene) {
   if (!o.seeds.empty()) throw UsageError("--seeds: not for a Cardan top (its orbits are drawn on {q1 = 0, H = h, p1 = l})");
   CardanPoincareRequest r;
   r.l = o.l, r.h = o.h, r.t_end = o.t_end, r.dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
+  if (const std::string why = integrators::fixed_step_grid_problem(0.0, r.t_end, r.dt); r.dt > 0.0 && !why.empty())
+    throw UsageError("--dt: " + why);
   r.ics = o.ics, r.max_events = o.max_events, r.seed = o.seed;
   r.scheme = o.scheme.empty() ? "cardan-rk4" : o.scheme;
   r.out = o.out, r.command_line = o.command_line;
@@ -257,6 +260,8 @@ int run_poincare(const PoincareOptions& options) {
   const Vec3 e = axis.empty() ? default_section_axis(scene) : parse_section_axis(axis, scene);
   const double dt = o.dt ? *o.dt : scene.dt.value_or(0.0);
   if (!(dt > 0.0)) throw UsageError("--dt: missing, and the scene " + scene.file + " has no [run] dt");
+  if (const std::string why = integrators::fixed_step_grid_problem(0.0, o.t_end, dt); !why.empty())
+    throw UsageError("--dt: " + why);
   std::vector<SeedState> seeds;
   if (!o.seeds.empty()) {
     seeds = read_section_seeds(o.seeds, heavy_top(scene), kind, e, o.l, o.h);

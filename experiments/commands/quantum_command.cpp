@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,7 @@
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/quantum_outputs.hpp"
 #include "experiments/cli/run_options.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/h5md_writer.hpp"  // OutputFileError
@@ -161,10 +163,18 @@ int run_quantum(QuantumOptions o) {
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   quantum::QuantumSettings s;
   s.hbar = o.hbar, s.m = o.m, s.jmax = o.jmax, s.levels = o.levels, s.jmax_step = o.jmax_step, s.tol = o.tol;
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the eigenvalue solves of a heavy
+  // top's blocks (a free body's blocks are exact and fast: no line).
+  std::optional<SweepProgress> progress;
+  s.solved = [&](int done, int total) {
+    if (!progress) progress.emplace(o.quiet, total, 0, "quantum", "eigenvalue solves");
+    progress->update(done, 0);
+  };
   const auto start = std::chrono::steady_clock::now();
   quantum::QuantumSpectrum q;
   try {
     q = quantum::quantum_spectrum(top, s);
+    if (progress) progress->finish();
   } catch (const std::runtime_error& e) {
     throw RunError(e.what());
   }

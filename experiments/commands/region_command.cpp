@@ -16,15 +16,19 @@
 #include <string>
 
 #include "experiments/analysis/accessible_region.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/cli/grid_range.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -111,7 +115,23 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
 int run_cells(const RegionOptions& o, const system::Scene& scene, const HeavyTopBody& body) {
   const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
   std::int64_t unresolved = 0;
-  const TableGroup cells = cells_group(body, ls, hs, o.grid, unresolved);
+  hdf5::check_output_target(o.out, o.force);  // before the work, not after it
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8); a signal stops between rows of l
+  // and nothing is written (the file is written only at the end).
+  const auto total = static_cast<std::int64_t>(ls.size() * hs.size());
+  SweepProgress progress(o.quiet, total, 0, "region --cells", "cells");
+  const InterruptGuard interrupt_guard;
+  const TableGroup cells = cells_group(body, ls, hs, o.grid, unresolved, [&](std::int64_t done) {
+    if (interrupt_requested.load()) return false;
+    progress.update(done, 0);
+    return true;
+  });
+  progress.finish();
+  if (interrupt_signal() != 0) {
+    std::cerr << "lgi: region --cells: interrupted by signal after " << cells.columns[3].whole.size() << " of "
+              << total << " cells; nothing written\n";
+    return interrupted_exit_status();
+  }
   auto parameters = provenance(o, scene);
   parameters["l_range"] = o.l_range, parameters["h_range"] = o.h_range;
   write_groups_file(o.out, o.force, {cells, branches_group(body, o.samples)}, parameters);

@@ -10,6 +10,7 @@
 #include <memory>
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
+#include "experiments/io/input_file.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/system/invariants.hpp"
 
@@ -24,6 +25,9 @@ int list_scenes(const std::string& directory) {
   int status = exit_ok;
   for (const auto& f : files) {
     try {
+      // A listing never waits on a FIFO named *.toml (input_file.hpp): only regular files are read.
+      if (const std::string why = regular_file_problem(f.string()); !why.empty())
+        throw InputError(f.string() + ": cannot read scene file: " + why);
       const system::Scene scene = read_scene(f.string());
       const system::AnyModel model = system::make_model(scene);
       const system::SceneInvariants inv(scene, model);

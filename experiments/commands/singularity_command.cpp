@@ -30,6 +30,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scenes_location.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
+#include "integrators/loop_support.hpp"
 
 namespace lgi::experiments {
 namespace {
@@ -113,6 +114,12 @@ int singularity_command(const SingularityOptions& o) {
   // Every scene is read before <out>.partial exists: a missing one is bad input (exit 2, nothing written).
   std::vector<system::Scene> scenes;
   for (const SceneCase& c : cases) scenes.push_back(read_scene(c.file));
+  // The fixed-step runs' grid (issue 50): a step that cannot advance time is bad input, not a failed row.
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const StudyScene sc = study_scene(scenes[ci], cases[ci], o);
+    if (const std::string why = integrators::fixed_step_grid_problem(0.0, sc.t_end, sc.dt); !why.empty())
+      throw UsageError(std::string(o.dt ? "--dt: " : "--dt ([run] dt of " + scenes[ci].file + "): ") + why);
+  }
 
   const std::string partial = o.out + ".partial";
   // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).

@@ -29,6 +29,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/ensemble/ensemble.hpp"
+#include "integrators/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -63,6 +64,10 @@ integrators::RunConfig sweep_run_config(const SweepSpec& spec, const system::Sce
   if (!t_end || !(*t_end > 0.0)) throw InputError(where + "t_end: missing, and the scene " + scene.file + " has no [run] t_end > 0");
   cfg.t_end = *t_end;
   cfg.save_every = spec.monitor_every;
+  // Refused up front (issue 50): otherwise every row fails and the sweep still exits 0.
+  if (!adaptive)
+    if (const std::string why = integrators::fixed_step_grid_problem(cfg.t0, cfg.t_end, cfg.dt); !why.empty())
+      throw InputError(where + "dt: " + why);
   return cfg;
 }
 

@@ -36,6 +36,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/registry.hpp"
+#include "integrators/loop_support.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
 #include "lie/quaternion.hpp"
@@ -353,6 +354,11 @@ int work_precision(const WorkPrecisionOptions& o) {
   WorkPrecisionOptions resolved;
   const std::vector<Job> jobs = resolved_jobs(o, scene, resolved);
   const double t_end = resolve_t_end(o.t_end, scene, /*allow_zero=*/false);
+  // A step that cannot advance time is bad input (issue 50), not a failed row of a run that exits 0.
+  for (const Job& j : jobs)
+    if (j.dt)
+      if (const std::string why = integrators::fixed_step_grid_problem(0.0, t_end, *j.dt); !why.empty())
+        throw UsageError("--dt: " + why);
   const system::AnyModel model = system::make_model(scene);
   const system::SceneInvariants invariants(scene, model);
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO) == 1;

@@ -6,6 +6,7 @@
 
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/hdf5_support.hpp"
+#include "experiments/io/input_file.hpp"
 
 namespace lgi::experiments {
 
@@ -52,6 +53,8 @@ std::vector<lie::Vec3> vectors(const std::vector<double>& flat) {
 }  // namespace
 
 PoincareFile read_poincare_file(const std::string& path) {
+  // A FIFO would block in H5Fopen, a device or non-HDF5 file reach the library: checked first (input_file.hpp).
+  if (const std::string why = hdf5_input_problem(path); !why.empty()) throw InputError(path + ": " + why);
   const hdf5::QuietHdf5Errors quiet;
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.valid()) throw InputError(path + ": cannot open as HDF5");

@@ -1,6 +1,7 @@
 // lgi.exact_free_flow(): the exact flow of the free rigid body
 // (integrators/system/free_body_exact.hpp, the flow the scheme `exact` evaluates)
 // at given times from a scene's initial state.
+#include <cmath>
 #include <string>
 
 #include "integrators/system/free_body_exact.hpp"
@@ -19,6 +20,9 @@ py::tuple exact_free_flow(const py::object& scene_arg, const py::array_t<double,
   const auto n = static_cast<py::ssize_t>(times.size());
   std::vector<double> t(times.data(), times.data() + n), R(static_cast<std::size_t>(9 * n)),
       Pi(static_cast<std::size_t>(3 * n));
+  // A NaN or infinite time has no state: refused, not returned as NaN (issue 50).
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (!std::isfinite(t[i])) throw py::value_error("times: element " + std::to_string(i) + " is not a finite number");
   {
     const py::gil_scoped_release release;
     const system::FreeBodyExactFlow flow(std::get<system::FreeBody>(model).inertia, scene->initial);
@@ -39,7 +43,7 @@ void bind_exact_flow(py::module_& m) {
         "exact_free_flow(scene, times) -> (R, Pi): the exact free-body flow (Jacobi elliptic functions for\n"
         "Pi, an elliptic integral of the third kind for R; Celledoni, Fasso, Safstrom & Zanna 2008) from\n"
         "the scene's initial state at t = 0, at each of `times` (s): R with shape (n, 3, 3), body -> space,\n"
-        "and Pi (n, 3). ValueError if the scene declares a torque (not a free body).");
+        "and Pi (n, 3). ValueError if the scene declares a torque (not a free body) or a time is not finite.");
 }
 
 }  // namespace lgi::python

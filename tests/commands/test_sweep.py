@@ -147,6 +147,37 @@ def test_mismatched_resume_under_mpi_exits_2_and_keeps_the_file(tmp_path):
     assert open(out + ".partial", "rb").read() == before
 
 
+@pytest.mark.skipif(not LGI_MPI, reason="lgi-mpi is not built (MPI not installed)")
+def test_sigint_to_mpirun_stops_the_ranks_and_keeps_the_partial(tmp_path):
+    """README "Using lgi" (issue 50): Ctrl-C to mpirun reaches the ranks, which stop after their
+    current chunk, keep <out>.partial with the rows so far (rank 0 says so in one line) and leave
+    no process behind; mpirun's own status is nonzero (OpenMPI 4.1 reports 1, not 130). (That
+    such a .partial resumes bit for bit: test_killed_sweep_is_readable_and_resumes_bit_for_bit.)"""
+    s = spec(tmp_path, LONG_SWEEP.replace("SCENES", SCENES))
+    out = str(tmp_path / "int.h5")
+    env = dict(os.environ, ASAN_OPTIONS="detect_leaks=0")
+    p = subprocess.Popen(["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "ASAN_OPTIONS", "-np", "2", LGI_MPI,
+                          "sweep", "--spec", s, "--out", out, "--threads", "1", "--quiet"],
+                         stderr=subprocess.PIPE, text=True, env=env)
+    while not os.path.exists(out + ".partial"):
+        assert p.poll() is None, "the sweep ended before its .partial appeared"
+        time.sleep(0.01)
+    time.sleep(0.8 * slowdown(LGI))  # part-way (wait_part_way would time mpirun itself)
+    assert p.poll() is None, "the sweep ended before it could be interrupted"
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode != 0, err
+    assert p.returncode in (1, 130), (p.returncode, err)  # 1: OpenMPI 4.1's mpirun; 130: a launcher that passes it on
+    assert "interrupted by signal" in err and out + ".partial" in err and "--resume" in err, err
+    assert "MPI_ABORT" not in err, err
+    leftovers = subprocess.run(["pgrep", "-f", out], capture_output=True, text=True).stdout
+    assert leftovers == "", f"ranks still running: {leftovers}"
+    assert not os.path.exists(out)
+    with h5py.File(out + ".partial", "r") as f:
+        done = (f["sweep/status"][()] >= 0).sum()
+        assert 0 < done < len(f["sweep/status"]), f"{done} rows done"
+
+
 def test_killed_sweep_is_readable_and_resumes_bit_for_bit(tmp_path):
     s = spec(tmp_path, LONG)
     full, cut = str(tmp_path / "full.h5"), str(tmp_path / "cut.h5")

@@ -307,6 +307,9 @@ def test_exact_free_flow_against_a_fine_run():
     assert np.allclose(lgi.exact_free_flow(BOOK, [0.0])[0][0], lgi.Scene.from_file(BOOK).R0, rtol=0, atol=1e-15)
     with pytest.raises(ValueError, match="free bod"):
         lgi.exact_free_flow(TOP, [0.0, 1.0])
+    for bad in (np.nan, np.inf, -np.inf):  # issue 50: refused naming the element, not returned as NaN
+        with pytest.raises(ValueError, match="element 1 is not a finite number"):
+            lgi.exact_free_flow(BOOK, [0.0, bad])
 
 
 def test_schemes_match_lgi_schemes_json(lgi_exe):

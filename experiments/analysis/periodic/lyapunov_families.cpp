@@ -130,15 +130,21 @@ std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x
 }
 
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
-                                           std::vector<std::string>& failures, double direction) {
+                                           std::vector<std::string>& failures, double direction,
+                                           const std::function<bool(std::size_t, std::size_t)>& mode_done) {
   std::vector<FamilyOrbit> all;
   const EquilibriumSet set = equilibria_at(body, l);
+  std::size_t modes = 0, done = 0;
+  for (const RelativeEquilibrium& e : set.rows)
+    modes += e.stability == EquilibriumStability::stable ? equilibrium_frequencies(e).size() : 0;
   int family = 0;
   for (std::size_t i = 0; i < set.rows.size(); ++i) {
     const RelativeEquilibrium& e = set.rows[i];
     if (e.stability != EquilibriumStability::stable) continue;
     const Vec6 xe = state_of(e);
     for (const double omega : equilibrium_frequencies(e)) {
+      if (done > 0 && mode_done && !mode_done(done, modes)) return all;
+      ++done;
       const Vec6 start = project_to_leaf(body, xe + s.amplitude * xe.norm() * mode_direction(body, xe, omega), l);
       const double h0 = euler_poisson_invariants(body, start).value(0);
       ShootingSettings at_l = s.shooting;  // the first orbit at ℓ, even for a family continued in ℓ
@@ -157,6 +163,7 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
       family = next;
     }
   }
+  if (done > 0 && mode_done) mode_done(done, modes);
   return all;
 }
 

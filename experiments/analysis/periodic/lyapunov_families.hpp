@@ -12,6 +12,8 @@
 // back onto Π·Γ = ℓ, |Γ| = 1; h = H(x0); period guess 2π/ω. The first row's
 // period differs from 2π/ω by O(ε²).
 // Continuation, events and branch switching: family_continuation.hpp.
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,8 +33,11 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e);
 /// ℓ) is followed by one natural step in h of start_h_step away from the
 /// equilibrium, and from there the family is continued in ℓ at that h, its
 /// first step direction · h_step in ℓ (experiments/PERIODIC.md).
+/// `mode_done`, if given, is called after each mode with the modes done and
+/// their number; false stops there (a signal).
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
-                                           std::vector<std::string>& failures, double direction = 1.0);
+                                           std::vector<std::string>& failures, double direction = 1.0,
+                                           const std::function<bool(std::size_t, std::size_t)>& mode_done = {});
 
 /// One family from a start (x0, T) at h (a seed), numbered `family`, its
 /// first step `direction` · h_step in h; then its doubled families.

@@ -153,14 +153,22 @@ void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectr
   const bool k_conserved = s.use_symmetry && top.symmetry == TopSymmetry::symmetric_heavy;
   std::set<std::string> methods;
   std::vector<QuantumLevel> all;
-  for (const ClassSpec& c : heavy_classes(top, s, big.jhi)) {
+  const std::vector<ClassSpec> classes = heavy_classes(top, s, big.jhi);
+  const int solves = 2 * static_cast<int>(classes.size());
+  int done = 0;
+  for (const ClassSpec& c : classes) {
     const Block bl = make_block(c, big, s.jmax);
-    if (bl.cols_cut == 0) continue;
+    if (bl.cols_cut == 0) {
+      if (s.solved) s.solved(done += 2, solves);
+      continue;
+    }
     ComplexSparse w(h.rows(), bl.cols);
     w.setFromTriplets(bl.entries.begin(), bl.entries.end());
     const ComplexSparse hb = ComplexSparse(w.adjoint() * h * w);
     const LowestLevels cut = lowest_levels(ComplexSparse(hb.topLeftCorner(bl.cols_cut, bl.cols_cut)), s.levels, lower);
+    if (s.solved) s.solved(++done, solves);
     const LowestLevels check = lowest_levels(hb, s.levels, lower);
+    if (s.solved) s.solved(++done, solves);
     methods.insert(cut.method), methods.insert(check.method);
     for (std::size_t i = 0; i < cut.values.size(); ++i) {
       QuantumLevel l{cut.values[i], -1, k_conserved ? bl.k : -1, k_conserved, bl.parity, false, 0.0};

@@ -10,6 +10,7 @@
 //    level (same block, same rank) of the block cut at jmax + jmax_step:
 //    change_with_jmax = E(jmax + Δ) − E(jmax) (≤ 0: the cut is variational),
 //    converged = |change| ≤ tol · max(|E|, ħ²/(2 J_min)).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct QuantumSettings {
   int jmax_step = 4;   // Δ of the convergence check
   double tol = 1e-8;   // of the convergence check, relative (above)
   bool use_symmetry = true;  // false: one block for a heavy top (a check of the blocks)
+  // Heavy tops: called after each eigenvalue solve (two per block: cut at jmax and at
+  // jmax + jmax_step) with the solves done and their number (lgi quantum's progress line).
+  std::function<void(int, int)> solved;
 };
 
 struct QuantumLevel {

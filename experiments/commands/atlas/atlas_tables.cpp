@@ -148,7 +148,7 @@ std::vector<TableGroup> single_region_groups(const SingleRegion& r, double h) {
 }
 
 TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, const std::vector<double>& hs, int grid,
-                       std::int64_t& unresolved) {
+                       std::int64_t& unresolved, const std::function<bool(std::int64_t)>& row_done) {
   std::vector<std::string> names = {"empty"};
   TableColumn l_col{"l"}, h_col{"h"}, h_min{"h_min"};
   const int width = static_cast<int>(hs.size());
@@ -169,6 +169,7 @@ TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, 
       degenerate.whole.push_back(s.degenerate ? 1 : 0);
       unresolved += s.resolved ? 0 : 1;
     }
+    if (row_done && !row_done(static_cast<std::int64_t>(topology.whole.size()))) break;
   }
   TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved, degenerate}};
   std::string legend;

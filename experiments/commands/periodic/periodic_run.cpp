@@ -6,6 +6,7 @@
 #include "experiments/commands/periodic/critical_seeds.hpp"
 #include "experiments/commands/periodic/periodic_seeds.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
 #include "experiments/io/number_format.hpp"
 
 namespace lgi::experiments {
@@ -13,11 +14,18 @@ namespace lgi::experiments {
 namespace {
 
 /// The families of the seeds (of a seed file or a poincare file), numbered from 0.
+/// `seed_done` as PeriodicRequest::start_done: after each seed; false stops there.
 std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
-                                       double direction, const FamilySettings& s, std::vector<std::string>& failures) {
+                                       double direction, const FamilySettings& s, std::vector<std::string>& failures,
+                                       const PeriodicRequest::StartDone& seed_done, bool& stopped) {
   std::vector<FamilyOrbit> rows;
   int family = 0;
-  for (const SectionSeed& seed : seeds) {
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    if (k > 0 && seed_done && !seed_done(k, seeds.size())) {
+      stopped = true;
+      return rows;
+    }
+    const SectionSeed& seed = seeds[k];
     if (!seed.failure.empty()) {
       failures.push_back(seed.failure);
       continue;
@@ -27,6 +35,7 @@ std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vect
     for (const auto& r : f) family = std::max(family, r.family + 1);
     rows.insert(rows.end(), f.begin(), f.end());
   }
+  if (!seeds.empty() && seed_done) seed_done(seeds.size(), seeds.size());
   return rows;
 }
 
@@ -52,22 +61,29 @@ PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest
   PeriodicResult out;
   out.l = r.l.value_or(0.0);
   const FamilySettings& s = r.settings;
+  bool stopped = false;
   if (r.from_equilibria) {
-    out.rows = lyapunov_families(body, out.l, s, out.failures, r.direction);
+    out.rows = lyapunov_families(body, out.l, s, out.failures, r.direction, r.start_done);
     return out;
   }
   if (!r.critical.empty()) {
     const std::vector<SectionSeed> seeds = critical_seeds(body, r.scene_file, out.l, r.critical, s.shooting.dt);
-    out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures);
+    out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures, r.start_done, stopped);
     return out;
   }
   if (r.poincare.empty()) {
     std::vector<SectionSeed> seeds;
     for (const auto& [x, T] : r.seeds) seeds.push_back({x, T, "", ""});
-    out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures);
+    out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures, r.start_done, stopped);
     return out;
   }
-  const PoincareFile f = read_poincare_file(r.poincare);
+  const PoincareFile f = [&] {
+    try {
+      return read_poincare_file(r.poincare);
+    } catch (const InputError& e) {
+      throw UsageError(std::string("--seeds-from-poincare: ") + e.what());
+    }
+  }();
   if (r.l && std::abs(*r.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
     throw UsageError("--l: " + format_general(*r.l, 17) + " differs from the l of --seeds-from-poincare " + r.poincare +
                      " (" + format_general(f.l, 17) + "); leave --l out");
@@ -81,8 +97,8 @@ PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest
   for (SectionSeed& seed : seeds)
     if (seed.failure.empty() && !project_to_level(body, seed.x, f.h, f.l, &*out.section))
       seed.failure = seed.label + ": cannot be put on the level and the section";
-  out.rows = seed_families(body, seeds, out.l, r.direction, on_section, out.failures);
-  if (r.manifolds.points > 0) out.manifolds = manifolds_of(body, *out.section, out.rows, r.manifolds, out.failures);
+  out.rows = seed_families(body, seeds, out.l, r.direction, on_section, out.failures, r.start_done, stopped);
+  if (r.manifolds.points > 0 && !stopped) out.manifolds = manifolds_of(body, *out.section, out.rows, r.manifolds, out.failures);
   return out;
 }
 

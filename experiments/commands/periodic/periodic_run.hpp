@@ -4,6 +4,8 @@
 // Kovalevskaya top's critical orbits (--from-critical), or
 // the seeds of a poincare file on its section, with the manifolds of their
 // hyperbolic first orbits. Shared by the command and the Python module.
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,6 +17,9 @@
 namespace lgi::experiments {
 
 struct PeriodicRequest {
+  /// Called after each start (an equilibrium's mode, a seed) with the starts done and their
+  /// number; false stops there (a signal): the families so far are returned, no manifolds.
+  using StartDone = std::function<bool(std::size_t, std::size_t)>;
   FamilySettings settings{};
   std::optional<double> l;         // required unless poincare is given (then it must equal the file's)
   bool from_equilibria = false;
@@ -25,6 +30,7 @@ struct PeriodicRequest {
   int returns = 1;
   double direction = 1.0;          // the sense of the first step (the sign of --l-step)
   ManifoldSettings manifolds{};    // points = 0: none
+  StartDone start_done;            // empty: none
 };
 
 struct PeriodicResult {

@@ -1,17 +1,23 @@
 #include "experiments/commands/periodic/periodic_seeds.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "experiments/analysis/section_seeds.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/errors/input_error.hpp"
+#include "experiments/io/input_file.hpp"
 
 namespace lgi::experiments {
 
 std::vector<std::pair<Vec6, double>> read_seeds(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UsageError("--seed-file: cannot read '" + path + "'");
+  std::string text;
+  try {  // bounded like every text input (input_file.hpp): /dev/zero or a directory is refused
+    text = read_text_input(path, "the seed file");
+  } catch (const InputError& e) {
+    throw UsageError(std::string("--seed-file: ") + e.what());
+  }
+  std::istringstream in(text);
   std::vector<std::pair<Vec6, double>> seeds;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
