@@ -98,8 +98,6 @@ std::pair<double, double> bounds(const std::string& text, const std::string& fla
   return {a, b};
 }
 
-using StartDone = std::function<bool(std::size_t, std::size_t)>;
-
 std::string failures_text(const std::vector<std::string>& failures) {
   std::string t = failures.empty() ? "none" : "";
   for (const std::string& f : failures) t += (t.empty() ? "" : "; ") + f;
