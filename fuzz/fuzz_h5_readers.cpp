@@ -74,8 +74,8 @@ void long_time_resume(const std::string& out) {
   std::string csv = "step,time,energy_error,energy_error_window_max\n";
   for (int r = 0; r < 64; ++r) csv += std::to_string(r) + ",0.5,1e-16,1e-16\n";
   std::ofstream(folder() + "/lt.csv.partial", std::ios::trunc) << csv;
-  ex::ResumedResults r = ex::reopen_for_resume(out, true, fz::long_time_columns(), fz::long_time_options(),
-                                               fz::long_time_fingerprint, 1);
+  ex::ResumedResults<lgi::system::State> r = ex::reopen_for_resume<lgi::system::State>(out, true, fz::long_time_columns(), fz::long_time_options(),
+                                                                                  fz::long_time_fingerprint, 1);
   if (!r.file) return;  // no fingerprint: lgi long-time starts a new run
   ex::ResultRow row = r.file->row();
   row.set("step", r.checkpoint ? r.checkpoint->loop.step + 1 : std::int64_t{0});
