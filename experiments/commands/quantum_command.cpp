@@ -161,6 +161,7 @@ int run_quantum(QuantumOptions o) {
                      "Kovalevskaya top; scene " + scene.file +
                      " is " + quantum::symmetry_name(top.symmetry));
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
+  hdf5::check_output_target(o.out, o.force);  // a FIFO or a device at --out: before the work, not after it
   quantum::QuantumSettings s;
   s.hbar = o.hbar, s.m = o.m, s.jmax = o.jmax, s.levels = o.levels, s.jmax_step = o.jmax_step, s.tol = o.tol;
   // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the eigenvalue solves of a heavy

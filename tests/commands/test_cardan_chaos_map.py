@@ -144,7 +144,7 @@ def test_signal_then_resume(tmp_path):
 def test_kill_after_a_checkpoint_then_resume(tmp_path):
     """16 orbits on one thread: two rounds, a checkpoint after the first; SIGKILL once it is there."""
     args = ["chaos-map", "--scene", GENERAL_UP, "--vary", "suspension.tilt=0:1:4", "--h-range", "1:1:1",
-            "--ics", "4", "--t-end", "300", "--dt", "0.01", "--threads", "1", "--quiet"]
+            "--ics", "4", "--t-end", "3000", "--dt", "0.01", "--threads", "1", "--quiet"]
     out = str(tmp_path / "k.h5")
     p = subprocess.Popen([LGI, *args, "--out", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
