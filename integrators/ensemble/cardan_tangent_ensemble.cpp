@@ -104,13 +104,8 @@ void CardanTangentEnsemble::step(double h) { (vectors_ == 6 ? kernels_.step_six 
 
 void CardanTangentEnsemble::chaos_indicators(double t0, double t_end, double dt, const std::atomic<bool>* stop,
                                              std::span<ChaosIndicators> out) {
+  if (!begin_chaos_outputs(out, t0, t_end, dt)) return;
   const int n = static_cast<int>(out.size());
-  for (ChaosIndicators& r : out) r = ChaosIndicators{};
-  if (n == 0) return;
-  if (!fixed_step_grid_problem(t0, t_end, dt).empty()) {  // as accumulate_chaos_indicators
-    for (ChaosIndicators& r : out) r.ok = false, r.lyapunov = r.megno = r.megno_y = std::nan("");
-    return;
-  }
   chaos_ = ChaosLanes{};
   chaos_.t = t0;
   for (int l = 0; l < lanes_; ++l) {  // v.normalize() as the scalar loop; padding: lane 0's copy

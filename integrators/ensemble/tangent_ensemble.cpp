@@ -86,15 +86,20 @@ void TangentEnsemble::step(double t, double h) {
   (vectors_ == 6 ? kernels_.step_six : kernels_.step_one)(model_, block_, t, h);
 }
 
-void TangentEnsemble::chaos_indicators(double t0, double t_end, double dt, const std::atomic<bool>* stop,
-                                       std::span<ChaosIndicators> out) {
-  const int n = static_cast<int>(out.size());
+bool begin_chaos_outputs(std::span<ChaosIndicators> out, double t0, double t_end, double dt) {
   for (ChaosIndicators& r : out) r = ChaosIndicators{};
-  if (n == 0) return;
+  if (out.empty()) return false;
   if (!fixed_step_grid_problem(t0, t_end, dt).empty()) {  // as accumulate_chaos_indicators
     for (ChaosIndicators& r : out) r.ok = false, r.lyapunov = r.megno = r.megno_y = std::nan("");
-    return;
+    return false;
   }
+  return true;
+}
+
+void TangentEnsemble::chaos_indicators(double t0, double t_end, double dt, const std::atomic<bool>* stop,
+                                       std::span<ChaosIndicators> out) {
+  if (!begin_chaos_outputs(out, t0, t_end, dt)) return;
+  const int n = static_cast<int>(out.size());
   chaos_ = ChaosLanes{};
   chaos_.t = t0;
   for (int l = 0; l < lanes_; ++l) {  // v.normalize() as the scalar loop; padding: lane 0's copy

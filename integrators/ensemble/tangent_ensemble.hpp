@@ -66,6 +66,12 @@ void chaos_lane_results(const ChaosLanes& c, bool stopped, std::span<ChaosIndica
 /// The tangent kernels of an available instruction set (ensemble.cpp).
 TangentKernelSet tangent_kernels(Isa isa);
 
+/// The start of a chaos_indicators() call in lanes (TangentEnsemble and
+/// CardanTangentEnsemble): clears `out`; false if there is nothing to run (no
+/// orbit, or a grid t0 + k dt that cannot reach t_end: then every result is
+/// marked failed with NaN values, as accumulate_chaos_indicators does).
+bool begin_chaos_outputs(std::span<ChaosIndicators> out, double t0, double t_end, double dt);
+
 class TangentEnsemble {
  public:
   /// nullopt unless the model has a kernel, isa is available and vectors is 1 or 6.

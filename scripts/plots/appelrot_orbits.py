@@ -17,16 +17,7 @@ def load(paths):
     """The /periodic tables of paths; dies on a file without /periodic or without its k column."""
     tables = []
     for path in paths or []:
-        try:
-            t = c.load_table(path, "periodic")
-        except OSError as e:
-            c.die(f"{path}: cannot read ({e})")
-        if t is None:
-            c.die(f"{path}: no /periodic group (not a file written by lgi periodic)")
-        missing = [k for k in NEEDED if k not in t]
-        if missing:
-            c.die(f"{path}: /periodic has no column {missing[0]} (written before lgi periodic recorded k)")
-        tables.append(t)
+        tables.append(c.load_periodic(path, NEEDED, "written before lgi periodic recorded k"))
     return tables
 
 

@@ -321,6 +321,22 @@ def load_table(path, group="results"):
     return out
 
 
+def load_periodic(path, needed, missing_why):
+    """The /periodic table of an lgi periodic file, with the columns `needed`; dies with one
+    line naming the file on a file it cannot read, without /periodic or without a column
+    (its name and `missing_why`)."""
+    try:
+        t = load_table(path, "periodic")
+    except OSError as e:
+        die(f"{path}: cannot read ({e})")
+    if t is None:
+        die(f"{path}: no /periodic group (not a file written by lgi periodic)")
+    missing = [k for k in needed if k not in t]
+    if missing:
+        die(f"{path}: /periodic has no column {missing[0]} ({missing_why})")
+    return t
+
+
 def load_attrs(path, group):
     with h5py.File(path, "r") as f:
         return attrs(f[group]) if group in f else {}

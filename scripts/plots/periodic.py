@@ -51,15 +51,7 @@ REQUIRED = ("family", "l", "h", "period", "stability")
 def load(path):
     """The /periodic table of path with its defaults (event none, parent -1); dies on a
     file that is not one of lgi periodic or holds no orbit."""
-    try:
-        t = c.load_table(path, "periodic")
-    except OSError as e:
-        c.die(f"{path}: cannot read ({e})")
-    if t is None:
-        c.die(f"{path}: no /periodic group (not a file written by lgi periodic)")
-    missing = [k for k in REQUIRED if k not in t]
-    if missing:
-        c.die(f"{path}: /periodic has no column {missing[0]} (not a file written by lgi periodic)")
+    t = c.load_periodic(path, REQUIRED, "not a file written by lgi periodic")
     n = len(t["h"])
     if n == 0:
         c.die(f"{path}: /periodic holds no orbit")
