@@ -32,6 +32,13 @@ violation, "file:line: what", exiting 1 if any:
     commands/, which cli/ then calls): a call up the layers that the include
     check does not see.
 
+integrators/ is sorted by role (README, "Layout"), and its folders are
+ranked too: tableaus/ and system/ (data and physics) < core/ (the loop) <
+schemes/ and baselines/ < registry/ and ensemble/. A header of a lower role
+that includes one of a higher role (the loop including a scheme, a scheme
+including the registry) is a violation, and so is a C++ file at the top
+level of integrators/, outside every role.
+
 Prints "check_layers: N files, M includes of experiments/, layering clean"
 and exits 0 otherwise. Standard library only (Debian's /usr/bin/python3).
 """
@@ -192,6 +199,30 @@ def defined_upward(root, files):
     return problems
 
 
+ROLES = {"tableaus": 0, "system": 0, "core": 1, "schemes": 2, "baselines": 2, "registry": 3, "ensemble": 3}
+ROLE_INCLUDE = re.compile(r'^\s*#\s*include\s*"integrators/([^"/]+)/[^"]*"')
+
+
+def integrator_roles(root, files):
+    """A problem line per file of integrators/ outside the role folders, and per include of a
+    header of a higher role (ROLES)."""
+    problems = []
+    for rel in files:
+        parts = rel.split("/")
+        if parts[0] != "integrators":
+            continue
+        if len(parts) == 2 or parts[1] not in ROLES:
+            problems.append(f"{rel}:1: in no role folder of integrators/ ({', '.join(r + '/' for r in ROLES)})")
+            continue
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for no, line in enumerate(f, 1):
+                m = ROLE_INCLUDE.match(line)
+                if m and ROLES.get(m.group(1), -1) > ROLES[parts[1]]:
+                    problems.append(f'{rel}:{no}: integrators/{parts[1]}/ includes "integrators/{m.group(1)}/..." '
+                                    f"of the higher role {m.group(1)}/")
+    return problems
+
+
 _DECLARED = {}
 
 
@@ -310,6 +341,7 @@ def main(argv):
         problems.append(f"{cycle[0]}:{lines[(cycle[0], cycle[1])]}: include cycle: {' -> '.join(cycle)}")
     problems += upward_calls(root, files)
     problems += defined_upward(root, files)
+    problems += integrator_roles(root, files)
     return report(problems, f"check_layers: {len(problems)} violation(s) in {len(files)} files",
                   f"check_layers: {len(files)} files, {n_includes} includes of experiments/, layering clean")
 

@@ -5,7 +5,7 @@ Usage: scripts/check_scheme_names.py [REPO_ROOT]   (default: the parent of scrip
 
 What a scheme is comes from the registry's facts, never from the '@' of a
 composition (BASE@METHOD) or the '/' of a baseline (COORDS/STEPPER): in C++
-SchemeInfo::base_scheme, properties.baseline, family (integrators/registry.hpp);
+SchemeInfo::base_scheme, properties.baseline, family (integrators/registry/registry.hpp);
 in `lgi schemes --json` and Python's lgi.schemes() the records' "kind",
 "base" and "family" (experiments/SCHEMES.md). This script reads every C++,
 Python and shell file under tests/ and scripts/ and prints one line per

@@ -14,8 +14,8 @@
 
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/scheme_interface.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/core/scheme_interface.hpp"
 #include "lie/so3.hpp"
 
 namespace lgi::ensemble_test {

@@ -7,8 +7,8 @@
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 #include "support/cardan_problems.hpp"
 
 using namespace lgi;

@@ -12,10 +12,10 @@
 #include <cmath>
 #include <limits>
 
-#include "integrators/commutator_free.hpp"
-#include "integrators/crouch_grossman.hpp"
-#include "integrators/rkmk.hpp"
-#include "integrators/rkmk_adaptive.hpp"
+#include "integrators/schemes/commutator_free.hpp"
+#include "integrators/schemes/crouch_grossman.hpp"
+#include "integrators/schemes/rkmk.hpp"
+#include "integrators/schemes/rkmk_adaptive.hpp"
 #include "integrators/system/model.hpp"
 #include "integrators/system/terms/callable_torque.hpp"
 

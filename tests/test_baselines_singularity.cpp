@@ -18,7 +18,7 @@
 #include "integrators/baselines/matrix.hpp"
 #include "integrators/baselines/quaternion.hpp"
 #include "integrators/baselines/rotation_vector.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/baseline_runs.hpp"
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"

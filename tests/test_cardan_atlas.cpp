@@ -12,8 +12,8 @@
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scene_suspension.hpp"
-#include "integrators/torus/torus_registry.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/registry/torus_registry.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 #include "support/cardan_problems.hpp"
 
 using namespace lgi;

@@ -1,4 +1,4 @@
-// Every scheme on T³ × ℝ³ (integrators/registry_cardan.cpp) conserves what
+// Every scheme on T³ × ℝ³ (integrators/registry/registry_cardan.cpp) conserves what
 // its facts claim (its order: tests/test_stated_orders.cpp), on the Cardan top of
 // tests/support/cardan_problems.hpp (massive rings, off-axis centres: H is
 // not separable). As test_stated_orders.cpp and test_scheme_properties.cpp

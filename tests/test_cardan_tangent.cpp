@@ -1,4 +1,4 @@
-// The Cardan tangent flow's derivative (integrators/torus/torus_tangent_flow.hpp):
+// The Cardan tangent flow's derivative (integrators/core/torus_tangent_flow.hpp):
 // Df(x) v from the field in dual numbers (integrators/system/dual.hpp,
 // integrators/system/cardan_field.hpp) against a Richardson-extrapolated
 // central difference, its linearity in v, and the dual evaluation's value
@@ -10,7 +10,7 @@
 
 #include "integrators/system/cardan_field.hpp"
 #include "integrators/system/dual.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 #include "support/cardan_problems.hpp"
 
 using namespace lgi;

@@ -23,7 +23,7 @@
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/system/model.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 #include "support/shipped_scene.hpp"
 
 using namespace lgi;

@@ -1,12 +1,12 @@
 // Compositions BASE@yoshida4, @suzuki4, @kahan-li6, @kahan-li8
-// (integrators/composition.hpp) of every symmetric order-2 base the registry
+// (integrators/schemes/composition.hpp) of every symmetric order-2 base the registry
 // composes: the observed order is the coefficients' order (4, 4, 6, 8), on
 //  - the asymmetric free body free_body_hlw against `exact` (split-exact is
 //    the exact flow there, so its compositions are skipped: no slope to fit);
 //  - the Kovalevskaya top against a converged rkf78 reference,
 // with step ranges that keep at least three errors between the
 // pre-asymptotic regime and the round-off plateau. The processed compositions
-// BASE@bcm-processed6, @bcm-processed8 (integrators/processed_composition.hpp)
+// BASE@bcm-processed6, @bcm-processed8 (integrators/schemes/processed_composition.hpp)
 // are so accurate that on those two problems they reach round-off while still
 // pre-asymptotic (slopes 8.6–9.4 for order 8); they are measured on HLW's
 // heavy top, where their errors are larger, by the three finest steps above
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/order_reference.hpp"
 #include "support/convergence.hpp"

@@ -11,7 +11,7 @@
 #include <limits>
 #include <random>
 
-#include "integrators/controller_math.hpp"
+#include "integrators/core/controller_math.hpp"
 
 namespace cm = lgi::integrators::controller_math;
 

@@ -1,4 +1,4 @@
-// Dense output of the adaptive RKMK pairs (integrators/rkmk_pair.hpp):
+// Dense output of the adaptive RKMK pairs (integrators/schemes/rkmk_pair.hpp):
 //  - the continuous extension of order q has local error O(h^(q+1)) inside
 //    one step, on the free body (against the exact flow) and on a driven
 //    general top (time-dependent torque, so the extra stages' times matter;
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "integrators/registry.hpp"
-#include "integrators/rkmk_adaptive.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/rkmk_adaptive.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
 #include "support/reference_solution.hpp"

@@ -1,4 +1,4 @@
-// simo-wong (integrators/simo_wong.hpp): the energy–momentum scheme.
+// simo-wong (integrators/schemes/simo_wong.hpp): the energy–momentum scheme.
 //  - the algebra the header relies on: cay(ξ)ᵀ x = x − h x_mid × W with x_mid = (I + ξ̂/2)⁻¹x,
 //    and cay(η)² = cay(ξ) for the spring's midpoint;
 //  - observed order 2 on free_body_hlw (against the exact flow) and on the
@@ -19,8 +19,8 @@
 #include <string>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/simo_wong.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/simo_wong.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/order_reference.hpp"
 #include "support/convergence.hpp"

@@ -20,8 +20,8 @@
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
 #include "integrators/ensemble/rkmk_kernel.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/rkmk.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/rkmk.hpp"
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;

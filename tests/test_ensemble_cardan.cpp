@@ -19,7 +19,7 @@
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 #include "integrators/ensemble/cardan_tangent_kernel.hpp"
 #include "integrators/ensemble/lane_sincos.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;

@@ -18,8 +18,8 @@
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
-#include "integrators/moser_veselov_preprocessed.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/schemes/moser_veselov_preprocessed.hpp"
+#include "integrators/registry/registry.hpp"
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "experiments/cli/scheme_record.hpp"
-#include "integrators/register_scheme.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/rkmk.hpp"
+#include "integrators/registry/register_scheme.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/rkmk.hpp"
 #include "tests/ensemble_test_support.hpp"
 
 using namespace lgi;

@@ -1,6 +1,6 @@
 // Tangent flows in lanes (integrators/ensemble/tangent_ensemble.hpp,
 // docs/ensemble.md): the scalar step of the models with a kernel is the
-// tangent flow of integrators/tangent_flow.hpp (to round-off) and its state
+// tangent flow of integrators/core/tangent_flow.hpp (to round-off) and its state
 // part is rkmk4 bit for bit; every lane is that scalar step bit for bit, with
 // one and six tangent vectors, on every instruction set this CPU has; the
 // chaos indicators' loop in lanes gives each lane the scalar loop's values
@@ -20,8 +20,8 @@
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
-#include "integrators/rkmk.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/schemes/rkmk.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;

@@ -1,4 +1,4 @@
-// Events in the one time loop (RunConfig::events, integrators/events.hpp):
+// Events in the one time loop (RunConfig::events, integrators/core/events.hpp):
 //  - on the free body, where the crossing times follow from the exact flow,
 //    the exact scheme's crossings of Π1 = 0 are located to ≤ 1e-12 in time,
 //    and a 4th-order scheme's to its global error;
@@ -12,7 +12,7 @@
 #include <cmath>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/shipped_scene.hpp"
 

@@ -24,7 +24,7 @@
 #include "experiments/analysis/frequency/naff.hpp"
 #include "experiments/analysis/frequency/observable_series.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/shipped_scene.hpp"
 #include "support/verbose.hpp"
 

@@ -20,7 +20,7 @@
 #include "experiments/analysis/gali.hpp"
 #include "experiments/analysis/tangent_loops.hpp"
 #include "experiments/io/scene_suspension.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 #include "support/shipped_scene.hpp"
 
 using namespace lgi;

@@ -1,4 +1,4 @@
-// The implicit RKMK schemes (integrators/implicit_rkmk.hpp): rkmk-gauss2,
+// The implicit RKMK schemes (integrators/schemes/implicit_rkmk.hpp): rkmk-gauss2,
 // rkmk-gauss4 and the L-stable rkmk-radau5.
 //  - the exact derivative of dexp⁻¹ behind the Newton matrix;
 //  - observed order within ±0.2 of nominal on free_body_hlw (against the
@@ -24,9 +24,9 @@
 #include <string>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/implicit_rkmk.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/rkmk.hpp"
+#include "integrators/schemes/implicit_rkmk.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/rkmk.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/convergence.hpp"
 #include "support/h5_read.hpp"

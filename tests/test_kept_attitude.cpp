@@ -1,6 +1,6 @@
 // The attitude a free body's preprocessed DMV run keeps as a quaternion
-// (integrators/cayley_quaternion.hpp; the loop's "Kept attitude",
-// integrators/stepper_loop.hpp):
+// (integrators/schemes/cayley_quaternion.hpp; the loop's "Kept attitude",
+// integrators/core/stepper_loop.hpp):
 //  - one update is R F to round-off, and its increment is accurate to ε
 //    relative (not merely ε |q|), on non-commuting random steps;
 //  - the loop, which steps q and writes R only where it is read, gives the
@@ -19,8 +19,8 @@
 #include <random>
 #include <string>
 
-#include "integrators/moser_veselov_preprocessed.hpp"
-#include "integrators/stepper_loop.hpp"
+#include "integrators/schemes/moser_veselov_preprocessed.hpp"
+#include "integrators/core/stepper_loop.hpp"
 #include "lie/so3.hpp"
 #include "tests/ensemble_test_support.hpp"
 

@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "integrators/rkmk_pair_kernels.hpp"
+#include "integrators/schemes/rkmk_pair_kernels.hpp"
 #include "lie/exp_series.hpp"
 #include "lie/product_state.hpp"
 #include "lie/quaternion.hpp"

@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "integrators/rkmk_chart.hpp"
+#include "integrators/schemes/rkmk_chart.hpp"
 #include "lie/product_state.hpp"
 #include "lie/quaternion.hpp"
 #include "lie/so3.hpp"
@@ -82,7 +82,7 @@ TEST_CASE("dexp · dexp^-1 = I (body, space, Cayley); vector forms equal matrix 
 }
 
 TEST_CASE("the RKMK charts' plain-number kernels are lie/so3.hpp's maps", "[lie][so3][rkmk]") {
-  // integrators/rkmk_chart.hpp: R φ(ŵ) and dφ⁻¹_body(w) Ω of the exponential and
+  // integrators/schemes/rkmk_chart.hpp: R φ(ŵ) and dφ⁻¹_body(w) Ω of the exponential and
   // Cayley coordinates, against exp_so3 / dexpinv_body and cay / dcayinv_body
   // (themselves checked against central differences below).
   namespace it = lgi::integrators;

@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "lie/so3.hpp"
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"

@@ -1,6 +1,6 @@
 // The diagonal-inertia fast path of dmv, lgvi and dmv-pre*
-// (integrators/moser_veselov_diagonal.hpp) against the general Newton solve
-// (integrators/moser_veselov.hpp), and the free body's modified-inertia
+// (integrators/schemes/moser_veselov_diagonal.hpp) against the general Newton solve
+// (integrators/schemes/moser_veselov.hpp), and the free body's modified-inertia
 // series evaluated once per run as a polynomial in h²:
 //  - the same Cayley parameter and the same step to round-off, over a range
 //    of h|Ω| and random diagonal bodies;
@@ -14,8 +14,8 @@
 #include <random>
 #include <utility>
 
-#include "integrators/moser_veselov.hpp"
-#include "integrators/moser_veselov_series.hpp"
+#include "integrators/schemes/moser_veselov.hpp"
+#include "integrators/schemes/moser_veselov_series.hpp"
 #include "support/registered_run.hpp"
 
 using namespace lgi;

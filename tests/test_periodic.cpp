@@ -28,7 +28,7 @@
 #include "experiments/analysis/actions.hpp"
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 #include "experiments/io/gamma_attitude.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 

@@ -1,5 +1,5 @@
 // Poincaré sections and chaos indicators (experiments/analysis/poincare_section.hpp,
-// integrators/tangent_flow.hpp; experiments/POINCARE.md):
+// integrators/core/tangent_flow.hpp; experiments/POINCARE.md):
 //  - the section coordinates (φ, ϑ, sheet) reproduce Γ and the sign of φ̇;
 //  - the tangent flow agrees with central differences of two nearby
 //    trajectories (the only place two trajectories are used: as a check);
@@ -20,7 +20,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/sweep_spec.hpp"
 #include "integrators/system/model.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 #include "lie/so3.hpp"
 #include "support/shipped_scene.hpp"
 

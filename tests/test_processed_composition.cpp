@@ -1,5 +1,5 @@
 // Processed compositions BASE@bcm-processed6 / @bcm-processed8
-// (integrators/processed_composition.hpp) as the loop drives them: the loop
+// (integrators/schemes/processed_composition.hpp) as the loop drives them: the loop
 // holds the kernel's variable and observers get the trajectory's state. Their
 // orders are measured with every other composition (tests/test_composition.cpp),
 // their symmetry, conservation, resume and allocations by the generic tests.
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/reference_solution.hpp"
 #include "support/registered_run.hpp"
 #include "support/run_command.hpp"

@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include "experiments/analysis/relative_equilibria.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "lie/charts.hpp"
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"

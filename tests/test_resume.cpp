@@ -1,4 +1,4 @@
-// Resuming a run from a checkpoint (integrators/run_config.hpp, Checkpoints;
+// Resuming a run from a checkpoint (integrators/core/run_config.hpp, Checkpoints;
 // scheme_interface.hpp, "Resume"), for every registered scheme: one that the
 // registry calls resumable, resumed at a checkpoint taken by the loop, goes on
 // bit for bit as the run that never stopped (every sample after the
@@ -14,7 +14,7 @@
 
 #include "experiments/io/run_checkpoint.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/recorder.hpp"
 
 using namespace lgi;

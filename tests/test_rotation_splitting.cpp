@@ -1,6 +1,6 @@
-// split-axes and split-symmetric (integrators/split_axes.hpp,
+// split-axes and split-symmetric (integrators/schemes/split_axes.hpp,
 // split_symmetric.hpp) and their closed-form sub-flows
-// (integrators/rotation_flows.hpp). What the generic suites do not check:
+// (integrators/schemes/rotation_flows.hpp). What the generic suites do not check:
 //  - sin_cos agrees with the C library to a few ulp;
 //  - each axis flow is the exact flow of ½ c Π_i² (against the exact free
 //    flow of a body spinning about that axis), and flows of one axis merge;
@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "integrators/composition.hpp"
-#include "integrators/rotation_flows.hpp"
-#include "integrators/split_axes.hpp"
-#include "integrators/split_symmetric.hpp"
+#include "integrators/schemes/composition.hpp"
+#include "integrators/schemes/rotation_flows.hpp"
+#include "integrators/schemes/split_axes.hpp"
+#include "integrators/schemes/split_symmetric.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/model.hpp"
 #include "support/registered_run.hpp"

@@ -1,5 +1,5 @@
-// Round-off that does not drift (integrators/compensated_sum.hpp,
-// integrators/moser_veselov.hpp): dmv on the book of seed 000 at dt = 0.01
+// Round-off that does not drift (integrators/core/compensated_sum.hpp,
+// integrators/schemes/moser_veselov.hpp): dmv on the book of seed 000 at dt = 0.01
 // (dzhanibekov_book_axis2), the energy error after 10⁶ steps (default suite)
 // and 10⁸ steps ([slow]). Without compensated updates and the final Newton
 // correction the errors were 1.9e-13 and 7.0e-12 (an n^0.84
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "experiments/analysis/scheme_verification.hpp"
-#include "integrators/moser_veselov_diagonal.hpp"
+#include "integrators/schemes/moser_veselov_diagonal.hpp"
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 

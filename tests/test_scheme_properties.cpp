@@ -12,7 +12,7 @@
 
 #include "experiments/analysis/scheme_verification.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/invariants.hpp"
 #include "integrators/tableaus/composition.hpp"
 

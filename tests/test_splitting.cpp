@@ -1,4 +1,4 @@
-// split-exact (integrators/splitting.hpp) and its free-flow stepper
+// split-exact (integrators/schemes/splitting.hpp) and its free-flow stepper
 // (integrators/system/free_body_flow_stepper.hpp):
 //  - the stepper agrees with FreeBodyExactFlow from arbitrary states, for
 //    fine and coarse steps of either sign, near the separatrix, near steady
@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/rkmk.hpp"
-#include "integrators/splitting.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/rkmk.hpp"
+#include "integrators/schemes/splitting.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/free_body_flow_stepper.hpp"
 #include "integrators/system/invariants.hpp"

@@ -18,7 +18,7 @@
 // asymptotic ones. A step the scheme refuses (a Cayley step of π or
 // more) counts as "too coarse" and is left out.
 //
-// The schemes of T³ × ℝ³ (the Cardan top, integrators/registry_cardan.cpp)
+// The schemes of T³ × ℝ³ (the Cardan top, integrators/registry/registry_cardan.cpp)
 // are measured on the Cardan top of tests/support/cardan_problems.hpp (tilted
 // outer axis, massive rings: H not separable) at t = 2, with the same step
 // ladder and fit, within ±0.2 of the stated order; an adaptive one through
@@ -37,8 +37,8 @@
 #include <type_traits>
 
 #include "experiments/analysis/scheme_verification.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/rkmk_adaptive.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/schemes/rkmk_adaptive.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "support/cardan_problems.hpp"
 #include "support/order_reference.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 

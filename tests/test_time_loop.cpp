@@ -1,4 +1,4 @@
-// The Lie-group time loop (integrators/stepper_loop.hpp) through the registry:
+// The Lie-group time loop (integrators/core/stepper_loop.hpp) through the registry:
 //  - RunConfig::output_times: a fixed-step scheme observes the output times on
 //    its grid (and skips the others), an adaptive one lands on every one
 //    exactly, and observes nowhere else;
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "support/recorder.hpp"
 #include "support/shipped_scene.hpp"
 

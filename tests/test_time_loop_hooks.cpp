@@ -1,4 +1,4 @@
-// The time loop's optional scheme hooks (integrators/stepper_loop.hpp,
+// The time loop's optional scheme hooks (integrators/core/stepper_loop.hpp,
 // scheme_interface.hpp), on toy schemes whose behaviour is known exactly:
 //  - a refused step (StepStatus::refused) ends the run with the scheme's
 //    refusal_reason(), is not counted as a step or a Newton failure, and
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/stepper_loop.hpp"
+#include "integrators/core/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
 
 using namespace lgi;

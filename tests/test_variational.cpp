@@ -1,4 +1,4 @@
-// dmv, lgvi and the preprocessed dmv-pre4…10 (integrators/moser_veselov.hpp):
+// dmv, lgvi and the preprocessed dmv-pre4…10 (integrators/schemes/moser_veselov.hpp):
 //  - the Hairer–Vilmart test problem (J. Phys. A 39 (2006), Sect. 3): the
 //    same numbers as the authors' own code, and the accuracy at equal step;
 //  - observed orders against the exact free flow and converged references;
@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/moser_veselov_preprocessed.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/schemes/moser_veselov_preprocessed.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
 #include "support/order_reference.hpp"

@@ -13,8 +13,8 @@
 
 #include "experiments/analysis/allocation_counter.hpp"
 #include "experiments/analysis/scheme_verification.hpp"
-#include "integrators/register_scheme.hpp"
-#include "integrators/rkmk.hpp"
+#include "integrators/registry/register_scheme.hpp"
+#include "integrators/schemes/rkmk.hpp"
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 

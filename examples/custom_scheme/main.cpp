@@ -10,7 +10,7 @@
 #include "experiments/analysis/scheme_verification.hpp"
 #include "experiments/cli/simulation.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/register_scheme.hpp"
+#include "integrators/registry/register_scheme.hpp"
 #include "rkmk3_heun.hpp"
 
 namespace integrators = lgi::integrators;

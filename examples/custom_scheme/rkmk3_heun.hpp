@@ -11,7 +11,7 @@
 // (Heun, Z. Math. Phys. 45 (1900) 23–38; Hairer, Nørsett & Wanner, Solving
 // ODEs I, §II.1, Table 1.1). Order 3, 3 evaluations a step; conserves
 // RᵀR = I to round-off and no invariant of the dynamics exactly.
-#include "integrators/rkmk.hpp"
+#include "integrators/schemes/rkmk.hpp"
 #include "integrators/tableaus/explicit_tableau.hpp"
 
 namespace custom {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "integrators/events.hpp"
-#include "integrators/run_config.hpp"
+#include "integrators/core/events.hpp"
+#include "integrators/core/run_config.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::experiments {

@@ -23,7 +23,7 @@
 #include "experiments/analysis/actions.hpp"
 #include "experiments/analysis/actions_section.hpp"
 #include "experiments/analysis/actions_support.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/invariants.hpp"
 #include "integrators/system/model.hpp"
 

@@ -8,8 +8,8 @@
 #include "experiments/analysis/cardan_equilibria.hpp"
 #include "experiments/analysis/seeded_random.hpp"
 #include "experiments/errors/exit_status.hpp"
-#include "integrators/registry.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 
 namespace lgi::experiments {
@@ -42,7 +42,7 @@ CardanCrossing crossing_at(const system::CardanTop& top, const TorusState& x, do
   return c;
 }
 
-/// The section's two factors as the loop's event functions (integrators/events.hpp):
+/// The section's two factors as the loop's event functions (integrators/core/events.hpp):
 /// event 0 is q̇2 = 0, event 1 sin q2 = 0, both directions.
 class SectionFactors final : public integrators::BasicEventFunctions<TorusState> {
  public:
@@ -113,7 +113,7 @@ class SectionObserver final : public integrators::TorusObserver {
   bool truncated_ = false;
 };
 
-/// The orbit on the one time loop (integrators/stepper_loop.hpp), its
+/// The orbit on the one time loop (integrators/core/stepper_loop.hpp), its
 /// crossings located by the loop's events on the scheme's step map.
 void integrate_orbit(const system::CardanTop& top, const CardanOrbitRequest& r, CardanOrbit& o) {
   if (std::string why = integrators::fixed_step_grid_problem(0.0, r.t_end, r.dt); !why.empty()) {

@@ -24,8 +24,8 @@
 // ½ uᵀ S u = h − U_ℓ(r), S the Schur complement of M₁₁ in M, and
 // q̇1 = (ℓ − M₁₂ q̇2 − M₁₃ q̇3)/M₁₁ (so p1 = ℓ). Seeded per orbit.
 //
-// The orbits run on the one time loop (integrators/stepper_loop.hpp), and
-// the crossings of the two factors are its events (integrators/events.hpp),
+// The orbits run on the one time loop (integrators/core/stepper_loop.hpp), and
+// the crossings of the two factors are its events (integrators/core/events.hpp),
 // located on the scheme's own step map by the loop's root finder.
 #include <atomic>
 #include <cstdint>
@@ -91,7 +91,7 @@ void cardan_orbit_indicators(const system::CardanTop& top, std::span<const syste
                              std::span<double> megno, const std::atomic<bool>* stop = nullptr);
 
 /// One orbit: its crossings and, on request, its indicators
-/// (integrators/torus/torus_tangent_flow.hpp, a separate pass).
+/// (integrators/core/torus_tangent_flow.hpp, a separate pass).
 CardanOrbit cardan_orbit(const system::CardanTop& top, const system::TorusState& x0, const CardanOrbitRequest& r,
                          std::int64_t index);
 

@@ -4,7 +4,7 @@
 // the largest Lyapunov exponent over the run and over its second half (the
 // convergence estimate), MEGNO ⟨Y⟩, and on request the full spectrum.
 // The state and its tangent vector(s) are integrated together by
-// integrators/tangent_flow.hpp (RKMK4 on SO(3) × ℝ³ × ℝ⁶), in the scalar form
+// integrators/core/tangent_flow.hpp (RKMK4 on SO(3) × ℝ³ × ℝ⁶), in the scalar form
 // of its SIMD-lane kernel where the model has one
 // (integrators/ensemble/tangent_ensemble.hpp, with_tangent_step).
 //
@@ -29,7 +29,7 @@
 #include "experiments/analysis/gali.hpp"
 #include "integrators/ensemble/ensemble.hpp"
 #include "integrators/system/scene.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 namespace lgi::experiments {
 

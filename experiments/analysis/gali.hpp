@@ -15,8 +15,8 @@
 // indices (k = 2 … 6) come from one set of six vectors, GALI_k from the
 // first k of them.
 //
-// Tangent space: the full ℝ⁶ of SO(3) × ℝ³ (ξ, δΠ; integrators/tangent_flow.hpp)
-// or of T³ × ℝ³ (δq, δp; integrators/torus/torus_tangent_flow.hpp): three
+// Tangent space: the full ℝ⁶ of SO(3) × ℝ³ (ξ, δΠ; integrators/core/tangent_flow.hpp)
+// or of T³ × ℝ³ (δq, δp; integrators/core/torus_tangent_flow.hpp): three
 // degrees of freedom, 2N = 6. The expected laws (docs/atlas.md §7) on an
 // s-torus: GALI_k ≈ const for k ≤ s, ∝ t^−(k−s) for s < k ≤ 6 − s and
 // ∝ t^−2(k−3) for k > 6 − s; on a chaotic orbit
@@ -25,7 +25,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 namespace lgi::experiments {
 

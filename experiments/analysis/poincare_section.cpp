@@ -11,7 +11,7 @@
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/system/model.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 namespace lgi::experiments {
 

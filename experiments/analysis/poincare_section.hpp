@@ -3,7 +3,7 @@
 // around it (experiments/POINCARE.md; formulas in docs/atlas.md §6–§7):
 // the section axis, the coordinates of a crossing, the lowest energy at a
 // given ℓ (an empty level set is refused), and the chaos indicators of one
-// initial state (integrators/tangent_flow.hpp).
+// initial state (integrators/core/tangent_flow.hpp).
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -51,7 +51,7 @@ SectionPoint section_point(SectionKind kind, const Vec3& e, const Vec3& gamma, c
 /// against a Fibonacci lattice of 20000 directions.
 double minimum_energy(const HeavyTopBody& body, double l);
 
-/// The chaos indicators of one initial state (integrators/tangent_flow.hpp):
+/// The chaos indicators of one initial state (integrators/core/tangent_flow.hpp):
 /// the tangent vector starts along a unit vector drawn from (seed, index).
 struct OrbitIndicators {
   double lyapunov = 0.0, megno = 0.0;

@@ -25,7 +25,7 @@
 #include <optional>
 #include <string>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments {
 

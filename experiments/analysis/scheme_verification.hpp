@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/invariants.hpp"
 
 namespace lgi::experiments::verification {

@@ -1,6 +1,6 @@
 #pragma once
 // One trajectory of a sweep, run through the registry and the one time loop
-// (integrators/stepper_loop.hpp) on the scene's state space (SO(3) × ℝ³, or
+// (integrators/core/stepper_loop.hpp) on the scene's state space (SO(3) × ℝ³, or
 // T³ × ℝ³ for a Cardan scene, docs/cardan.md §7), with an observer that keeps the largest
 // invariant errors and the located crossings. Fills one row of /sweep and
 // its /events rows (experiments/SWEEPS.md); writes no file.
@@ -14,7 +14,7 @@
 #include "experiments/analysis/sweep_plan.hpp"
 #include "experiments/io/sweep_file.hpp"  // event_row_width
 #include "integrators/ensemble/ensemble_loop.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/invariants.hpp"
 
 namespace lgi::experiments {

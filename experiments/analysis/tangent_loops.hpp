@@ -3,8 +3,8 @@
 // grid of integrators::accumulate_chaos_indicators (steps dt, the last one
 // shortened to land on T), for any tangent flow: `step(t, h, V)` advances
 // the state and the columns of V from t by h, `finite()` says whether the
-// state is still finite. SO(3) scenes step with integrators/tangent_flow.hpp,
-// Cardan scenes with integrators/torus/torus_tangent_flow.hpp.
+// state is still finite. SO(3) scenes step with integrators/core/tangent_flow.hpp,
+// Cardan scenes with integrators/core/torus_tangent_flow.hpp.
 //  - spectrum_loop: the Lyapunov spectrum, V re-orthonormalised by modified
 //    Gram–Schmidt after every step (Benettin et al. 1980; chaos_indicators.hpp);
 //  - gali_loop: GALI_k, each column normalised after every step, the indices
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "experiments/analysis/gali.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 namespace lgi::experiments {
 

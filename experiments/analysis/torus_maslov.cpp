@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "experiments/analysis/actions_support.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::experiments {

@@ -1,7 +1,7 @@
 #pragma once
 // `lgi simulate` on a scene with a [suspension] table (the Cardan top,
 // docs/cardan.md): the T³ scheme runs on the one time loop
-// (integrators/stepper_loop.hpp, on system::TorusState) and the trajectory is written in the
+// (integrators/core/stepper_loop.hpp, on system::TorusState) and the trajectory is written in the
 // same H5MD layout as every other run (experiments/OUTPUT.md): the body's
 // attitude R(q) as a quaternion, its Π = J E(q) q̇ and Ω = E(q) q̇, the
 // energy (the whole mechanism's H, rings included), and six scalar
@@ -10,7 +10,7 @@
 #include <atomic>
 
 #include "experiments/cli/simulation.hpp"
-#include "integrators/torus/torus_registry.hpp"
+#include "integrators/registry/torus_registry.hpp"
 
 namespace lgi::experiments {
 

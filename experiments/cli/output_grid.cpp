@@ -5,7 +5,7 @@
 
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/number_format.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::experiments {
 

@@ -1,7 +1,7 @@
 #pragma once
 // `lgi simulate --output-dt D` (and lgi.simulate(output_dt=D)): samples at
 // the times t0, t0 + D, t0 + 2D, … and t_end, through RunConfig::output_times
-// (integrators/stepper_loop.hpp). An adaptive scheme with dense output
+// (integrators/core/stepper_loop.hpp). An adaptive scheme with dense output
 // interpolates them inside its steps (its steps are those of a run without
 // them); one without dense output shortens a step to land on each; a
 // fixed-step scheme is observed on its own grid, so D must be a whole
@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments {
 

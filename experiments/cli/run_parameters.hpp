@@ -7,7 +7,7 @@
 #include <string>
 
 #include "experiments/io/results_file.hpp"  // ResultAttributes
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::experiments {

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments {
 

@@ -7,7 +7,7 @@
 #include <variant>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments {
 

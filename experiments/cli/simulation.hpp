@@ -11,7 +11,7 @@
 
 #include "experiments/io/h5md_writer.hpp"
 #include "experiments/io/trajectory_observer.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::experiments {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "experiments/errors/exit_status.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::experiments {
 namespace {

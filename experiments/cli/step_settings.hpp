@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::experiments {

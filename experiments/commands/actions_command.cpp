@@ -31,7 +31,7 @@
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {

@@ -44,7 +44,7 @@
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -278,7 +278,7 @@ int run_chaos_map(const ChaosMapOptions& o) {
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
       {"cxx_flags", build_info::cxx_flags}, {"l_range", o.l_range}, {"h_range", o.h_range},
       {"ics", std::to_string(o.ics)}, {"t_end", number(o.t_end)}, {"dt", number(dt)}, {"seed", std::to_string(o.seed)},
-      {"threshold", number(o.threshold)}, {"measure", o.measure}, {"indicators", "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp; "
+      {"threshold", number(o.threshold)}, {"measure", o.measure}, {"indicators", "RKMK4 on the state and its tangent (integrators/core/tangent_flow.hpp; "
                                                       "integrators/ensemble/tangent_ensemble.hpp)"},
       {"simd", simd_note(scene)},
       {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)},

@@ -37,14 +37,14 @@
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/ensemble/ensemble.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
 namespace {
 
-// The one scheme of the state with its tangent: integrators/tangent_flow.hpp
-// on SO(3), integrators/torus/torus_tangent_flow.hpp on T³ × ℝ³.
+// The one scheme of the state with its tangent: integrators/core/tangent_flow.hpp
+// on SO(3), integrators/core/torus_tangent_flow.hpp on T³ × ℝ³.
 constexpr const char* tangent_scheme = "rkmk4";
 constexpr const char* torus_tangent_scheme = "cardan-rk4";
 
@@ -243,7 +243,7 @@ int run_indicators(const IndicatorsOptions& o) {
       {"converged_rule", "|lyapunov_last_half - lyapunov| <= rtol * max(|lyapunov_last_half|, |lyapunov|)"},
       {"indicators", cardan ? "RK4 on the Cardan state and its tangent (integrators/ensemble/cardan_tangent_kernel.hpp); "
                               "experiments/INDICATORS.md"
-                            : "RKMK4 on the state and its tangent (integrators/tangent_flow.hpp, "
+                            : "RKMK4 on the state and its tangent (integrators/core/tangent_flow.hpp, "
                               "integrators/ensemble/tangent_ensemble.hpp); experiments/INDICATORS.md"},
       {"threads", std::to_string(threads)}, {"wall_seconds", format_general(wall, 6)},
       {"status", interrupted ? "interrupted by signal" : "complete"}};

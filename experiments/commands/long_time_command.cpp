@@ -48,7 +48,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/invariants.hpp"
 
 namespace lgi::experiments {

@@ -41,7 +41,7 @@
 #include "experiments/io/sweep_extra_columns.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "lgi/build_info.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::experiments {
 namespace {

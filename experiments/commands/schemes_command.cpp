@@ -13,7 +13,7 @@
 #include "experiments/cli/scheme_record.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments {
 namespace {

@@ -30,7 +30,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scenes_location.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::experiments {
 namespace {

@@ -31,7 +31,7 @@
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scenes_location.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments {
 namespace {

@@ -29,7 +29,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/trajectory_observer.hpp"
 #include "integrators/ensemble/ensemble.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {

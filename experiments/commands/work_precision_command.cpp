@@ -35,8 +35,8 @@
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
-#include "integrators/registry.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/registry/registry.hpp"
+#include "integrators/core/loop_support.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
 #include "lie/quaternion.hpp"

@@ -17,11 +17,11 @@
 #include <algorithm>
 #include <chrono>
 
-#include "integrators/stepper_loop.hpp"
+#include "integrators/core/stepper_loop.hpp"
 
 namespace lgi::experiments {
 
-/// On states S (integrators/state_space.hpp).
+/// On states S (integrators/core/state_space.hpp).
 template <class S>
 class BasicOutputTimingObserver final : public integrators::BasicObserver<S> {
  public:

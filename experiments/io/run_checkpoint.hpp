@@ -1,7 +1,7 @@
 #pragma once
 // The checkpoint of a long run, as a resumed run needs it (lgi long-time
 // --resume; RESULTS.md, "long-time --resume"): the loop's checkpoint
-// (integrators/run_config.hpp, LoopCheckpoint) and what the command adds
+// (integrators/core/run_config.hpp, LoopCheckpoint) and what the command adds
 // (rows written, CPU and output time so far, the running error maxima).
 //
 // In the file it is a record of two slots of slot_bytes each (results_file.hpp,
@@ -10,7 +10,7 @@
 //   magic "lgickpt1", sequence (uint64, > 0), payload length, FNV-1a 64-bit
 //   hash of the payload (uint64 each), then the payload: 8-byte
 //   little-endian numbers (int64 or float64): rows, step, t, h, the state
-//   (integrators/state_space.hpp: on SO(3) × ℝ³ R, 9, column by column, then
+//   (integrators/core/state_space.hpp: on SO(3) × ℝ³ R, 9, column by column, then
 //   Π, 3; on T³ × ℝ³ the angles q, 3, then the momenta p, 3), the 4 work
 //   counters, cpu_seconds, output_seconds, n, window_max (n), run_max (n), m,
 //   the scheme's memory (m). A slot of one state space never decodes as the
@@ -21,11 +21,11 @@
 #include <span>
 #include <vector>
 
-#include "integrators/run_config.hpp"
+#include "integrators/core/run_config.hpp"
 
 namespace lgi::experiments {
 
-/// On states S (integrators/state_space.hpp).
+/// On states S (integrators/core/state_space.hpp).
 template <class S>
 struct BasicRunCheckpoint {
   std::int64_t rows = 0;  // table rows written up to this checkpoint

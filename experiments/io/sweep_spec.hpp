@@ -40,7 +40,7 @@ struct VaryEntry {
   bool initial_state() const { return table == "initial"; }
 };
 
-/// A surface g = 0 whose crossings are recorded (integrators/events.hpp).
+/// A surface g = 0 whose crossings are recorded (integrators/core/events.hpp).
 struct EventSpec {
   /// gamma_rate: d(Γ·e)/dt = (Γ × Ω)·e for the body axis e = `axis`, Richter's
   /// Poincaré section (docs/atlas.md §6); from a spec, e is the body axis `component`.

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "experiments/io/h5md_writer.hpp"
-#include "integrators/stepper_loop.hpp"
+#include "integrators/core/stepper_loop.hpp"
 #include "integrators/system/invariants.hpp"
 
 namespace lgi::experiments {

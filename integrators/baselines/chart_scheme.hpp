@@ -1,5 +1,5 @@
 #pragma once
-// A baseline as a scheme of the one time loop (integrators/stepper_loop.hpp):
+// A baseline as a scheme of the one time loop (integrators/core/stepper_loop.hpp):
 // a chart (euler_zxz.hpp, rotation_vector.hpp, quaternion.hpp, matrix.hpp)
 // and an odeint stepper (odeint_steppers.hpp) behind the interface every
 // Lie-group scheme offers (scheme_interface.hpp). The chart state x lives in
@@ -53,7 +53,7 @@
 #include <string>
 
 #include "integrators/baselines/odeint_steppers.hpp"
-#include "integrators/stepper_loop.hpp"
+#include "integrators/core/stepper_loop.hpp"
 
 namespace lgi::integrators::baselines {
 

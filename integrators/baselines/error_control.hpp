@@ -15,7 +15,7 @@
 // with |·| the Euclidean norm of the block at the start of the step (odeint's
 // own weights a_x = a_dxdt = 1, applied to the block instead of the
 // component), and accept a step when max_i |err_i| / sc_i ≤ 1 (odeint's max
-// norm). This matches rkmk-dp54 (integrators/rkmk_adaptive.hpp): attitude
+// norm). This matches rkmk-dp54 (integrators/schemes/rkmk_adaptive.hpp): attitude
 // error absolute in radians, momentum error relative.
 //
 // odeint's controlled_runge_kutta and bulirsch_stoer build their checker as

@@ -7,7 +7,7 @@
 
 #include "integrators/ensemble/cardan_tangent_kernel.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::integrators::ensemble {
 

@@ -15,7 +15,7 @@
 #include "integrators/ensemble/cardan_tangent_block.hpp"
 #include "integrators/ensemble/ensemble.hpp"
 #include "integrators/system/cardan.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 namespace lgi::integrators::ensemble {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The Cardan top's tangent flow (integrators/torus/torus_tangent_flow.hpp)
+// The Cardan top's tangent flow (integrators/core/torus_tangent_flow.hpp)
 // written once for a lane number T, double or Lanes<Batch, K>
 // (docs/ensemble.md, "Cardan tangent flows"): one classical RK4 step
 // (HNW I, §II.1) of the state x = (q, p) ∈ T³ × ℝ³ and of NV tangent vectors
@@ -31,7 +31,7 @@
 
 #include "integrators/ensemble/cardan_tangent_block.hpp"
 #include "integrators/ensemble/lane_dual.hpp"
-#include "integrators/flatten_policy.hpp"
+#include "integrators/core/flatten_policy.hpp"
 
 namespace lgi::integrators::ensemble {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The loop of the chaos indicators (integrators/tangent_flow.hpp,
+// The loop of the chaos indicators (integrators/core/tangent_flow.hpp,
 // accumulate_chaos_indicators with ChaosAccumulator) in lanes: each lane's
 // state and tangent vector stepped by tangent_kernel.hpp, |v| summed in
 // Eigen's order, v divided by it, ln|v| from libm lane by lane, and λ's and

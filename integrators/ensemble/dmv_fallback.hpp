@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "integrators/ensemble/lane_fallback.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::integrators::ensemble {
 

@@ -28,13 +28,13 @@
 #include <cstdint>
 #include <numbers>
 
-#include "integrators/cayley_increment.hpp"
-#include "integrators/cayley_quaternion_increment.hpp"
-#include "integrators/compensated_sum.hpp"
+#include "integrators/schemes/cayley_increment.hpp"
+#include "integrators/schemes/cayley_quaternion_increment.hpp"
+#include "integrators/core/compensated_sum.hpp"
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lanes.hpp"
-#include "integrators/flatten_policy.hpp"
+#include "integrators/core/flatten_policy.hpp"
 
 namespace lgi::integrators::ensemble {
 

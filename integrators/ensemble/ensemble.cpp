@@ -9,11 +9,11 @@
 #include <type_traits>
 #include <variant>
 
-#include "integrators/cayley_quaternion.hpp"
+#include "integrators/schemes/cayley_quaternion.hpp"
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
-#include "integrators/moser_veselov_diagonal.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/schemes/moser_veselov_diagonal.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::integrators::ensemble {
 

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "integrators/ensemble/ensemble.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::integrators::ensemble {
 

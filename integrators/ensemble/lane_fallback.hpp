@@ -13,7 +13,7 @@
 #include <span>
 
 #include "integrators/ensemble/ensemble_model.hpp"
-#include "integrators/scheme_interface.hpp"
+#include "integrators/core/scheme_interface.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::integrators::ensemble {

@@ -7,8 +7,8 @@
 #include <memory>
 #include <span>
 
-#include "integrators/run_config.hpp"
-#include "integrators/scheme_facts.hpp"
+#include "integrators/core/run_config.hpp"
+#include "integrators/core/scheme_facts.hpp"
 #include "integrators/system/model.hpp"
 
 namespace lgi::integrators {

@@ -10,7 +10,7 @@
 #include "integrators/ensemble/dmv_fallback.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
 #include "integrators/ensemble/lane_mode.hpp"
-#include "integrators/scheme_facts.hpp"
+#include "integrators/core/scheme_facts.hpp"
 
 namespace lgi::integrators::ensemble {
 

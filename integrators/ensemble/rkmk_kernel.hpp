@@ -1,5 +1,5 @@
 #pragma once
-// The RKMK step (integrators/rkmk.hpp) for lane numbers: the same stages,
+// The RKMK step (integrators/schemes/rkmk.hpp) for lane numbers: the same stages,
 // the same operations in the same order, on T = double or Lanes<Batch, K>
 // (docs/ensemble.md). rkmk.hpp states the scheme; this is its ensemble
 // form, checked bit for bit against it (tests/test_ensemble.cpp):
@@ -15,7 +15,7 @@
 #include "integrators/ensemble/ensemble_model.hpp"
 #include "integrators/ensemble/lane_block.hpp"
 #include "integrators/ensemble/lane_so3.hpp"
-#include "integrators/flatten_policy.hpp"
+#include "integrators/core/flatten_policy.hpp"
 
 namespace lgi::integrators::ensemble {
 

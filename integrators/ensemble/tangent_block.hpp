@@ -2,7 +2,7 @@
 // Storage of an ensemble of tangent flows (docs/ensemble.md, "Tangent flows
 // in lanes"): the state (R, Π) and up to six tangent vectors v = (ξ, δΠ) of
 // each lane, and the running sums of the chaos indicators of each lane
-// (integrators/tangent_flow.hpp, ChaosAccumulator). Plain numbers, as
+// (integrators/core/tangent_flow.hpp, ChaosAccumulator). Plain numbers, as
 // ensemble_model.hpp: the kernels are compiled once per instruction set.
 #include <cstdint>
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "integrators/ensemble/tangent_kernel.hpp"
-#include "integrators/loop_support.hpp"
+#include "integrators/core/loop_support.hpp"
 
 namespace lgi::integrators::ensemble {
 

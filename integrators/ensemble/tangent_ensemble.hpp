@@ -8,7 +8,7 @@
 // the harmonic drive and the magnetic dipole (as rkmk4's state kernel; not
 // the spring). For those, scalar_tangent_step is the scalar step, the lane
 // template on double, and every lane is bit for bit that step; a spring
-// scene steps with integrators/tangent_flow.hpp's Eigen form.
+// scene steps with integrators/core/tangent_flow.hpp's Eigen form.
 // with_tangent_step picks the one for a model: the chaos indicators
 // (`lgi indicators`, `lgi chaos-map`, `lgi poincare --lyapunov`) step with it.
 #include <atomic>
@@ -19,7 +19,7 @@
 #include "integrators/ensemble/ensemble.hpp"
 #include "integrators/ensemble/tangent_block.hpp"
 #include "integrators/system/model.hpp"
-#include "integrators/tangent_flow.hpp"
+#include "integrators/core/tangent_flow.hpp"
 
 namespace lgi::integrators::ensemble {
 

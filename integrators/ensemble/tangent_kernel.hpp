@@ -1,5 +1,5 @@
 #pragma once
-// The tangent flow of integrators/tangent_flow.hpp for lane numbers: one
+// The tangent flow of integrators/core/tangent_flow.hpp for lane numbers: one
 // RKMK4 step of the state (R, Π) and of NV tangent vectors v = (ξ, δΠ), on
 // T = double or Lanes<Batch, K> (docs/ensemble.md, "Tangent flows in lanes").
 // The scalar step of the models with a kernel (scalar_tangent_step,
@@ -28,7 +28,7 @@
 #include "integrators/ensemble/lane_so3.hpp"
 #include "integrators/ensemble/rkmk_kernel.hpp"
 #include "integrators/ensemble/tangent_block.hpp"
-#include "integrators/flatten_policy.hpp"
+#include "integrators/core/flatten_policy.hpp"
 #include "integrators/tableaus/runge_kutta.hpp"
 
 namespace lgi::integrators::ensemble {

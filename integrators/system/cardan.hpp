@@ -56,7 +56,7 @@ inline TorusState unstack(const Vec6& x) { return {x.head<3>(), x.tail<3>()}; }
 
 /// The Cardan top's model: M(q), V(q), H and the canonical field (eq. (7)).
 struct CardanTop {
-  using state_type = TorusState;  // the time loop's state (integrators/state_space.hpp)
+  using state_type = TorusState;  // the time loop's state (integrators/core/state_space.hpp)
   Mat3 J = Mat3::Identity();  // the body's inertia about the fixed point
   double mass = 0.0;          // the body's
   Vec3 chi = Vec3::Zero();    // the body's centre of mass, body frame

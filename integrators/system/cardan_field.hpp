@@ -3,7 +3,7 @@
 // (docs/cardan.md eqs. (2)–(7); integrators/system/cardan.hpp), templated on
 // the scalar type S. CardanTop's members call them with S = double (the
 // same operations as always, so results are unchanged bit for bit); the
-// tangent flow (integrators/torus/torus_tangent_flow.hpp) calls the field
+// tangent flow (integrators/core/torus_tangent_flow.hpp) calls the field
 // with S = Dual (integrators/system/dual.hpp), whose ε-part is the exact
 // directional derivative Df(x) v. The model's parameters stay double and
 // enter as constants.

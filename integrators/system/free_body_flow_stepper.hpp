@@ -1,7 +1,7 @@
 #pragma once
 // The exact free-rigid-body flow as a STEPPER: (R, Π) ↦ Φ_h(R, Π) from an
 // arbitrary state, for the free part of the Strang splitting `split-exact`
-// (integrators/splitting.hpp), which re-starts the free flow after every kick.
+// (integrators/schemes/splitting.hpp), which re-starts the free flow after every kick.
 //
 // FreeBodyExactFlow (free_body_exact.hpp) is built for one
 // initial state and many output times: its constructor sorts the inertia,

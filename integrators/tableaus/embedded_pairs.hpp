@@ -2,7 +2,7 @@
 // Embedded Runge–Kutta pairs with a continuous extension (dense output), as
 // constexpr data, and their compile-time checks. The pairs themselves are in
 // dop853.hpp and verner65.hpp; the scheme that drives them on SO(3) × ℝ³ is
-// integrators/rkmk_pair.hpp.
+// integrators/schemes/rkmk_pair.hpp.
 //
 // A pair is an explicit tableau (a, b, c) of order p with
 //   - embedded weights b̂ of order p̂ (the error estimate h Σ (b_i − b̂_i) k_i),

@@ -1,6 +1,6 @@
 #pragma once
 // Coefficients of processed compositions ψ_h = π_h ∘ K_h ∘ π_h⁻¹ of a
-// symmetric method Φ of order 2 (integrators/processed_composition.hpp):
+// symmetric method Φ of order 2 (integrators/schemes/processed_composition.hpp):
 // a symmetric kernel K_h = Φ_{γ_s h} ∘ ⋯ ∘ Φ_{γ_1 h} and a processor π_h,
 // itself a composition of Φ. The kernel needs only the conditions that no
 // conjugation can remove (its effective order): with Φ_h = exp(h E₁ + h³ E₃ +

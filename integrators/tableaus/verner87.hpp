@@ -13,7 +13,7 @@
 // y(t_n + θh) = y_n + h Σ_{i ≤ 21} b_i(θ) k_i, b_i(θ) a polynomial of degree 8
 // held by its Bernstein coefficients (embedded_pairs.hpp), of order 8. Its
 // stages are evaluated only in a step with an output time inside
-// (integrators/rkmk_pair.hpp, prepare_dense).
+// (integrators/schemes/rkmk_pair.hpp, prepare_dense).
 // The checks verify every order condition up to order 8 for b and that
 // order 9 fails, order 7 (and not 8) for b̂, and order 8 (and not 9) for each
 // θ^k coefficient of the interpolant (converted from β_k,i; embedded_pairs.hpp,

@@ -13,7 +13,7 @@
 // y(t_n + θh) = y_n + h Σ_{i ≤ 26} b_i(θ) k_i, b_i(θ) a polynomial of degree 9
 // held by its Bernstein coefficients (embedded_pairs.hpp), of order 9. Its
 // stages are evaluated only in a step with an output time inside
-// (integrators/rkmk_pair.hpp, prepare_dense).
+// (integrators/schemes/rkmk_pair.hpp, prepare_dense).
 // The checks verify every order condition up to order 9 for b, order 8 (and
 // not 9) for b̂, and order 9 for each θ^k coefficient of the interpolant
 // (converted from β_k,i; embedded_pairs.hpp, rooted_trees.hpp). The trees

@@ -1,6 +1,6 @@
 // lgi.indicators(): the records of `lgi indicators` for chosen states
 // (experiments/INDICATORS.md, analysis/chaos_indicators.hpp); lgi.tangent_flow():
-// the state and tangent vectors advanced together (integrators/tangent_flow.hpp);
+// the state and tangent vectors advanced together (integrators/core/tangent_flow.hpp);
 // and the state dicts both take (also Stepper.state's setter).
 #include <pybind11/stl.h>
 
@@ -215,7 +215,7 @@ void bind_indicators(py::module_& m) {
   m.def("tangent_flow", &tangent_flow, py::arg("scene"), py::arg("state"), py::arg("v"), py::arg("dt"),
         py::arg("steps") = 1, py::arg("t0") = 0.0,
         "tangent_flow(scene, state, v, dt, steps=1, t0=0.0) -> dict: `steps` RKMK4 steps of size dt of the\n"
-        "state with its tangent vectors (integrators/tangent_flow.hpp): state is a dict with Pi and R (or\n"
+        "state with its tangent vectors (integrators/core/tangent_flow.hpp): state is a dict with Pi and R (or\n"
         "gamma), v a 6-vector (xi, dPi) -- the perturbation (R exp(xi^), Pi + dPi) -- or a (6, k) array of k\n"
         "<= 6 vectors as columns. Returns R, Pi, v (same shape as given; not renormalised) and t.");
 }

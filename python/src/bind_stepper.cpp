@@ -1,7 +1,7 @@
 // lgi.Stepper: a fixed-step scheme advanced one step at a time by the
 // caller's loop. Each step is a run of the registered scheme over one step,
 // [t0 + k dt, t0 + (k+1) dt], from the current state (the stepper loop's own
-// time grid, integrators/stepper_loop.hpp), so that n calls of step() take
+// time grid, integrators/core/stepper_loop.hpp), so that n calls of step() take
 // the same steps as one run of n steps: bit for bit for every scheme whose
 // state is the (R, Pi) it hands back; a scheme that sets up per-run
 // constants in start() (the exact flow) sets them up again at every call.

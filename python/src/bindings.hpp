@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::python {

@@ -24,7 +24,7 @@
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
-#include "integrators/torus/torus_tangent_flow.hpp"
+#include "integrators/core/torus_tangent_flow.hpp"
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;

@@ -17,7 +17,7 @@
 
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;

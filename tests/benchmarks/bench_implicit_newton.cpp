@@ -1,5 +1,5 @@
 // Cost per step of the implicit RKMK schemes under the three Newton
-// variants (integrators/implicit_rkmk.hpp: refreshed, the registry's
+// variants (integrators/schemes/implicit_rkmk.hpp: refreshed, the registry's
 // default; full; simplified), with rkmk4 on the same scene and step as the
 // baseline of the ratio, and the Newton iterations as counters. The
 // iteration bounds themselves are asserted in tests/test_implicit.cpp.
@@ -10,9 +10,9 @@
 #include <variant>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/implicit_rkmk.hpp"
-#include "integrators/rkmk.hpp"
-#include "integrators/stepper_loop.hpp"
+#include "integrators/schemes/implicit_rkmk.hpp"
+#include "integrators/schemes/rkmk.hpp"
+#include "integrators/core/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
 
 using namespace lgi;

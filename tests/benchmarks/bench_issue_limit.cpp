@@ -38,7 +38,7 @@
 
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble.hpp"
-#include "integrators/moser_veselov_preprocessed.hpp"
+#include "integrators/schemes/moser_veselov_preprocessed.hpp"
 #include "integrators/system/model.hpp"
 
 using namespace lgi;

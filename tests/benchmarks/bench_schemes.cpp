@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 using namespace lgi;
 

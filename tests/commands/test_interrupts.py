@@ -103,7 +103,7 @@ def test_singularity_stops_after_the_run_in_progress(tmp_path):
 @pytest.mark.parametrize("command", ["chaos-map", "indicators"])
 def test_signal_inside_one_long_orbit(tmp_path, command):
     # One orbit far longer than the wait: the tangent-flow loop itself must read the flag
-    # (integrators/tangent_flow.hpp, every 256 steps), not only the loop over orbits.
+    # (integrators/core/tangent_flow.hpp, every 256 steps), not only the loop over orbits.
     richter = os.path.join(SCENES, "general_top_richter.toml")
     out = str(tmp_path / "o.h5")
     args = {"chaos-map": ["chaos-map", "--scene", richter, "--l-range", "2.2:2.2:1", "--h-range", "2:2:1", "--ics",

@@ -2,7 +2,7 @@
 policy"; experiments/io/libm_code_path.hpp): every output file records which
 one ran (GLIBC_TUNABLES included), and the adaptive pairs' runs are the same
 bits on either, since their step-size controller calls none of them
-(integrators/controller_math.hpp). GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4
+(integrators/core/controller_math.hpp). GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4
 makes this machine take the path of a CPU without FMA. With libm's exp and log
 in the controller, the first run below ended 1.8e-5 apart in the attitude."""
 import os

@@ -64,3 +64,18 @@ def test_include_up(tmp_path):
     r = tree(tmp_path, files)
     assert r.returncode == 1
     assert "of the higher layer commands/" in r.stdout
+
+
+def test_integrator_roles(tmp_path):
+    files = dict(CLEAN)
+    files["integrators/core/stepper_loop.hpp"] = '#pragma once\n#include "integrators/system/model.hpp"\n'
+    files["integrators/system/model.hpp"] = "#pragma once\n"
+    assert tree(tmp_path, files).returncode == 0
+    files["integrators/core/stepper_loop.hpp"] += '#include "integrators/schemes/rkmk.hpp"\n'
+    files["integrators/schemes/rkmk.hpp"] = "#pragma once\n"
+    files["integrators/flat.hpp"] = "#pragma once\n"
+    r = tree(tmp_path, files)
+    assert r.returncode == 1
+    assert 'integrators/core/stepper_loop.hpp:3: integrators/core/ includes "integrators/schemes/..." of the ' \
+           "higher role schemes/" in r.stdout
+    assert "integrators/flat.hpp:1: in no role folder of integrators/" in r.stdout

@@ -13,7 +13,7 @@
 
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/baselines/baselines.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "lie/quaternion.hpp"
 #include "lie/so3.hpp"
 

@@ -3,7 +3,7 @@
 // (tests/test_cardan_*.cpp).
 #include <vector>
 
-#include "integrators/torus/torus_registry.hpp"
+#include "integrators/registry/torus_registry.hpp"
 
 namespace lgi::testing {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::testing {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::testing {
 

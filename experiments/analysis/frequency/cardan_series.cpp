@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "integrators/run_config.hpp"
+#include "integrators/core/run_config.hpp"
 
 namespace lgi::experiments::frequency {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "experiments/analysis/frequency/observable_series.hpp"
 #include "integrators/system/cardan.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments::frequency {
 

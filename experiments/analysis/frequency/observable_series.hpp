@@ -1,7 +1,7 @@
 #pragma once
 // The observables of one run of an SO(3) scene at uniform times, for frequency
 // analysis (experiments/FREQUENCIES.md): the scheme runs through the registry and
-// the one time loop (integrators/stepper_loop.hpp) with RunConfig::output_times,
+// the one time loop (integrators/core/stepper_loop.hpp) with RunConfig::output_times,
 // so the samples lie on t0 + k D whatever the scheme's own steps.
 #include <atomic>
 #include <optional>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::experiments::frequency {

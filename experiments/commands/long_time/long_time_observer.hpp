@@ -14,7 +14,7 @@
 
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/run_checkpoint.hpp"
-#include "integrators/run_config.hpp"
+#include "integrators/core/run_config.hpp"
 
 namespace lgi::experiments {
 

@@ -9,7 +9,7 @@
 // unchanged to go on bit for bit) and the record checkpoint (two slots,
 // io/run_checkpoint.hpp). At most every --flush-seconds (and only at a step
 // that is a multiple of 4096) the loop offers a checkpoint
-// (integrators/run_config.hpp): the buffered rows are written and flushed,
+// (integrators/core/run_config.hpp): the buffered rows are written and flushed,
 // then the checkpoint goes to the older slot and is flushed. --resume reopens
 // both .partial files, keeps the rows up to the newest intact checkpoint and
 // goes on from it; with no checkpoint yet, from step 0.
@@ -23,7 +23,7 @@
 
 #include "experiments/io/results_file.hpp"
 #include "experiments/io/run_checkpoint.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/scene.hpp"
 
 namespace lgi::experiments {

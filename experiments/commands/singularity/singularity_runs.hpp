@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "integrators/baselines/baselines.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments::singularity {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "experiments/commands/stress/stress_suite.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 
 namespace lgi::experiments::stress {
 

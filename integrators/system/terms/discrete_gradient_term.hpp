@@ -1,6 +1,6 @@
 #pragma once
 // A term with a discrete torque for the Cayley midpoint step of simo-wong
-// (integrators/simo_wong.hpp, where the discrete equations are derived):
+// (integrators/schemes/simo_wong.hpp, where the discrete equations are derived):
 // R_{n+1} = R_n cay(ξ), ξ = hW, and the term's τ_d is chosen so that
 // τ_d·ξ = −[V(R_{n+1}) − V(R_n)] (the energy balance; Gonzalez, J. Nonlinear
 // Sci. 6 (1996) 449–467) for a potential, or τ at the midpoint otherwise.

@@ -1,7 +1,7 @@
 #pragma once
 // A term whose torque, at frozen attitude R and time t, is affine in Ω with a
 // scalar damper: τ = f(R, t) − c Ω. Then the kick Ṙ = 0, Π̇ = Σ τ is a linear
-// ODE in Π with a closed-form flow (integrators/splitting.hpp).
+// ODE in Π with a closed-form flow (integrators/schemes/splitting.hpp).
 #include <concepts>
 
 #include "integrators/system/terms/torque_term.hpp"

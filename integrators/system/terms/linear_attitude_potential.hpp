@@ -4,7 +4,7 @@
 // (gravity: e = e3, c = m g χ; a magnetic dipole: e = B, c = −μ).
 //   τ = b × c;
 //   b(R exp(η̂)) = exp(−η̂) b = b + b × η + O(η²), so ∂τ/∂η = −ĉ b̂;
-//   Cayley step (integrators/simo_wong.hpp): b_{n+1} = cay(ξ)ᵀ b_n, whose
+//   Cayley step (integrators/schemes/simo_wong.hpp): b_{n+1} = cay(ξ)ᵀ b_n, whose
 //   midpoint is b_mid = (I + ξ̂/2)⁻¹ b_n; τ_d = b_mid × c gives
 //   τ_d·ξ = −c·(b_{n+1} − b_n) exactly, and −h ∂τ_d/∂W = (h²/2) ĉ (I + ξ̂/2)⁻¹ b̂_mid.
 #include "integrators/system/terms/discrete_gradient_term.hpp"

@@ -57,7 +57,7 @@ struct SpringTerm {
   Vec3 frozen_torque(const Mat3& R, double /*t*/) const { return potential_torque(R); }
   double damping() const { return damping_coefficient; }
 
-  // Discrete torque (integrators/simo_wong.hpp derives it):
+  // Discrete torque (integrators/schemes/simo_wong.hpp derives it):
   //   τ_s = τ_m + σ ξ − c W,  τ_m = −k log(R_restᵀ R_m),  R_m = R_n cay(η),
   //   η = ξ/(1 + √(1 + |ξ|²/4)) (cay(η)² = cay(ξ): the geodesic midpoint),
   //   σ = (−[V(R_{n+1}) − V(R_n)] − τ_m·ξ)/|ξ|² (Gonzalez's midpoint discrete

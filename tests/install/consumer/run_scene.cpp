@@ -4,7 +4,7 @@
 #include <string>
 
 #include "experiments/io/scene_reader.hpp"
-#include "integrators/registry.hpp"
+#include "integrators/registry/registry.hpp"
 #include "integrators/system/invariants.hpp"
 
 namespace {
