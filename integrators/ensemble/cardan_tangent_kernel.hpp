@@ -30,6 +30,7 @@
 #include <cstdint>
 
 #include "integrators/ensemble/cardan_tangent_block.hpp"
+#include "integrators/ensemble/chaos_lanes_loop.hpp"
 #include "integrators/ensemble/lane_dual.hpp"
 #include "integrators/core/flatten_policy.hpp"
 
@@ -196,54 +197,27 @@ inline void cardan_block_step(const CardanLaneModel& m, TangentBlock& block, dou
   cardan_detail::store_block(x, v, block);
 }
 
-/// The chaos indicators' loop of chaos_kernel.hpp on the Cardan step: the
-/// same sums in the same order; a lane stops where |v| is not finite and
-/// positive or x is not finite (torus_chaos_indicators' test).
+/// The chaos indicators' loop (chaos_lanes_loop.hpp) on the Cardan step; a
+/// lane stops where |v| is not finite and positive or x is not finite
+/// (torus_chaos_indicators' test).
 template <class T>
 inline void cardan_chaos_block_run(const CardanLaneModel& m, TangentBlock& block, ChaosLanes& c, double t0,
                                    double t_end, double dt, std::int64_t max_steps) {
-  using B = typename T::batch_type;
-  constexpr int K = T::batches;
   T x[6];
   T v[1][6];
   cardan_detail::load_block(block, x, v);
-  T log_sum = load<B, K>(c.log_sum), weighted = load<B, K>(c.weighted), mean_sum = load<B, K>(c.mean_sum);
-  T y_last = load<B, K>(c.y), marked_log_sum = load<B, K>(c.marked_log_sum);
-  T running = load<B, K>(c.running), steps = load<B, K>(c.steps);
-  for (std::int64_t n = 0; n < max_steps && c.t < t_end; ++n) {
-    const double t = c.t;
-    const double h = (t_end - t) < 1.0000001 * dt ? t_end - t : dt;
-    cardan_tangent_rk_step<1>(m, x, v, h);
-    c.t = (t_end - t) < 1.0000001 * dt ? t_end : t + h;
-    const T norm = cardan_detail::norm6(v[0]);
-    T z = x[0] - x[0];
-    for (int i = 1; i < 6; ++i) z = z + (x[i] - x[i]);
-    const auto good = equal(norm - norm, 0.0) & greater(norm, 0.0) & equal(z, 0.0);
-    running = select(good, running, T(0.0));
-    const auto idle = equal(running, 0.0);
-    if (all(idle)) break;
-    for (int i = 0; i < 6; ++i) v[0][i] = v[0][i] / norm;
-    // ChaosAccumulator::add(s, h, |v|), as chaos_block_run
-    const double s = c.t - t0;
-    T d, unused;
-    for_lanes_unless(idle, norm, d, unused, [](double in, double& out, double&) { out = std::log(in); });
-    log_sum = log_sum + d;
-    weighted = weighted + (s - 0.5 * h) * d;
-    const T y = 2.0 * weighted / s;
-    mean_sum = mean_sum + 0.5 * h * (y_last + y);
-    y_last = y;
-    c.s = s;
-    steps = select(idle, steps, steps + 1.0);
-    ++c.grid_steps;
-    if (!c.marked && c.t - t0 >= 0.5 * (t_end - t0)) {
-      marked_log_sum = log_sum;
-      c.marked_s = c.s;
-      c.marked = true;
-    }
-  }
+  chaos_lanes_loop<T>(
+      c, t0, t_end, dt, max_steps,
+      [&](double, double h) {
+        cardan_tangent_rk_step<1>(m, x, v, h);
+        T z = x[0] - x[0];
+        for (int i = 1; i < 6; ++i) z = z + (x[i] - x[i]);
+        return LaneStepNorm<T>{cardan_detail::norm6(v[0]), z};
+      },
+      [&](const T& norm) {
+        for (int i = 0; i < 6; ++i) v[0][i] = v[0][i] / norm;
+      });
   cardan_detail::store_block(x, v, block);
-  store(log_sum, c.log_sum), store(weighted, c.weighted), store(mean_sum, c.mean_sum);
-  store(y_last, c.y), store(marked_log_sum, c.marked_log_sum), store(running, c.running), store(steps, c.steps);
 }
 
 /// The kernels of one lane type (CardanTangentKernelSet), flattened as kernel_set.hpp's.
