@@ -12,6 +12,7 @@
 #include "integrators/core/events.hpp"
 #include "integrators/core/run_config.hpp"
 #include "integrators/system/scene.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 
 namespace lgi::experiments {
 
@@ -27,12 +28,14 @@ class RisingEvent final : public integrators::EventFunctions {
   std::function<double(const system::State&)> g_;
 };
 
-/// Records the crossings of a RisingEvent; sets the stop flag at the `wanted`-th.
-/// Subclasses that also keep the step samples override observe().
+/// Records the crossings of a RisingEvent; sets the stop flag at the `wanted`-th,
+/// and at a signal (interrupt_requested: Ctrl-C ends a long torus run within a step;
+/// the run then has too few crossings and its torus fails).
+/// Subclasses that also keep the step samples override observe() and call poll_interrupt().
 class CrossingRecorder : public integrators::Observer {
  public:
   CrossingRecorder(std::function<double(const system::State&)> g, int wanted) : event_(std::move(g)), wanted_(wanted) {}
-  void observe(std::int64_t, double, const system::State&) override {}
+  void observe(std::int64_t, double, const system::State&) override { poll_interrupt(); }
   void on_event(const integrators::EventHit& hit) override {
     hits_.push_back(hit);
     if (static_cast<int>(hits_.size()) >= wanted_) stop_.store(true);
@@ -44,6 +47,11 @@ class CrossingRecorder : public integrators::Observer {
   void extend(int wanted) {
     wanted_ = wanted;
     stop_.store(false);
+  }
+
+ protected:
+  void poll_interrupt() {
+    if (interrupt_requested.load(std::memory_order_relaxed)) stop_.store(true, std::memory_order_relaxed);
   }
 
  private:

@@ -52,7 +52,7 @@ class PilotRecorder final : public integrators::Observer {
         wanted_(wanted), max_samples_(max_samples) {}
   void observe(std::int64_t, double, const system::State& s) override {
     samples.push_back(point6(s));
-    if (samples.size() >= max_samples_) stop_.store(true);
+    if (samples.size() >= max_samples_ || interrupt_requested.load(std::memory_order_relaxed)) stop_.store(true);
   }
   void on_event(const integrators::EventHit&) override {
     if (++hits_ >= wanted_) stop_.store(true);
@@ -76,6 +76,7 @@ class TorusRecorder final : public CrossingRecorder {
                          wanted),
         J_inv_(J_inv) {}
   void observe(std::int64_t, double t, const system::State& s) override {
+    poll_interrupt();
     if (!t_.empty() && !(t > t_.back())) return;  // a continued run starts with the last state again
     const double psi = std::atan2(s.R(0, 2), -s.R(1, 2)), phi = std::atan2(s.R(2, 0), s.R(2, 1));
     psi_.push_back(psi_.empty() ? psi : psi_.back() + std::remainder(psi - psi_.back(), 2.0 * pi));

@@ -235,7 +235,8 @@ double default_cardan_omega_max(const system::CardanTop& top) {
 }
 
 std::vector<CardanEquilibrium> cardan_equilibrium_branches(const system::CardanTop& top, int samples, double omega_max,
-                                                            int grid) {
+                                                            int grid,
+                                                            const std::function<bool(std::size_t, std::size_t)>& sample_done) {
   const int n = samples + samples % 2;  // even: ω = 0 (where W_0 = V may be flat) is not sampled
   std::vector<CardanEquilibrium> rows, previous;
   int branches = 0;
@@ -259,6 +260,7 @@ std::vector<CardanEquilibrium> cardan_equilibrium_branches(const system::CardanT
     }
     rows.insert(rows.end(), now.begin(), now.end());
     previous = std::move(now);
+    if (sample_done && !sample_done(static_cast<std::size_t>(k + 1), static_cast<std::size_t>(n))) break;
   }
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.branch < b.branch; });
   return rows;

@@ -28,6 +28,8 @@
 // cyclic too, and the poles sin q2 = 0, where body and outer axis coincide
 // and q1, q3 turn about the same axis). Such a circle is reported once, at
 // q3 = 0, with `degenerate` set.
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "experiments/analysis/relative_equilibria.hpp"
@@ -62,9 +64,12 @@ std::vector<CardanEquilibrium> cardan_equilibria_at(const system::CardanTop& top
 
 /// The bifurcation diagram: the critical points of W_ω for `samples` values
 /// of ω in [−omega_max, omega_max], joined into branches by continuation
-/// (`branch`: the same id along a branch).
-std::vector<CardanEquilibrium> cardan_equilibrium_branches(const system::CardanTop& top, int samples,
-                                                            double omega_max, int grid = 64);
+/// (`branch`: the same id along a branch). `sample_done`, if given, is called
+/// after each ω with the values done and their number; false stops there (a
+/// signal), with the rows so far.
+std::vector<CardanEquilibrium> cardan_equilibrium_branches(
+    const system::CardanTop& top, int samples, double omega_max, int grid = 64,
+    const std::function<bool(std::size_t, std::size_t)>& sample_done = {});
 
 /// A default ω range for the diagram: 3 √(|∇V|_max / min M₁₁), or 3 without a potential.
 double default_cardan_omega_max(const system::CardanTop& top);

@@ -67,6 +67,7 @@ class SectionObserver final : public integrators::TorusObserver {
 
   void on_event(const integrators::BasicEventHit<TorusState>& hit) override { step_hits_.push_back(hit); }
   void observe(std::int64_t step, double /*t*/, const TorusState& x) override {
+    if (r_.interrupt && r_.interrupt->load(std::memory_order_relaxed)) stop_.store(true, std::memory_order_relaxed);
     if (truncated_) return;  // the step after the last one kept (the loop reads the stop flag then)
     if (step == 0) {
       H0_ = top_.energy(x), p10_ = x.p(0);
@@ -223,7 +224,7 @@ CardanOrbit cardan_orbit(const system::CardanTop& top, const TorusState& x0, con
   o.initial = x0;
   const double cpu0 = integrators::detail::cpu_now();
   integrate_orbit(top, r, o);
-  if (r.indicators) cardan_orbit_indicators(top, x0, r.t_end, r.dt, r.seed, index, o.lyapunov, o.megno);
+  if (r.indicators) cardan_orbit_indicators(top, x0, r.t_end, r.dt, r.seed, index, o.lyapunov, o.megno, r.interrupt);
   o.cpu_seconds = integrators::detail::cpu_now() - cpu0;
   return o;
 }

@@ -54,6 +54,7 @@ struct CardanOrbitRequest {
   std::int64_t max_crossings = 100000;
   bool indicators = false;
   std::uint64_t seed = 0;
+  const std::atomic<bool>* interrupt = nullptr;  // Ctrl-C: read every step of the orbit and of its indicators
 };
 
 struct CardanOrbit {

@@ -59,6 +59,7 @@ class PhaseRecorder final : public CrossingRecorder {
             wanted),
         body_(body), K_(K) {}
   void observe(std::int64_t, double t, const system::State& s) override {
+    poll_interrupt();
     if (!t_.empty() && !(t > t_.back())) return;
     phase_.add(lagrangian_phase(body_, K_, s.R.row(2).transpose(), s.Pi));
     t_.push_back(t), f_.push_back(phase_.total);

@@ -21,6 +21,7 @@
 #include "experiments/analysis/actions.hpp"
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/kovalevskaya_torus.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/sweep_progress.hpp"
 #include "experiments/cli/work_limits.hpp"
 #include "experiments/commands/all_commands.hpp"
@@ -31,6 +32,7 @@
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "integrators/registry/registry.hpp"
 #include "lgi/build_info.hpp"
 
@@ -135,7 +137,8 @@ std::vector<Row> single_torus(const system::Scene& scene, const HeavyTopBody& bo
   } else if (const auto moments = euler_moments(scene)) {
     if (const auto a = euler_actions(*moments, x.Pi, l)) rows.push_back(euler_row(*a, h));
   }
-  rows.push_back(numerical_row(scene, x, o));
+  const Row r = numerical_row(scene, x, o);
+  if (!interrupt_requested.load()) rows.push_back(r);  // a torus a signal may have cut short is not kept
   return rows;
 }
 
@@ -154,6 +157,7 @@ std::vector<Row> level_torus(const system::Scene& scene, const HeavyTopBody& bod
   const system::State x0 = state_at(*x);
   Row r = numerical_row(scene, x0, o);
   const KovalevskayaTorus t = kovalevskaya_torus(scene, body, x0, opt);
+  if (interrupt_requested.load()) return {};  // maybe cut short: not kept
   r.k = t.k;
   if (t.maslov.ok) r.mu_a = t.maslov.mu_a, r.mu_b = t.maslov.mu_b;
   else if (r.ok) r.status += "; Maslov indices not found: " + t.maslov.status;
@@ -178,11 +182,14 @@ std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& 
   }
   // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): a torus takes up to seconds.
   SweepProgress progress(o.quiet, static_cast<std::int64_t>(o.l.size()) * o.tori, 0, "actions", "tori");
+  // Ctrl-C: the tori read the flag every step (actions_support.hpp); the one it cut short is not kept.
   std::int64_t done = 0, failed = 0;
-  for (const double l : o.l)
-    for (const auto& x : level_set_states(body, l, h, o.tori)) {
-      rows.push_back(numerical_row(scene, x, o));
-      failed += rows.back().ok ? 0 : 1;
+  for (std::size_t i = 0; i < o.l.size() && !interrupt_requested.load(); ++i)
+    for (const auto& x : level_set_states(body, o.l[i], h, o.tori)) {
+      const Row r = numerical_row(scene, x, o);
+      if (interrupt_requested.load()) break;
+      rows.push_back(r);
+      failed += r.ok ? 0 : 1;
       progress.update(++done, failed);
     }
   progress.finish();
@@ -243,6 +250,7 @@ int run_actions(const ActionsOptions& o) {
   if (o.k && !kovalevskaya_scale(body))
     throw InputError("--k: " + scene.file + " is not a Kovalevskaya top (J = J3 diag(2, 2, 1), centre of mass on e1)");
   hdf5::check_output_target(o.out, o.force);  // before the tori, not after them
+  const InterruptGuard interrupt_guard;  // Ctrl-C / SIGTERM: the tori so far go to <out>.partial
   const std::vector<Row> rows = o.h ? energy_surface(scene, body, o) : single_torus(scene, body, o);
   std::map<std::string, std::string> parameters = {
       {"subcommand", "actions"},      {"command_line", o.command_line},  {"scene_file", scene.file},
@@ -253,6 +261,14 @@ int run_actions(const ActionsOptions& o) {
                   "2: numerical (l, I_a, I_b)"}};
   if (o.h) parameters["h"] = format_general(*o.h, 17);
   if (o.k) parameters["k"] = format_general(*o.k, 17);
+  if (interrupt_signal() != 0) {  // the HDF5 file alone, as <out>.partial (no CSV): an incomplete table
+    const std::string partial = o.out + ".partial";
+    parameters["status"] = "interrupted by signal: " + std::to_string(rows.size()) + " rows";
+    write_groups_file(partial, true, {{"tori", columns_of(rows), {}}}, parameters);
+    std::cerr << "lgi: actions interrupted by signal; the " << rows.size() << " rows finished are in " << partial
+              << '\n';
+    return interrupted_exit_status();
+  }
   write_table_file(o.out, o.force, "tori", columns_of(rows), parameters);
   if (o.quiet) return exit_ok;
   if (o.k) {

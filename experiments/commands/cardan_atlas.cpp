@@ -8,12 +8,15 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "experiments/analysis/cardan_equilibria.hpp"
 #include "experiments/analysis/cardan_section.hpp"
 #include "experiments/cli/interrupt_guard.hpp"
+#include "experiments/cli/sweep_progress.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/errors/exit_status.hpp"
+#include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/table_file.hpp"
@@ -53,8 +56,25 @@ int run_cardan_equilibria(const system::Scene& scene, const CardanEquilibriaRequ
   require_cyclic_outer_angle(top, scene.file, r.subcommand);
   if (r.omega_max && !(*r.omega_max > 0.0)) throw UsageError("--omega-max: must be a positive number");
   const double omega_max = r.omega_max.value_or(default_cardan_omega_max(top));
+  if (!r.l) hdf5::check_output_target(r.out, r.force);  // before the work, not after it
+  // Signals only set the flag until the file is written (interrupt_guard.hpp). Without --l a
+  // progress line counts the values of omega, as the heavy top's counts its branches
+  // (cli/sweep_progress.hpp); a signal stops after the current omega and nothing is written.
+  const InterruptGuard interrupt_guard;
+  std::optional<SweepProgress> progress;
+  const auto sample_done = [&](std::size_t done, std::size_t total) {
+    if (interrupt_requested.load()) return false;
+    if (!progress) progress.emplace(r.quiet, static_cast<std::int64_t>(total), 0, r.subcommand.c_str(), "values of omega");
+    progress->update(static_cast<std::int64_t>(done), 0);
+    return true;
+  };
   const std::vector<CardanEquilibrium> rows =
-      r.l ? cardan_equilibria_at(top, *r.l) : cardan_equilibrium_branches(top, r.samples, omega_max);
+      r.l ? cardan_equilibria_at(top, *r.l) : cardan_equilibrium_branches(top, r.samples, omega_max, 64, sample_done);
+  if (progress) progress->finish();
+  if (interrupt_signal() != 0) {
+    std::cerr << "lgi: " << r.subcommand << ": interrupted by signal; nothing written\n";
+    return interrupted_exit_status();
+  }
   auto parameters = provenance(scene, r.subcommand, r.command_line);
   if (r.l) parameters["l"] = format_general(*r.l, 17);
   else parameters["omega_max"] = format_general(omega_max, 17);
@@ -137,7 +157,7 @@ int run_cardan_poincare(const system::Scene& scene, const CardanPoincareRequest&
   if (!p1_conserved)
     std::cerr << "lgi: warning: --l: p1 is no integral of " << scene.file << " (tilted outer axis with gravity): --l "
               << "sets each orbit's initial p1 only, and the section is a projection (docs/cardan.md section 9.3)\n";
-  CardanOrbitRequest request{r.scheme, r.t_end, r.dt, r.max_events, r.lyapunov || r.megno, r.seed};
+  CardanOrbitRequest request{r.scheme, r.t_end, r.dt, r.max_events, r.lyapunov || r.megno, r.seed, &interrupt_requested};
   std::vector<CardanOrbit> orbits(static_cast<std::size_t>(r.ics));
   std::vector<char> done(orbits.size(), 0);
   // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
@@ -150,7 +170,8 @@ int run_cardan_poincare(const system::Scene& scene, const CardanPoincareRequest&
       system::TorusState x0;
       if (draw_cardan_level_point(top, r.l, r.h, r.seed, i, x0)) o = cardan_orbit(top, x0, request, i);
       else o.status = 2, o.reason = "no initial state on the level set at q1 = 0 in 100000 draws";
-      done[static_cast<std::size_t>(i)] = 1;
+      // An orbit the signal may have cut short (the orbit and its indicators read the flag) is not kept.
+      done[static_cast<std::size_t>(i)] = interrupt_requested.load() ? 0 : 1;
     }
   }
   OrbitTable table;

@@ -137,6 +137,21 @@ PeriodicRequest::StartDone progress_of_starts(std::optional<SweepProgress>& prog
   };
 }
 
+/// After a signal: the families of the starts finished before it (not the manifolds) in
+/// <out>.partial, the HDF5 file alone, its status saying how many starts it holds.
+int write_interrupted(const PeriodicOptions& o, const system::Scene& scene, const HeavyTopBody& body,
+                      const PeriodicResult& result) {
+  const std::string partial = o.out + ".partial";
+  auto parameters = periodic_parameters(o, scene, result.l, result.failures);
+  const std::string kept = std::to_string(result.starts_kept) + " of " + std::to_string(result.starts) + " starts";
+  parameters["status"] = "interrupted by signal: the families of " + kept +
+                         (!result.stopped && o.manifolds > 0 ? "; no manifolds" : "");
+  write_groups_file(partial, true, {{"periodic", periodic_columns(body, result.rows, result.section), {}}}, parameters);
+  std::cerr << "lgi: periodic: interrupted by signal; the families of " << kept << " (" << result.rows.size()
+            << " orbits) are in " << partial << '\n';
+  return interrupted_exit_status();
+}
+
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
   hdf5::check_output_target(o.out, o.force);  // before the work, not after it
@@ -162,17 +177,15 @@ int run_periodic(const PeriodicOptions& o) {
   req.manifolds.points = o.manifolds, req.manifolds.periods = o.manifold_periods;
   req.manifolds.epsilon = o.manifold_epsilon, req.manifolds.dt = o.dt;
   // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the starts (an equilibrium's
-  // modes or the seeds), each continued with its doubled families. A signal stops after the
-  // current start; nothing is written (the file is written only at the end).
+  // modes or the seeds), each continued with its doubled families. A signal ends the start in
+  // progress within a step of its shooting (euler_poisson_flow.hpp, shoot); that start is dropped
+  // and the families of the starts before it go to <out>.partial.
   const InterruptGuard interrupt_guard;
   std::optional<SweepProgress> progress;
   req.start_done = progress_of_starts(progress, o.quiet);
   const PeriodicResult result = periodic_families(body, req);
   if (progress) progress->finish();
-  if (interrupt_signal() != 0) {
-    std::cerr << "lgi: periodic: interrupted by signal; nothing written\n";
-    return interrupted_exit_status();
-  }
+  if (interrupt_signal() != 0) return write_interrupted(o, scene, body, result);
   const std::vector<FamilyOrbit>& rows = result.rows;
   const std::vector<std::string>& failures = result.failures;
   const std::vector<RowManifolds>& manifolds = result.manifolds;

@@ -182,7 +182,7 @@ bool add_indicator_columns(const std::string& path, const PoincareOptions& o, co
       }
     }
   }
-  if (computed < o.ics) return false;
+  if (computed < o.ics || interrupt_requested.load()) return false;  // the last orbits may have been cut short
   SweepExtraColumns file(path);
   if (o.lyapunov) file.write_real("sweep", "lyapunov", lyapunov, 1);
   if (o.megno) file.write_real("sweep", "megno", megno, 1);

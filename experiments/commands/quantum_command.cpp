@@ -17,9 +17,11 @@
 #include <string>
 
 #include "experiments/analysis/quantum/ebk_kovalevskaya.hpp"
+#include "experiments/analysis/quantum/lowest_levels.hpp"  // SolveInterrupted
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 #include "experiments/commands/all_commands.hpp"
 #include "experiments/commands/quantum_outputs.hpp"
+#include "experiments/cli/interrupt_guard.hpp"
 #include "experiments/cli/run_options.hpp"
 #include "experiments/cli/sweep_progress.hpp"
 #include "experiments/errors/exit_status.hpp"
@@ -29,6 +31,7 @@
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "experiments/io/table_file.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "lgi/build_info.hpp"
 
 namespace lgi::experiments {
@@ -151,6 +154,50 @@ std::map<std::string, std::string> parameters_of(const QuantumOptions& o, const 
           {"method", q.method}, {"wall_seconds", format_general(wall, 6)}};
 }
 
+struct Solved {
+  quantum::QuantumSpectrum q;
+  std::vector<TableGroup> extra;  // /ebk, /statistics, /weyl
+  std::vector<std::string> notes;
+};
+
+/// The spectrum and the --ebk / --statistics groups; false once a signal came: the solves
+/// and the EBK tori read interrupt_requested and end with SolveInterrupted (quantum_spectrum.hpp).
+bool solve(const QuantumOptions& o, const system::Scene& scene, const quantum::QuantumTop& top, bool kovalevskaya,
+           Solved& out) {
+  quantum::QuantumSettings s;
+  s.hbar = o.hbar, s.m = o.m, s.jmax = o.jmax, s.levels = o.levels, s.jmax_step = o.jmax_step, s.tol = o.tol;
+  s.stop = &interrupt_requested;
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the eigenvalue solves of a heavy
+  // top's blocks (a free body's blocks are exact and fast: no line).
+  std::optional<SweepProgress> progress;
+  s.solved = [&](int done, int total) {
+    if (!progress) progress.emplace(o.quiet, total, 0, "quantum", "eigenvalue solves");
+    progress->update(done, 0);
+  };
+  try {
+    try {
+      out.q = quantum::quantum_spectrum(top, s);
+    } catch (const quantum::SolveInterrupted&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw RunError(e.what());
+    }
+    if (progress) progress->finish();
+    progress.reset();
+    if (o.ebk)
+      out.extra.push_back(
+          ebk_group(out.q, o.hbar, o.m, kovalevskaya ? &scene : nullptr, &out.notes, &interrupt_requested));
+    if (o.statistics) out.extra.push_back(statistics_group(out.q, o.hbar, o.m, o.energy_low, o.energy_high));
+    if (o.statistics) out.extra.push_back(weyl_group(out.q, o.hbar, o.m));
+  } catch (const quantum::SolveInterrupted&) {
+    if (progress) progress->finish();
+    return false;
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string(e.what()) + " (scene " + scene.file + ")");
+  }
+  return interrupt_signal() == 0;
+}
+
 int run_quantum(QuantumOptions o) {
   check_flags(o);
   const system::Scene scene = read_scene(o.scene);
@@ -162,32 +209,16 @@ int run_quantum(QuantumOptions o) {
                      " is " + quantum::symmetry_name(top.symmetry));
   if (!o.force && hdf5::path_exists(o.out)) throw OutputFileError("output file '" + o.out + "' exists (--force replaces it)");
   hdf5::check_output_target(o.out, o.force);  // a FIFO or a device at --out: before the work, not after it
-  quantum::QuantumSettings s;
-  s.hbar = o.hbar, s.m = o.m, s.jmax = o.jmax, s.levels = o.levels, s.jmax_step = o.jmax_step, s.tol = o.tol;
-  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): the eigenvalue solves of a heavy
-  // top's blocks (a free body's blocks are exact and fast: no line).
-  std::optional<SweepProgress> progress;
-  s.solved = [&](int done, int total) {
-    if (!progress) progress.emplace(o.quiet, total, 0, "quantum", "eigenvalue solves");
-    progress->update(done, 0);
-  };
+  const InterruptGuard interrupt_guard;  // Ctrl-C / SIGTERM: solve() reads the flag; nothing is written
   const auto start = std::chrono::steady_clock::now();
-  quantum::QuantumSpectrum q;
-  try {
-    q = quantum::quantum_spectrum(top, s);
-    if (progress) progress->finish();
-  } catch (const std::runtime_error& e) {
-    throw RunError(e.what());
+  Solved solved;
+  if (!solve(o, scene, top, kovalevskaya, solved)) {
+    std::cerr << "lgi: quantum: interrupted by signal; nothing written\n";
+    return interrupted_exit_status();
   }
-  std::vector<TableGroup> extra;
-  std::vector<std::string> notes;
-  try {
-    if (o.ebk) extra.push_back(ebk_group(q, o.hbar, o.m, kovalevskaya ? &scene : nullptr, &notes));
-    if (o.statistics) extra.push_back(statistics_group(q, o.hbar, o.m, o.energy_low, o.energy_high));
-    if (o.statistics) extra.push_back(weyl_group(q, o.hbar, o.m));
-  } catch (const std::invalid_argument& e) {
-    throw InputError(std::string(e.what()) + " (scene " + scene.file + ")");
-  }
+  const quantum::QuantumSpectrum& q = solved.q;
+  const std::vector<TableGroup>& extra = solved.extra;
+  const std::vector<std::string>& notes = solved.notes;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_table_file(o.out, o.force, "spectrum", columns_of(q, o.m), parameters_of(o, scene, q, wall), extra);
   std::size_t unconverged = 0;

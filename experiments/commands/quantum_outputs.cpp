@@ -27,13 +27,14 @@ TableColumn whole_column(const std::string& name, std::vector<std::int64_t> valu
 }  // namespace
 
 TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m, const system::Scene* kovalevskaya,
-                     std::vector<std::string>* notes) {
+                     std::vector<std::string>* notes, const std::atomic<bool>* stop) {
   std::vector<std::int64_t> n, ms, k, js, axes, converged, n_fast;
   std::vector<double> ebk, exact, difference;
   std::vector<quantum::EbkRow> rows;
   if (kovalevskaya) {
     quantum::KovalevskayaEbkOptions options;
     options.torus.dt = kovalevskaya->dt.value_or(1e-2);
+    options.stop = stop;
     std::vector<quantum::KovalevskayaEbkLevel> solved;
     rows = quantum::ebk_kovalevskaya_table(*kovalevskaya, q, hbar, m, options, &solved);
     for (const auto& s : solved)

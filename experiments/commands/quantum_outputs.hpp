@@ -3,6 +3,7 @@
 // EBK levels beside the exact ones: a Lagrange top, a free body or a
 // Kovalevskaya top) and /statistics
 // (--statistics, per symmetry class, unfolded with Weyl's law).
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,10 @@ namespace lgi::experiments {
 
 /// /ebk: n, m, k, energy_ebk, energy_exact, difference, converged, j, axis, n_fast (one row per level).
 /// A Kovalevskaya top (its scene given) gets the EBK levels of its numerical tori; each solved level
-/// adds a line to `notes`.
+/// adds a line to `notes`; its tori read `stop` (Ctrl-C: quantum::SolveInterrupted).
 TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m,
-                     const system::Scene* kovalevskaya = nullptr, std::vector<std::string>* notes = nullptr);
+                     const system::Scene* kovalevskaya = nullptr, std::vector<std::string>* notes = nullptr,
+                     const std::atomic<bool>* stop = nullptr);
 
 /// /weyl: weyl_count, Weyl's smooth count N̄(E) at each /spectrum row's energy
 /// (a free body: N̄_j(E) of the row's j).

@@ -192,3 +192,72 @@ def test_cardan_chaos_map_progress(tmp_path):
     q = subprocess.run([LGI, *CARDAN_MAP, "--t-end", "20", "--quiet", "--out", str(tmp_path / "q.h5")],
                        capture_output=True, text=True, timeout=120)
     assert q.returncode == 0 and q.stderr == "", q.stderr
+
+
+def signal_within_a_second(args, sig=signal.SIGINT, after=1.5):
+    """Sends `sig` `after` s into a run far longer than that and returns (exit status, stderr); fails unless
+    the run ends within a few seconds of the signal (every loop reads the flag at least once a second)."""
+    p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(after * slowdown(LGI))
+    assert p.poll() is None, "the command ended before it could be interrupted"
+    p.send_signal(sig)
+    sent = time.monotonic()
+    _, err = p.communicate(timeout=60)
+    assert time.monotonic() - sent < 3.0 * slowdown(LGI), "the signal was not read within the work"
+    return p.returncode, err
+
+
+def test_periodic_sigint_inside_a_long_start_keeps_the_finished_ones(tmp_path):
+    """lgi periodic (issue 50): the shooting reads the flag every step, so SIGINT inside one long start (a
+    Newton solve whose shots cover 300 periods) ends the run at once; the start it cut short is dropped and
+    the families of the starts before it go to <out>.partial, exit 130."""
+    richter = os.path.join(SCENES, "general_top_richter.toml")
+    first = str(tmp_path / "first.h5")
+    r = subprocess.run([LGI, "periodic", "--scene", richter, "--l", "3", "--from-equilibria", "--steps", "0",
+                        "--out", first, "--quiet"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(first, "r") as f:
+        x = np.concatenate([f["periodic/angular_momentum"][0], f["periodic/gamma"][0]])
+        period = float(f["periodic/period"][0])
+    seeds = str(tmp_path / "seeds.txt")
+    with open(seeds, "w") as s:  # a quick start, then the same orbit taken 300 times round: a long one
+        s.write(" ".join(repr(float(v)) for v in x) + f" {period!r}\n")
+        s.write(" ".join(repr(float(v)) for v in x) + f" {300 * period!r}\n")
+    out = str(tmp_path / "p.h5")
+    code, err = signal_within_a_second(["periodic", "--scene", richter, "--l", "3", "--seed-file", seeds, "--steps",
+                                        "0", "--out", out])
+    assert code == 130, err
+    assert "interrupted by signal" in err and out + ".partial" in err and err.strip().count("\n") == 0, err
+    assert not os.path.exists(out)
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]).startswith("interrupted by signal: the families of 1 of 2 starts")
+        assert len(f["periodic/family"]) >= 1 and (f["periodic/family"][()] == 0).all()
+        assert np.all(f["periodic/residual"][()] <= 1e-10)
+
+
+def test_actions_sigterm_inside_a_long_torus(tmp_path):
+    """lgi actions (issue 50): a numerical torus at --dt 1e-5 runs far longer than the wait; its recorders
+    read the flag every step, the cut torus is not kept and the closed-form row goes to <out>.partial."""
+    out = str(tmp_path / "a.h5")
+    code, err = signal_within_a_second(["actions", "--scene", os.path.join(SCENES, "lagrange_top_cigar.toml"),
+                                        "--dt", "1e-5", "--out", out], sig=signal.SIGTERM)
+    assert code == 143, err
+    assert "interrupted by signal" in err and out + ".partial" in err and err.strip().count("\n") == 0, err
+    assert not os.path.exists(out)
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]).startswith("interrupted by signal")
+        assert list(f["tori/method"][()]) == [0]  # the Lagrange closed form; no numerical row
+
+
+def test_cardan_poincare_sigint_inside_one_long_orbit(tmp_path):
+    """lgi poincare on a Cardan top (issue 50): the orbit's loop reads the flag every step, so one orbit far
+    longer than the wait ends at once; it is not kept (0 of 1 orbits in <out>.partial), exit 130."""
+    out = str(tmp_path / "c.h5")
+    code, err = signal_within_a_second(["poincare", "--scene", CARDAN, "--l", "1.68", "--h", "2.2", "--ics", "1",
+                                        "--t-end", "1e7", "--dt", "0.01", "--megno", "--threads", "1", "--out", out])
+    assert code == 130, err
+    assert "interrupted by signal" in err and out + ".partial" in err, err
+    assert not os.path.exists(out)
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]) == "interrupted by signal: 0 of 1 orbits"
+        assert len(f["sweep/index"]) == 0

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
+
 namespace lgi::experiments {
 
 namespace {
@@ -91,8 +93,11 @@ Shot shoot(const HeavyTopBody& body, const Vec6& x0, double T, double dt) {
   const auto n = static_cast<long>(std::ceil(std::abs(T) / dt - 1e-9));
   const long steps = n < 1 ? 1 : n;
   const double h = T / static_cast<double>(steps);
-  for (long k = 0; k < steps && s.ok; ++k)
+  for (long k = 0; k < steps && s.ok; ++k) {
+    // Ctrl-C: one shot over a long period is seconds of work; a step is microseconds, so a load a step is free.
+    if (interrupt_requested.load(std::memory_order_relaxed)) s.ok = false;
     for (const double wi : w) s.ok = s.ok && midpoint_substep(body, s.end, &s.monodromy, wi * h);
+  }
   return s;
 }
 

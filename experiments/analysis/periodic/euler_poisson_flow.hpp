@@ -37,10 +37,13 @@ Invariants euler_poisson_invariants(const HeavyTopBody& body, const Vec6& x);
 struct Shot {
   Vec6 end;
   Mat6 monodromy;  // ∂(end)/∂(start)
-  bool ok = true;  // false: a midpoint solve did not converge or the state is not finite
+  bool ok = true;  // false: a midpoint solve did not converge, the state is not finite, or a signal came
 };
 
 /// φ_T(x0) and its derivative, with ⌈T/dt⌉ equal sixth-order steps (top of this file).
+/// Reads interrupt_requested (io/trajectory_observer.hpp) before every step and fails
+/// (ok = false) once it is set: every Newton iteration and continuation step above then
+/// fails at once, and lgi periodic drops the start in progress (experiments/PERIODIC.md).
 Shot shoot(const HeavyTopBody& body, const Vec6& x0, double T, double dt);
 
 /// One step of size h (h < 0: backwards) of the same map, without the tangent flow;

@@ -7,6 +7,7 @@
 
 #include "experiments/analysis/kovalevskaya_critical.hpp"
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 
 namespace lgi::experiments {
 
@@ -36,7 +37,7 @@ double hyperplane_return_time(const HeavyTopBody& body, const Vec6& x0, double d
   const auto steps = static_cast<long>(std::ceil(t_max / dt));
   for (long i = 0; i < steps; ++i) {
     Vec6 y = x;
-    if (!flow_step(body, y, dt)) return 0.0;
+    if (interrupt_requested.load(std::memory_order_relaxed) || !flow_step(body, y, dt)) return 0.0;  // Ctrl-C: no return
     const double g = n.dot(y - x0);
     reach = std::max(reach, (y - x0).norm());
     if (g_prev < 0.0 && g >= 0.0) {  // a crossing in the flow's direction: accept it near x0

@@ -60,7 +60,8 @@ std::vector<CriticalSeed> kovalevskaya_critical_seeds(const HeavyTopBody& body, 
 
 /// The time of the first return of the orbit from x0 to the hyperplane through x0
 /// normal to the flow, in the flow's direction and within 1e-2 of the largest
-/// distance reached (linear interpolation in the step); 0 if none before t_max.
+/// distance reached (linear interpolation in the step); 0 if none before t_max or
+/// once a signal came (interrupt_requested, read every step).
 double hyperplane_return_time(const HeavyTopBody& body, const Vec6& x0, double dt, double t_max);
 
 }  // namespace lgi::experiments

@@ -143,8 +143,14 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
     if (e.stability != EquilibriumStability::stable) continue;
     const Vec6 xe = state_of(e);
     for (const double omega : equilibrium_frequencies(e)) {
-      if (done > 0 && mode_done && !mode_done(done, modes)) return all;
-      ++done;
+      const std::size_t rows_before = all.size(), failures_before = failures.size();
+      // After the mode: false drops it (a signal may have cut it short) and stops.
+      const auto stop_after_mode = [&] {
+        if (!mode_done || mode_done(++done, modes)) return false;
+        all.erase(all.begin() + static_cast<std::ptrdiff_t>(rows_before), all.end());
+        failures.resize(failures_before);
+        return true;
+      };
       const Vec6 start = project_to_leaf(body, xe + s.amplitude * xe.norm() * mode_direction(body, xe, omega), l);
       const double h0 = euler_poisson_invariants(body, start).value(0);
       ShootingSettings at_l = s.shooting;  // the first orbit at ℓ, even for a family continued in ℓ
@@ -153,6 +159,7 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
       if (!o.converged) {
         failures.push_back("equilibrium " + std::to_string(i) + ", omega = " + std::to_string(omega) +
                            ": the first orbit did not converge (residual " + std::to_string(o.residual) + ")");
+        if (stop_after_mode()) return all;
         continue;
       }
       FamilyOrbit first;
@@ -161,9 +168,9 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
       int next = family + 1;
       append_with_branches(body, all, rows, next, s);
       family = next;
+      if (stop_after_mode()) return all;
     }
   }
-  if (done > 0 && mode_done) mode_done(done, modes);
   return all;
 }
 

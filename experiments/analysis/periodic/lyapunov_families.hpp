@@ -34,7 +34,8 @@ std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e);
 /// equilibrium, and from there the family is continued in ℓ at that h, its
 /// first step direction · h_step in ℓ (experiments/PERIODIC.md).
 /// `mode_done`, if given, is called after each mode with the modes done and
-/// their number; false stops there (a signal).
+/// their number; false stops there (a signal) and drops that mode's rows and
+/// failures (the signal may have cut it short: euler_poisson_flow.hpp, shoot).
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
                                            std::vector<std::string>& failures, double direction = 1.0,
                                            const std::function<bool(std::size_t, std::size_t)>& mode_done = {});

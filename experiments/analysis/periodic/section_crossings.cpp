@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
+
 namespace lgi::experiments {
 
 double section_value(const HeavyTopBody& body, const PhaseSection& s, const Vec6& x) {
@@ -69,7 +71,7 @@ std::vector<SectionCrossing> section_crossings(const HeavyTopBody& body, const P
   double sx = section_value(body, s, x);
   for (long k = 0; k < steps && out.size() < max_count; ++k) {
     Vec6 y = x;
-    if (!flow_step(body, y, h)) {
+    if (interrupt_requested.load(std::memory_order_relaxed) || !flow_step(body, y, h)) {  // Ctrl-C: as a failure
       ok = false;
       return out;
     }

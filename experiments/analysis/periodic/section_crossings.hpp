@@ -39,7 +39,8 @@ struct SectionCrossing {
 /// The crossings of the orbit from x0 over t ∈ (0, t_span] (t_span < 0: backwards;
 /// a start on the section is not one of them),
 /// at most max_count of them (only those of `direction` if it is ±1; 0: both).
-/// ok is false if a step failed (the crossings before it are returned).
+/// ok is false if a step failed or a signal came (interrupt_requested, read every step; the
+/// crossings before it are returned).
 std::vector<SectionCrossing> section_crossings(const HeavyTopBody& body, const PhaseSection& s, const Vec6& x0,
                                                double t_span, double dt, std::size_t max_count, int direction,
                                                bool& ok);

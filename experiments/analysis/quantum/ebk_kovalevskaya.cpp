@@ -10,6 +10,7 @@
 
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
 #include "experiments/analysis/kovalevskaya_torus.hpp"
+#include "experiments/analysis/quantum/lowest_levels.hpp"  // SolveInterrupted
 #include "integrators/system/terms/gravity.hpp"
 
 namespace lgi::experiments::quantum {
@@ -79,6 +80,7 @@ KovalevskayaEbkLevel kovalevskaya_ebk_level(const system::Scene& scene, double h
   r.n_slow = n_slow, r.n_fast = n_fast;
   const Eigen::Vector2d target(n_slow + 0.5, n_fast + 0.5);
   const auto evaluate = [&](double h, double k, const StateVec6& start) {
+    if (options.stop && options.stop->load(std::memory_order_relaxed)) throw SolveInterrupted();
     Evaluation e;
     const std::optional<StateVec6> x = kovalevskaya_level_point(body, l, h, k, start);
     if (!x) {

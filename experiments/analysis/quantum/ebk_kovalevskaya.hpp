@@ -8,6 +8,7 @@
 // (J. B. Keller, Ann. Phys. 4 (1958) 180; I. C. Percival, Adv. Chem. Phys. 36 (1977) 1).
 // Only the region of the hanging equilibrium is covered, where such a basis exists:
 // its tori are the continuation of the two small oscillations.
+#include <atomic>
 #include <limits>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ struct KovalevskayaEbkOptions {
   int maslov_returns = 100;     // section returns of the flow for the Maslov index of cycle b
   int max_iterations = 10;      // Newton steps
   double tolerance = 1e-6;      // on max |I − ħ(n + ½)|/ħ
+  const std::atomic<bool>* stop = nullptr;  // Ctrl-C: read before every torus; then SolveInterrupted (lowest_levels.hpp)
   KovalevskayaEbkOptions() { torus.crossings = 200, torus.harmonics = 64; }
 };
 

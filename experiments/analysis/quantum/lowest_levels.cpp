@@ -47,10 +47,30 @@ int complex_rank(const Eigen::MatrixXd& vectors, Eigen::Index n) {
   return static_cast<int>((gram.eigenvalues().array() > 1e-6).count());
 }
 
-std::vector<double> spectra_lowest(const RealSparse& m, Eigen::Index nev, double sigma, Eigen::MatrixXd* vectors) {
-  Spectra::SparseSymShiftSolve<double> op(m);
+/// Spectra's shift-solve operation that reads `stop` before every product and
+/// throws SolveInterrupted once it is set: Spectra's own loop has no stop flag.
+class CheckedShiftSolve {
+ public:
+  using Scalar = double;
+  CheckedShiftSolve(const RealSparse& m, const std::atomic<bool>* stop) : op_(m), stop_(stop) {}
+  Eigen::Index rows() const { return op_.rows(); }
+  Eigen::Index cols() const { return op_.cols(); }
+  void set_shift(double sigma) { op_.set_shift(sigma); }
+  void perform_op(const double* x_in, double* y_out) const {
+    if (stop_ && stop_->load(std::memory_order_relaxed)) throw SolveInterrupted();
+    op_.perform_op(x_in, y_out);
+  }
+
+ private:
+  Spectra::SparseSymShiftSolve<double> op_;
+  const std::atomic<bool>* stop_;
+};
+
+std::vector<double> spectra_lowest(const RealSparse& m, Eigen::Index nev, double sigma, Eigen::MatrixXd* vectors,
+                                   const std::atomic<bool>* stop) {
+  CheckedShiftSolve op(m, stop);
   const Eigen::Index ncv = std::min<Eigen::Index>(m.rows(), std::max<Eigen::Index>(2 * nev + 1, nev + 20));
-  Spectra::SymEigsShiftSolver<Spectra::SparseSymShiftSolve<double>> eigs(op, nev, ncv, sigma);
+  Spectra::SymEigsShiftSolver<CheckedShiftSolve> eigs(op, nev, ncv, sigma);
   eigs.init();
   eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-12, Spectra::SortRule::SmallestAlge);
   if (eigs.info() != Spectra::CompInfo::Successful)
@@ -71,10 +91,11 @@ std::vector<double> spectra_lowest(const RealSparse& m, Eigen::Index nev, double
 }
 
 /// The lowest n distinct-vector levels of the real form of a complex h.
-std::vector<double> complex_lowest(const RealSparse& m, Eigen::Index n, Eigen::Index size, double sigma) {
+std::vector<double> complex_lowest(const RealSparse& m, Eigen::Index n, Eigen::Index size, double sigma,
+                                   const std::atomic<bool>* stop) {
   const Eigen::Index nev = std::min<Eigen::Index>(2 * n + 2, m.rows() - 1);
   Eigen::MatrixXd vec;
-  const std::vector<double> v = spectra_lowest(m, nev, sigma, &vec);  // ascending, with their vectors
+  const std::vector<double> v = spectra_lowest(m, nev, sigma, &vec, stop);  // ascending, with their vectors
   std::vector<double> out;
   const double scale = std::max(std::abs(v.front()), std::abs(v.back())) + 1e-300;
   for (std::size_t a = 0; a < v.size();) {
@@ -101,13 +122,16 @@ std::vector<double> all_levels(const ComplexSparse& h) {
   return {es.eigenvalues().data(), es.eigenvalues().data() + es.eigenvalues().size()};
 }
 
-LowestLevels lowest_levels(const ComplexSparse& h, Eigen::Index n, double lower_bound) {
+LowestLevels lowest_levels(const ComplexSparse& h, Eigen::Index n, double lower_bound, const std::atomic<bool>* stop) {
+  const auto stopped = [stop] { return stop && stop->load(std::memory_order_relaxed); };
+  if (stopped()) throw SolveInterrupted();
   const Eigen::Index size = h.rows();
   n = std::min(n, size);
   LowestLevels out;
   if (n <= 0) return out;
   if (size <= dense_limit || 8 * n >= size) {  // many levels: the dense solver is faster than Lanczos
     out.values = all_levels(h);
+    if (stopped()) throw SolveInterrupted();
     out.values.resize(static_cast<std::size_t>(n));
     out.method = "dense";
     return out;
@@ -118,10 +142,10 @@ LowestLevels lowest_levels(const ComplexSparse& h, Eigen::Index n, double lower_
     for (ComplexSparse::InnerIterator it(h, c); it; ++it) width = std::max(width, std::abs(it.value()));
   const double sigma = lower_bound - 1e-3 * std::max(width, 1e-300);
   if (is_real(h)) {
-    out.values = spectra_lowest(real_form(h, true), n, sigma, nullptr);
+    out.values = spectra_lowest(real_form(h, true), n, sigma, nullptr, stop);
     out.method = "spectra shift-invert lanczos (real symmetric)";
   } else {
-    out.values = complex_lowest(real_form(h, false), n, size, sigma);
+    out.values = complex_lowest(real_form(h, false), n, size, sigma, stop);
     out.method = "spectra shift-invert lanczos (complex hermitian as its real 2n form)";
   }
   return out;

@@ -51,6 +51,7 @@ Eigen::MatrixXd wang_vectors(int j, int cz, int cx) {
 void free_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectrum& out) {
   const bool symmetric = top.symmetry == TopSymmetry::free_symmetric;
   for (int j = std::abs(s.m); j <= s.jmax; ++j) {
+    if (s.stop && s.stop->load(std::memory_order_relaxed)) throw SolveInterrupted();
     const WignerBasis b = WignerBasis::single(s.m, j);
     const Eigen::MatrixXd t = Eigen::MatrixXd(kinetic_energy(rotor_operators(b, s.hbar), top.moments).real());
     std::vector<QuantumLevel> block;
@@ -157,6 +158,7 @@ void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectr
   const int solves = 2 * static_cast<int>(classes.size());
   int done = 0;
   for (const ClassSpec& c : classes) {
+    if (s.stop && s.stop->load(std::memory_order_relaxed)) throw SolveInterrupted();
     const Block bl = make_block(c, big, s.jmax);
     if (bl.cols_cut == 0) {
       if (s.solved) s.solved(done += 2, solves);
@@ -165,9 +167,10 @@ void heavy_levels(const QuantumTop& top, const QuantumSettings& s, QuantumSpectr
     ComplexSparse w(h.rows(), bl.cols);
     w.setFromTriplets(bl.entries.begin(), bl.entries.end());
     const ComplexSparse hb = ComplexSparse(w.adjoint() * h * w);
-    const LowestLevels cut = lowest_levels(ComplexSparse(hb.topLeftCorner(bl.cols_cut, bl.cols_cut)), s.levels, lower);
+    const LowestLevels cut =
+        lowest_levels(ComplexSparse(hb.topLeftCorner(bl.cols_cut, bl.cols_cut)), s.levels, lower, s.stop);
     if (s.solved) s.solved(++done, solves);
-    const LowestLevels check = lowest_levels(hb, s.levels, lower);
+    const LowestLevels check = lowest_levels(hb, s.levels, lower, s.stop);
     if (s.solved) s.solved(++done, solves);
     methods.insert(cut.method), methods.insert(check.method);
     for (std::size_t i = 0; i < cut.values.size(); ++i) {

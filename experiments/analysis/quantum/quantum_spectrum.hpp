@@ -10,6 +10,7 @@
 //    level (same block, same rank) of the block cut at jmax + jmax_step:
 //    change_with_jmax = E(jmax + Δ) − E(jmax) (≤ 0: the cut is variational),
 //    converged = |change| ≤ tol · max(|E|, ħ²/(2 J_min)).
+#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
@@ -29,6 +30,9 @@ struct QuantumSettings {
   // Heavy tops: called after each eigenvalue solve (two per block: cut at jmax and at
   // jmax + jmax_step) with the solves done and their number (lgi quantum's progress line).
   std::function<void(int, int)> solved;
+  // Ctrl-C (lgi quantum): read between the blocks, between a free body's j and inside each
+  // Lanczos solve (lowest_levels.hpp); once set, quantum_spectrum throws SolveInterrupted.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct QuantumLevel {
@@ -51,7 +55,8 @@ struct QuantumSpectrum {
   std::string parity_classes;        // what `parity` means
 };
 
-/// Throws std::invalid_argument for settings out of range (hbar ≤ 0, jmax < |m|, ...).
+/// Throws std::invalid_argument for settings out of range (hbar ≤ 0, jmax < |m|, ...),
+/// SolveInterrupted (lowest_levels.hpp) once settings.stop is set.
 QuantumSpectrum quantum_spectrum(const QuantumTop& top, const QuantumSettings& settings);
 
 }  // namespace lgi::experiments::quantum

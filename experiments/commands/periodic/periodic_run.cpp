@@ -14,28 +14,30 @@ namespace lgi::experiments {
 namespace {
 
 /// The families of the seeds (of a seed file or a poincare file), numbered from 0.
-/// `seed_done` as PeriodicRequest::start_done: after each seed; false stops there.
+/// `seed_done` as PeriodicRequest::start_done: after each seed; false drops it and stops.
 std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
                                        double direction, const FamilySettings& s, std::vector<std::string>& failures,
                                        const PeriodicRequest::StartDone& seed_done, bool& stopped) {
   std::vector<FamilyOrbit> rows;
   int family = 0;
   for (std::size_t k = 0; k < seeds.size(); ++k) {
-    if (k > 0 && seed_done && !seed_done(k, seeds.size())) {
+    const std::size_t failures_before = failures.size();
+    const SectionSeed& seed = seeds[k];
+    std::vector<FamilyOrbit> f;
+    if (!seed.failure.empty()) {
+      failures.push_back(seed.failure);
+    } else {
+      const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
+      f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
+    }
+    if (seed_done && !seed_done(k + 1, seeds.size())) {  // the signal may have cut this seed short: dropped
+      failures.resize(failures_before);
       stopped = true;
       return rows;
     }
-    const SectionSeed& seed = seeds[k];
-    if (!seed.failure.empty()) {
-      failures.push_back(seed.failure);
-      continue;
-    }
-    const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
-    const auto f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
     for (const auto& r : f) family = std::max(family, r.family + 1);
     rows.insert(rows.end(), f.begin(), f.end());
   }
-  if (!seeds.empty() && seed_done) seed_done(seeds.size(), seeds.size());
   return rows;
 }
 
@@ -57,11 +59,21 @@ std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSect
 
 }  // namespace
 
-PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest& r) {
+PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest& request) {
   PeriodicResult out;
+  // The caller's start_done, counting the starts kept for the result.
+  PeriodicRequest r = request;
+  if (request.start_done)
+    r.start_done = [&out, &request](std::size_t done, std::size_t total) {
+      out.starts = total;
+      const bool go_on = request.start_done(done, total);
+      out.starts_kept = go_on ? done : done - 1;
+      out.stopped = !go_on;
+      return go_on;
+    };
   out.l = r.l.value_or(0.0);
   const FamilySettings& s = r.settings;
-  bool stopped = false;
+  bool& stopped = out.stopped;
   if (r.from_equilibria) {
     out.rows = lyapunov_families(body, out.l, s, out.failures, r.direction, r.start_done);
     return out;

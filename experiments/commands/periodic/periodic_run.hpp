@@ -18,7 +18,8 @@ namespace lgi::experiments {
 
 struct PeriodicRequest {
   /// Called after each start (an equilibrium's mode, a seed) with the starts done and their
-  /// number; false stops there (a signal): the families so far are returned, no manifolds.
+  /// number; false stops there (a signal): that start is dropped (the signal may have cut it
+  /// short), the families of the starts before it are returned, no manifolds.
   using StartDone = std::function<bool(std::size_t, std::size_t)>;
   FamilySettings settings{};
   std::optional<double> l;         // required unless poincare is given (then it must equal the file's)
@@ -39,6 +40,8 @@ struct PeriodicResult {
   std::vector<std::string> failures;  // starts with no family, manifolds not grown
   double l = 0.0;
   std::optional<PhaseSection> section;
+  std::size_t starts = 0, starts_kept = 0;  // the starts, and those whose families are in `rows`
+  bool stopped = false;                     // start_done returned false
 };
 
 /// The families of exactly one kind of start of `r` (UsageError naming the
