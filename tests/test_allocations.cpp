@@ -1,4 +1,5 @@
-// Steps allocate nothing: for every registered scheme, the number of heap
+// Steps allocate nothing: for every registered scheme (the T³ schemes of the
+// Cardan top on Cardan scenes), the number of heap
 // allocations of a run does not depend on its number of steps (per-run
 // set-up may allocate, a step may not). Counted by replacing the global
 // operator new in this test executable (the verification kit's counter).
@@ -6,6 +7,7 @@
 
 #include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
 #include "experiments/analysis/chaos_indicators.hpp"
+#include "experiments/analysis/scheme_verification_cardan.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry/registry.hpp"
 #include "integrators/core/torus_tangent_flow.hpp"
@@ -50,6 +52,30 @@ TEST_CASE("no scheme allocates per step", "[allocations]") {
       const long few = allocations_of_run(scheme, model, scene, 10, h);
       const long many = allocations_of_run(scheme, model, scene, 1000, h);
       INFO(scheme.name << " on " << file << ": " << few << " allocations for 10 steps, " << many << " for 1000");
+      CHECK(many == few);
+    }
+  }
+}
+
+TEST_CASE("no T^3 scheme allocates per step", "[allocations][cardan]") {
+  namespace kit = experiments::verification;
+  REQUIRE(!integrators::cardan_scheme_registry().empty());
+  for (const char* name : {"cardan_euler_tilted", "cardan_general_horizontal"}) {
+    const kit::CardanProblem p = kit::load_cardan_problem(LGI_SCENES_DIR, name);
+    for (const auto& scheme : integrators::cardan_scheme_registry()) {
+      const double h = 1e-3, tol = scheme.properties.adaptive ? 1e-8 : 0.0;
+      auto allocations = [&](std::int64_t steps) {
+        system::TorusState x = p.scene.cardan_initial;
+        integrators::BasicNullObserver<system::TorusState> none;
+        const long before = experiments::verification::counted_allocations();
+        const auto stats = kit::run_cardan_span(scheme, p.top, x, 0.0, static_cast<double>(steps) * h, h, tol, none);
+        const long after = experiments::verification::counted_allocations();
+        INFO(scheme.name << " on " << name << ": " << stats.status);
+        REQUIRE(stats.ok);
+        return after - before;
+      };
+      const long few = allocations(10), many = allocations(1000);
+      INFO(scheme.name << " on " << name << ": " << few << " allocations for 10 steps, " << many << " for 1000");
       CHECK(many == few);
     }
   }

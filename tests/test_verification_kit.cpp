@@ -1,8 +1,10 @@
 // The verification kit (experiments/analysis/scheme_verification.hpp), the
 // checks an out-of-tree scheme gets (docs/extending.md): it passes schemes
 // whose facts hold (an explicit RKMK, a symmetric conserving variational
-// scheme, an adaptive pair), and fails each kind of false claim (a wrong
-// order, symmetry, energy conservation), naming the check.
+// scheme, an adaptive pair; every scheme of T³ × ℝ³ on the Cardan problems,
+// and one built outside the registry), and fails each kind of false claim (a
+// wrong order, symmetry, symplecticity, energy or p1 conservation, an
+// invariant the Cardan top does not have), naming the check.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
@@ -13,8 +15,11 @@
 
 #include "experiments/analysis/allocation_counter.hpp"
 #include "experiments/analysis/scheme_verification.hpp"
+#include "experiments/analysis/scheme_verification_cardan.hpp"
 #include "integrators/registry/register_scheme.hpp"
+#include "integrators/registry/torus_registry.hpp"
 #include "integrators/schemes/rkmk.hpp"
+#include "integrators/schemes/torus_explicit.hpp"
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
@@ -40,6 +45,19 @@ verification::Report verified(const integrators::SchemeInfo& s) {
 bool failed(const verification::Report& r, const std::string& prefix) {
   return std::any_of(r.checks.begin(), r.checks.end(),
                      [&](const auto& c) { return !c.passed && c.name.rfind(prefix, 0) == 0; });
+}
+
+std::ptrdiff_t count_named(const verification::Report& r, const std::string& prefix) {
+  return std::count_if(r.checks.begin(), r.checks.end(), [&](const auto& c) { return c.name.rfind(prefix, 0) == 0; });
+}
+
+/// A T³ scheme's report: every check on a Cardan problem (or on none, "-"), the state space named.
+void check_cardan_report(const verification::Report& r) {
+  CHECK(r.state_space == "T^3 x R^3");
+  for (const auto& c : r.checks) {
+    INFO(c.name << " on " << c.problem);
+    CHECK((c.cardan || c.problem == "-"));
+  }
 }
 
 }  // namespace
@@ -112,4 +130,55 @@ TEST_CASE("register_scheme adds an out-of-tree scheme type to the registry", "[v
   CHECK(a.Pi == b.Pi);
   CHECK_THROWS_AS(integrators::register_scheme<integrators::Rkmk<tableaus::kutta3>>({.name = "rkmk3", .family = "RKMK"}),
                   std::invalid_argument);
+}
+
+TEST_CASE("the verification kit passes every scheme of T^3 x R^3 on Cardan problems", "[verification][cardan]") {
+  // From the registry: a T^3 scheme added later is verified here without further code.
+  REQUIRE(!integrators::cardan_scheme_registry().empty());
+  for (const integrators::SchemeInfo& s : integrators::cardan_scheme_registry()) {
+    const verification::Report r = verified(s);
+    INFO(s.name);
+    CHECK(r.passed());
+    check_cardan_report(r);
+    CHECK(count_named(r, "order") >= 2);
+    CHECK(count_named(r, "no allocation per step") == 2);
+    if (s.properties.symmetric && !s.properties.adaptive) CHECK(count_named(r, "symmetry") == 2);
+    if (s.properties.conserves_energy) CHECK(count_named(r, "conserves energy") >= 1);
+    if (s.properties.conserves_vertical_momentum) CHECK(count_named(r, "conserves p1") >= 1);
+  }
+}
+
+TEST_CASE("the verification kit verifies a T^3 scheme built outside the registry", "[verification][cardan]") {
+  // Runge-Kutta on Kutta's third-order tableau on T^3: an entry made with cardan_entry, never registered.
+  const integrators::SchemeInfo s =
+      integrators::torus::cardan_entry<integrators::torus::TorusRk<tableaus::kutta3>>("cardan-rk3", "test");
+  const verification::Report r = verified(s);
+  CHECK(r.passed());
+  check_cardan_report(r);
+  CHECK(count_named(r, "order 3") == 2);
+  CHECK(count_named(r, "conserves p1") == 1);  // only where the outer axis is vertical
+}
+
+TEST_CASE("the verification kit fails false claims of T^3 schemes, naming them", "[verification][cardan]") {
+  integrators::SchemeInfo liar = *integrators::find_cardan_scheme("cardan-rk4");
+  liar.name = "cardan-rk4-with-false-claims";
+  liar.order = 5;
+  liar.properties.symmetric = true;
+  liar.properties.symplectic = true;
+  liar.properties.conserves_energy = true;
+  liar.properties.conserves_momentum_norm = true;  // the Cardan top has no |Pi| integral
+  const verification::Report r = verified(liar);
+  CHECK_FALSE(r.passed());
+  check_cardan_report(r);
+  CHECK(failed(r, "order 5"));
+  CHECK(failed(r, "symmetry"));
+  CHECK(failed(r, "symplectic"));
+  CHECK(failed(r, "conserves energy"));
+  CHECK(failed(r, "conserves |Pi|"));
+  // The discrete gradient does not keep p1 (its correction has an O(h^3) component along q1: torus_implicit.hpp).
+  integrators::SchemeInfo dg = *integrators::find_cardan_scheme("cardan-dg");
+  dg.name = "cardan-dg-claiming-p1";
+  dg.properties.conserves_vertical_momentum = true;
+  const verification::Report r_dg = verified(dg);
+  CHECK(failed(r_dg, "conserves p1"));
 }

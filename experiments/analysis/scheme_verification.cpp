@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "experiments/analysis/reference_solution.hpp"
+#include "experiments/analysis/scheme_verification_cardan.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/system/free_body_exact.hpp"
 #include "integrators/system/invariants.hpp"
@@ -67,23 +68,8 @@ std::string format_points(const std::vector<ConvergencePoint>& pts) {
 }
 
 Check order_check_fixed(const integrators::SchemeInfo& s, const Problem& p, int order) {
-  const std::vector<ConvergencePoint> all = fixed_step_errors(s, p.model, p.scene.initial, p.reference, p.t_end, order);
-  const SlopeFit fit = fit_finest(all);
-  Check c{"order " + std::to_string(order), p.name, false, {}};
-  const bool exact = !all.empty() && fit.points == 0 &&
-                     std::all_of(all.begin(), all.end(), [](const auto& pt) { return pt.error < floor_error; });
-  std::ostringstream d;
-  if (exact) {
-    c.passed = true;
-    d << "exact: every error below " << floor_error;
-  } else {
-    const OrderVerdict v = order_verdict(fit, all, order);
-    c.passed = v != OrderVerdict::not_shown;
-    if (v == OrderVerdict::pre_asymptotic) d << "pre-asymptotic down to the floor " << floor_error << ", ";
-    d << "slope " << fit.slope << " from " << fit.points << " points;" << format_points(all);
-  }
-  c.detail = d.str();
-  return c;
+  return fixed_step_order_check(fixed_step_errors(s, p.model, p.scene.initial, p.reference, p.t_end, order), order,
+                                p.name);
 }
 
 Check order_check_adaptive(const integrators::SchemeInfo& s, const Problem& p, int order) {
@@ -93,14 +79,7 @@ Check order_check_adaptive(const integrators::SchemeInfo& s, const Problem& p, i
     if (!r.stats.ok || r.stats.steps == 0) continue;
     all.push_back({p.t_end / static_cast<double>(r.stats.steps), error_of(r.final, p.reference)});
   }
-  const SlopeFit fit = fit_finest(all);
-  Check c{"order " + std::to_string(order) + " (adaptive, against the mean step)", p.name, false, {}};
-  c.passed = fit.points >= 3 && fit.slope >= order - std::max(0.5, 0.15 * order) &&
-             (order > 5 || fit.slope <= order + std::max(0.5, 0.25 * order));
-  std::ostringstream d;
-  d << "slope " << fit.slope << " from " << fit.points << " points;" << format_points(all);
-  c.detail = d.str();
-  return c;
+  return adaptive_order_check(all, order, p.name);
 }
 
 void order_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
@@ -111,14 +90,7 @@ void order_checks(const integrators::SchemeInfo& s, const Options& o, Report& re
     report.checks.push_back(s.properties.adaptive ? order_check_adaptive(s, p, order)
                                                   : order_check_fixed(s, p, order));
   }
-  // A fixed-step order must be shown somewhere, not only be pre-asymptotic everywhere.
-  if (s.properties.adaptive) return;
-  const bool shown = std::any_of(report.checks.begin(), report.checks.end(), [](const Check& c) {
-    return c.name.starts_with("order") && c.passed && !c.detail.starts_with("pre-asymptotic");
-  });
-  if (!shown)
-    report.checks.push_back({"order " + std::to_string(s.order), "-", false,
-                             "not shown on any problem (pre-asymptotic or unsupported everywhere)"});
+  require_order_shown(s, report);
 }
 
 void symmetry_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
@@ -194,41 +166,96 @@ void allocation_checks(const integrators::SchemeInfo& s, const Options& o, Repor
   }
 }
 
-/// A claim no problem here could check is a failure, not a silent pass.
+/// A claim no problem here could check is a failure, not a silent pass. On
+/// T³ × ℝ³ "vertical momentum" is the cyclic p1 (scheme_facts.hpp), and
+/// the Cardan top has no |Π| or spatial momentum integral: such claims fail.
 void unchecked_claims(const integrators::SchemeInfo& s, Report& report) {
   auto checked = [&](const std::string& prefix) {
     return std::any_of(report.checks.begin(), report.checks.end(),
                        [&](const Check& c) { return c.name.rfind(prefix, 0) == 0; });
   };
   const auto& p = s.properties;
-  const std::pair<bool, const char*> claims[] = {{s.order > 0, "order"},
-                                                 {p.symmetric && !p.adaptive, "symmetry"},
-                                                 {p.conserves_energy, "conserves energy"},
-                                                 {p.conserves_momentum_norm, "conserves |Pi|"},
-                                                 {p.conserves_spatial_momentum, "conserves spatial momentum"},
-                                                 {p.conserves_vertical_momentum, "conserves Pi.Gamma"}};
+  const bool torus = s.support == integrators::SceneSupport::cardan_only;
+  const std::pair<bool, const char*> claims[] = {
+      {s.order > 0, "order"},
+      {p.symmetric && !p.adaptive, "symmetry"},
+      {torus && p.symplectic && !p.adaptive, "symplectic"},
+      {p.conserves_energy, "conserves energy"},
+      {p.conserves_momentum_norm, "conserves |Pi|"},
+      {p.conserves_spatial_momentum, "conserves spatial momentum"},
+      {p.conserves_vertical_momentum, torus ? "conserves p1" : "conserves Pi.Gamma"}};
   for (const auto& [claimed, name] : claims)
     if (claimed && !checked(name))
-      report.checks.push_back({name, "-", false, "claimed, but no problem of the kit supports the scheme"});
+      report.checks.push_back({name, "-", false,
+                               std::string("claimed, but no ") + (torus ? "Cardan " : "") +
+                                   "problem of the kit supports the scheme or has this invariant"});
 }
 
 }  // namespace
 
-std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
-                                                const system::State& initial, const system::State& reference,
-                                                double t_end, int order) {
+std::vector<ConvergencePoint> ladder_errors(int order, const std::function<std::optional<double>(double)>& error_at) {
   const double ratio = std::max(std::pow(10.0, -1.0 / (2.0 * order)), 0.5);
   const double h0 = order >= 4 ? 1.0 : 0.2;
   const double h_min = order == 1 ? 5e-5 : 1e-3;
   std::vector<ConvergencePoint> all;
   for (double h = h0; h >= h_min; h *= ratio) {
-    const RunResult r = run_once(scheme, model, initial, make_config(t_end, h, std::nullopt));
-    if (!r.stats.ok) continue;  // refused or failed at a coarse step
-    const double e = error_of(r.final, reference);
-    all.push_back({h, e});
-    if (e < floor_error) break;
+    const std::optional<double> e = error_at(h);
+    if (!e) continue;  // refused or failed at a coarse step
+    all.push_back({h, *e});
+    if (*e < floor_error) break;
   }
   return all;
+}
+
+std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
+                                                const system::State& initial, const system::State& reference,
+                                                double t_end, int order) {
+  return ladder_errors(order, [&](double h) -> std::optional<double> {
+    const RunResult r = run_once(scheme, model, initial, make_config(t_end, h, std::nullopt));
+    if (!r.stats.ok) return std::nullopt;
+    return error_of(r.final, reference);
+  });
+}
+
+Check fixed_step_order_check(const std::vector<ConvergencePoint>& all, int order, std::string problem) {
+  const SlopeFit fit = fit_finest(all);
+  Check c{"order " + std::to_string(order), std::move(problem), false, {}};
+  const bool exact = !all.empty() && fit.points == 0 &&
+                     std::all_of(all.begin(), all.end(), [](const auto& pt) { return pt.error < floor_error; });
+  std::ostringstream d;
+  if (exact) {
+    c.passed = true;
+    d << "exact: every error below " << floor_error;
+  } else {
+    const OrderVerdict v = order_verdict(fit, all, order);
+    c.passed = v != OrderVerdict::not_shown;
+    if (v == OrderVerdict::pre_asymptotic) d << "pre-asymptotic down to the floor " << floor_error << ", ";
+    d << "slope " << fit.slope << " from " << fit.points << " points;" << format_points(all);
+  }
+  c.detail = d.str();
+  return c;
+}
+
+Check adaptive_order_check(const std::vector<ConvergencePoint>& all, int order, std::string problem) {
+  const SlopeFit fit = fit_finest(all);
+  Check c{"order " + std::to_string(order) + " (adaptive, against the mean step)", std::move(problem), false, {}};
+  c.passed = fit.points >= 3 && fit.slope >= order - std::max(0.5, 0.15 * order) &&
+             (order > 5 || fit.slope <= order + std::max(0.5, 0.25 * order));
+  std::ostringstream d;
+  d << "slope " << fit.slope << " from " << fit.points << " points;" << format_points(all);
+  c.detail = d.str();
+  return c;
+}
+
+void require_order_shown(const integrators::SchemeInfo& s, Report& report) {
+  // A fixed-step order must be shown somewhere, not only be pre-asymptotic everywhere.
+  if (s.order == 0 || s.properties.adaptive) return;
+  const bool shown = std::any_of(report.checks.begin(), report.checks.end(), [](const Check& c) {
+    return c.name.starts_with("order") && c.passed && !c.detail.starts_with("pre-asymptotic");
+  });
+  if (!shown)
+    report.checks.push_back({"order " + std::to_string(s.order), "-", false,
+                             "not shown on any problem (pre-asymptotic or unsupported everywhere)"});
 }
 
 OrderVerdict order_verdict(const SlopeFit& fit, const std::vector<ConvergencePoint>& points, int order) {
@@ -285,19 +312,24 @@ bool Report::passed() const {
 }
 
 Report verify_scheme(const integrators::SchemeInfo& scheme, const Options& options) {
-  Report report{scheme.name, {}};
-  order_checks(scheme, options, report);
-  if (scheme.properties.symmetric && !scheme.properties.adaptive) symmetry_checks(scheme, options, report);
-  conservation_checks(scheme, options, report);
-  allocation_checks(scheme, options, report);
+  Report report{scheme.name, integrators::state_space_name(scheme), {}};
+  if (scheme.support == integrators::SceneSupport::cardan_only) {
+    cardan_checks(scheme, options, report);  // the Cardan problems (scheme_verification_cardan.hpp)
+  } else {
+    order_checks(scheme, options, report);
+    if (scheme.properties.symmetric && !scheme.properties.adaptive) symmetry_checks(scheme, options, report);
+    conservation_checks(scheme, options, report);
+    allocation_checks(scheme, options, report);
+  }
   unchecked_claims(scheme, report);
   return report;
 }
 
 void print_report(std::ostream& out, const Report& report) {
-  out << "verification of " << report.scheme << '\n';
+  out << "verification of " << report.scheme << " (" << report.state_space << ")\n";
   for (const Check& c : report.checks)
-    out << "  " << (c.passed ? "pass" : "FAIL") << "  " << c.name << " on " << c.problem << ": " << c.detail << '\n';
+    out << "  " << (c.passed ? "pass" : "FAIL") << "  " << c.name << " on " << c.problem
+        << (c.cardan ? " [Cardan top, T^3 x R^3]" : "") << ": " << c.detail << '\n';
   out << (report.passed() ? "  every stated fact holds\n" : "  some stated facts do not hold\n");
 }
 

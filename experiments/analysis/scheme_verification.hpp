@@ -1,7 +1,11 @@
 #pragma once
 // The verification kit: lgi's generic checks of a scheme's stated facts, run
 // on any registered scheme, an out-of-tree one included (docs/extending.md,
-// examples/custom_scheme/). What it checks, from the scheme's SchemeInfo:
+// examples/custom_scheme/), on either state space: a scheme of SO(3) × ℝ³ on
+// the problems below, a scheme of T³ × ℝ³ (support cardan_only, run_cardan)
+// on the Cardan problems of scheme_verification_cardan.hpp, with the same
+// step ladders, fits and bounds; the report names the state space and marks
+// each Cardan problem. What it checks, from the scheme's SchemeInfo:
 //  - order: fixed-step schemes, the slope of the global error
 //    (docs/conventions.md §7) against h on problems whose stage fields do not
 //    commute (a constant field would prove nothing): free_body_hlw against
@@ -27,10 +31,13 @@
 //    one of 10, on the same two scenes. Needs a counter of the program's
 //    allocations (allocation_counter.hpp); without one it is not run.
 // Every claim must be checked on at least one problem the scheme supports;
-// a claim that none supports is a failed check, not a silent pass.
+// a claim that none supports is a failed check, not a silent pass (on T³:
+// |Π| and the spatial momentum, which the Cardan top does not conserve).
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,10 +61,12 @@ struct Check {
   std::string problem;  // the scene it ran on
   bool passed = false;
   std::string detail;   // what was measured against what was stated
+  bool cardan = false;  // the problem is a Cardan top (T³ × ℝ³)
 };
 
 struct Report {
   std::string scheme;
+  std::string state_space;  // integrators::state_space_name: "SO(3) x R^3" or "T^3 x R^3"
   std::vector<Check> checks;
   /// Every check passed, and there was at least one.
   bool passed() const;
@@ -83,10 +92,12 @@ struct SlopeFit {
 /// regime dropped).
 SlopeFit fitted_slope(const std::vector<ConvergencePoint>& points, double floor, double ceiling);
 
+/// error_at(h) at the steps of the order check for a stated order p (top of
+/// this file), coarsest first, stopping below the 1e-10 floor; a step where
+/// it returns nothing (a failed run, a refused coarse step) is left out.
+std::vector<ConvergencePoint> ladder_errors(int order, const std::function<std::optional<double>(double)>& error_at);
 /// The global errors at t_end of fixed-step runs of a scheme stating order p
-/// at the steps of the order check (top of this file), coarsest first,
-/// stopping below the 1e-10 floor; runs that fail (a refused coarse step)
-/// are left out.
+/// on the ladder of ladder_errors().
 std::vector<ConvergencePoint> fixed_step_errors(const integrators::SchemeInfo& scheme, const system::AnyModel& model,
                                                 const system::State& initial, const system::State& reference,
                                                 double t_end, int order);
@@ -101,6 +112,15 @@ SlopeFit fit_finest(const std::vector<ConvergencePoint>& points);
 /// problem neither confirms nor refutes p; another problem must show it.
 enum class OrderVerdict { shown, pre_asymptotic, not_shown };
 OrderVerdict order_verdict(const SlopeFit& fit, const std::vector<ConvergencePoint>& points, int order);
+
+/// The order check on one problem from the ladder's points (exact: every
+/// error below the floor; else order_verdict), named "order p".
+Check fixed_step_order_check(const std::vector<ConvergencePoint>& points, int order, std::string problem);
+/// The adaptive order check from (mean step, error) points (top of this file).
+Check adaptive_order_check(const std::vector<ConvergencePoint>& points, int order, std::string problem);
+/// A fixed-step order must be shown on some problem, not be pre-asymptotic
+/// (or unsupported) everywhere: else adds a failed "order p" check.
+void require_order_shown(const integrators::SchemeInfo& scheme, Report& report);
 
 /// The largest relative drift of each invariant of a scene from its value at
 /// the first sample: the energy, the spatial momentum (|m − m0|/|m0|) and
