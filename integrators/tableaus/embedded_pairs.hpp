@@ -116,44 +116,41 @@ constexpr bool extension_consistent(const P& p) {
 }
 }  // namespace detail
 
-/// The order of the dense-output coefficient d_k: the largest q ≤ max_order
-/// such that Σ_i d_k,i Φ_i(τ) = δ_{k,|τ|}/γ(τ) for |τ| ≤ q (rooted_trees.hpp).
-template <class P>
-constexpr int dense_coefficient_order(const P& p, std::size_t k, int max_order,
-                                      double tolerance = order_condition_tolerance) {
-  return order_of_weights(p.extended.a, monomial_dense(p)[k], max_order, tolerance, static_cast<int>(k));
-}
-
-namespace detail {
-/// One constant evaluation per coefficient: over 16 stages, the seven
-/// coefficients together would exceed the compiler's constexpr step budget.
-template <const auto& P, std::size_t K>
-inline constexpr int dense_coefficient_order_v =
-    dense_coefficient_order(P, K, capped_order(P.dense_order + 1), pair_condition_tolerance);
-}  // namespace detail
-
 /// The order q of the continuous extension, checked up to one more than the
-/// stated order: the smallest order of its coefficients d_1..d_D.
+/// stated order: the smallest order of its coefficients d_1..d_D, the largest
+/// q_k ≤ that such that Σ_i d_k,i Φ_i(τ) = δ_{k,|τ|}/γ(τ) for |τ| ≤ q_k
+/// (rooted_trees.hpp). The D coefficients share one pass over the trees.
 template <const auto& P>
 constexpr int dense_output_order() {
   using Pair = std::remove_cvref_t<decltype(P)>;
-  return []<std::size_t... K>(std::index_sequence<K...>) {
-    int q = max_checked_order;
-    ((q = detail::dense_coefficient_order_v<P, K + 1> < q ? detail::dense_coefficient_order_v<P, K + 1> : q), ...);
-    return q;
-  }(std::make_index_sequence<Pair::dense_degree>{});
+  constexpr std::size_t D = Pair::dense_degree;
+  const auto dense = monomial_dense(P);
+  std::array<std::array<double, Pair::dense_stages>, D> coefficients{};
+  std::array<int, D> powers{};
+  for (std::size_t k = 0; k < D; ++k) {
+    coefficients[k] = dense[k + 1];
+    powers[k] = static_cast<int>(k + 1);
+  }
+  const auto orders = orders_of_weights(P.extended.a, coefficients, powers, capped_order(P.dense_order + 1),
+                                        pair_condition_tolerance);
+  int q = max_checked_order;
+  for (const int o : orders) q = o < q ? o : q;
+  return q;
 }
 
 /// Every compile-time check of a pair: consistency, the stated orders of b,
-/// b̂ and b̌ hold and the next ones fail, the extension repeats the step and
-/// ends at b, and the dense output has exactly its stated order.
+/// b̂ and b̌ hold and the next ones fail (the three in one pass over the
+/// trees), the extension repeats the step and ends at b, and the dense output
+/// has exactly its stated order.
 template <const auto& P>
 constexpr bool pair_checks_out() {
   constexpr double tol = pair_condition_tolerance;
-  return consistent_explicit(P) && classical_order(P, tol) == capped_order(P.order) &&
-         classical_order_of_weights(P, P.b_hat, tol) == capped_order(P.embedded_order) &&
-         (P.low_order == 0 || classical_order_of_weights(P, P.b_low, tol) == capped_order(P.low_order)) &&
-         detail::extension_consistent(P) && dense_output_order<P>() == capped_order(P.dense_order);
+  if (!consistent_explicit(P) || !detail::row_sums_match(P, tol)) return false;
+  const auto orders =
+      orders_of_weights(P.a, std::array{P.b, P.b_hat, P.b_low}, std::array<int, 3>{}, max_checked_order, tol);
+  return orders[0] == capped_order(P.order) && orders[1] == capped_order(P.embedded_order) &&
+         (P.low_order == 0 || orders[2] == capped_order(P.low_order)) && detail::extension_consistent(P) &&
+         dense_output_order<P>() == capped_order(P.dense_order);
 }
 
 }  // namespace lgi::tableaus

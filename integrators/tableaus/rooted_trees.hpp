@@ -103,27 +103,33 @@ constexpr bool agrees(double value, double scale, double target, double toleranc
 }
 }  // namespace detail
 
-/// The largest p ≤ max_order such that the weights w satisfy the order
-/// conditions of every tree with at most p vertices, each taken as
-///   Σ_i w_i Φ_i(τ) = (|τ| == power ? 1/γ(τ) : 0),
-/// with power = 0 meaning "the target is 1/γ(τ) for every tree" (plain
-/// weights b). A dense-output coefficient w_k is checked with power = k.
-/// Each sum is compared with a relative tolerance whose scale is the same sum
-/// in absolute values (which bounds its rounding error).
-template <std::size_t S, class Weights>
-constexpr int order_of_weights(const std::array<std::array<double, S>, S>& a, const Weights& w, int max_order,
-                               double tolerance, int power = 0) {
+/// For each of N weight vectors w_r over one tableau, the largest p ≤ max_order
+/// such that w_r satisfies the order conditions of every tree with at most p
+/// vertices, each taken as
+///   Σ_i w_r,i Φ_i(τ) = (|τ| == powers[r] ? 1/γ(τ) : 0),
+/// with power 0 meaning "the target is 1/γ(τ) for every tree" (plain weights
+/// b). A dense-output coefficient w_k is checked with power = k. Each sum is
+/// compared with a relative tolerance whose scale is the same sum in absolute
+/// values (which bounds its rounding error). A Φ(τ) is built once for all N
+/// vectors (a dense output's D coefficients, or b and b̂ of a pair): it is
+/// most of a check's constant evaluation (docs/performance.md §8).
+template <std::size_t S, std::size_t N>
+constexpr std::array<int, N> orders_of_weights(const std::array<std::array<double, S>, S>& a,
+                                               const std::array<std::array<double, S>, N>& w,
+                                               const std::array<int, N>& powers, int max_order, double tolerance) {
   // A Φ(τ) and |A| |Φ(τ)| for every tree checked so far.
   struct Stored {
     std::array<double, S> value{}, scale{};
   };
   std::array<Stored, Forest::capacity> a_phi{};
-  int order = max_order;
+  std::array<int, N> order{};
+  order.fill(max_order);
   for (std::size_t k = 0; k < rooted_trees.count; ++k) {
     const RootedTree& tree = rooted_trees.trees[k];
-    if (tree.order > order) break;  // trees come by non-decreasing order
+    int highest = 0;  // trees come by non-decreasing order: stop past every vector's
+    for (const int o : order) highest = o > highest ? o : highest;
+    if (tree.order > highest) break;
     std::array<double, S> phi{}, phi_scale{};
-    double sum = 0.0, scale = 0.0;
     for (std::size_t i = 0; i < S; ++i) {
       phi[i] = 1.0;
       phi_scale[i] = 1.0;
@@ -131,14 +137,16 @@ constexpr int order_of_weights(const std::array<std::array<double, S>, S>& a, co
         phi[i] *= a_phi[tree.children[static_cast<std::size_t>(m)]].value[i];
         phi_scale[i] *= a_phi[tree.children[static_cast<std::size_t>(m)]].scale[i];
       }
-      sum += w[i] * phi[i];
-      scale += detail::magnitude(w[i]) * phi_scale[i];
     }
-    const double target = (power == 0 || power == tree.order) ? 1.0 / tree.gamma : 0.0;
-    if (!detail::agrees(sum, scale, target, tolerance)) {
-      order = tree.order - 1;  // this order fails; finish no higher tree
-      if (order < 1) return 0;
-      continue;
+    for (std::size_t r = 0; r < N; ++r) {
+      if (tree.order > order[r]) continue;  // this vector failed a smaller tree
+      double sum = 0.0, scale = 0.0;
+      for (std::size_t i = 0; i < S; ++i) {
+        sum += w[r][i] * phi[i];
+        scale += detail::magnitude(w[r][i]) * phi_scale[i];
+      }
+      const double target = (powers[r] == 0 || powers[r] == tree.order) ? 1.0 / tree.gamma : 0.0;
+      if (!detail::agrees(sum, scale, target, tolerance)) order[r] = tree.order - 1;  // finish no higher tree
     }
     if (tree.order == max_order) continue;  // no bigger tree grafts it
     for (std::size_t i = 0; i < S; ++i) {
@@ -153,6 +161,15 @@ constexpr int order_of_weights(const std::array<std::array<double, S>, S>& a, co
     }
   }
   return order;
+}
+
+/// orders_of_weights for one vector w (any indexable of S doubles).
+template <std::size_t S, class Weights>
+constexpr int order_of_weights(const std::array<std::array<double, S>, S>& a, const Weights& w, int max_order,
+                               double tolerance, int power = 0) {
+  std::array<std::array<double, S>, 1> rows{};
+  for (std::size_t i = 0; i < S; ++i) rows[0][i] = w[i];
+  return orders_of_weights(a, rows, std::array<int, 1>{power}, max_order, tolerance)[0];
 }
 
 /// The largest relative residual γ(τ)|Σ_i w_i Φ_i(τ) − 1/γ(τ)| over the trees
