@@ -2,7 +2,6 @@
 // The inertia tensor J about the reference point (the fixed point of a top,
 // the centre of mass of a free body), with its inverse and principal frame.
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include "lie/so3.hpp"
 
@@ -27,22 +26,9 @@ struct Inertia {
 
 /// Builds an Inertia from a symmetric positive definite tensor (the scene
 /// reader has already checked symmetry and definiteness).
-inline Inertia make_inertia(const Mat3& J) {
-  Inertia in;
-  in.J = 0.5 * (J + J.transpose());
-  in.J_inv = in.J.inverse();
-  in.diagonal = in.J(0, 1) == 0.0 && in.J(0, 2) == 0.0 && in.J(1, 2) == 0.0;
-  if (in.diagonal) {
-    in.principal = in.J.diagonal();
-    in.principal_axes = Mat3::Identity();
-  } else {
-    Eigen::SelfAdjointEigenSolver<Mat3> eig(in.J);
-    in.principal = eig.eigenvalues();
-    in.principal_axes = eig.eigenvectors();
-    if (in.principal_axes.determinant() < 0.0) in.principal_axes.col(2) *= -1.0;
-  }
-  return in;
-}
+// Out of line (inertia.cpp): the 3×3 eigensolver is instantiated once, not in
+// each of the ~200 units that include this header (docs/performance.md §8).
+Inertia make_inertia(const Mat3& J);
 
 /// Parallel-axis theorem (docs/conventions.md §5): J = J_c + m(|χ|² I − χ χᵀ).
 inline Mat3 parallel_axis(const Mat3& J_cm, double mass, const Vec3& chi) {
