@@ -46,6 +46,31 @@ Mat6 adapted_basis(const PeriodicFlow& body, const Vec6& x0) {
   return qr.householderQ() * Mat6::Identity();
 }
 
+/// The trivial multipliers again, with the left basis at the shot's end x_T
+/// (single shooting): the discrete map keeps H, C, |Γ|² exactly, so
+/// ∇I(x_T)ᵀ M = ∇I(x0)ᵀ and M f(x0) ≈ f(x_T) hold without the error
+/// (∇I(x0) − ∇I(x_T))ᵀ M, which the growth of M (≈ tr P) makes large on
+/// strongly hyperbolic orbits. The nontrivial pair keeps the basis at x0.
+void trivial_from_both_ends(const PeriodicFlow& body, PeriodicOrbit& o, const Vec6& end) {
+  const Mat6 Q0 = adapted_basis(body, o.x0);
+  Mat6 QT = adapted_basis(body, end);
+  for (int k = 0; k < 6; ++k)  // Householder's signs may differ between the ends
+    if (QT.col(k).dot(Q0.col(k)) < 0.0) QT.col(k) *= -1.0;
+  const Mat6 B = QT.transpose() * o.monodromy * Q0;
+  const Eigen::EigenSolver<Eigen::Matrix3d> normal(B.topLeftCorner<3, 3>(), false);
+  std::array<std::complex<double>, 4> mu{};
+  for (int k = 0; k < 3; ++k) mu[static_cast<std::size_t>(k)] = normal.eigenvalues()(k);
+  mu[3] = B(3, 3);
+  std::sort(mu.begin(), mu.end(), [](auto a, auto b) { return std::abs(a - 1.0) < std::abs(b - 1.0); });
+  std::complex<double> product = o.multipliers[4] * o.multipliers[5];
+  o.trivial_deviation = 0.0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    o.multipliers[k] = mu[k], product *= mu[k];
+    o.trivial_deviation = std::max(o.trivial_deviation, std::abs(mu[k] - 1.0));
+  }
+  o.product_deviation = std::abs(product - 1.0);
+}
+
 }  // namespace
 
 CondensedSystem condensed_system(const PeriodicFlow& body, const FamilyPoint& z, const FamilyPoint& z_p,
@@ -102,6 +127,7 @@ PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p
   FamilyPoint z = z_p;
   const Vec6 f_ref = flow_field(body, z_p.head<6>()).normalized();
   double best = INFINITY, previous = INFINITY;
+  Vec6 best_end = z_p.head<6>();
   for (int it = 0; it <= s.max_iterations; ++it) {
     Linearised L = linearise(body, z, z_p, t, f_ref, fixed, s);
     if (!L.shot.ok || !L.r.allFinite()) break;
@@ -111,6 +137,7 @@ PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p
       best = res;
       record_iterate(o, z, res, L.shot.monodromy, L.A);
       o.drift = L.shot.drift;
+      best_end = L.shot.end;
     }
     if (newton_done(it, res, previous, s)) break;
     previous = res;
@@ -122,6 +149,7 @@ PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p
   }
   o.converged = o.residual <= s.tolerance;  // false when no iterate was finite (residual ∞)
   if (o.residual < INFINITY) classify_orbit(body, o);
+  if (o.residual < INFINITY && !body.cardan) trivial_from_both_ends(body, o, best_end);
   return o;
 }
 
