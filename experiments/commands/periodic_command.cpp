@@ -1,7 +1,8 @@
 // lgi periodic --scene FILE --l L (--from-equilibria | --seed-file F | --seeds-from-poincare P.h5 ...)
 //              [--continue-in h|l] [--h-range A:B] [--l-range A:B] [--steps N] [--h-step D] [--l-step D]
 //              [--manifolds N ...] [--dt DT] [--amplitude E] --out FILE.h5 [--force] [--quiet]
-// Periodic orbits of a heavy top's Euler–Poisson flow: the Lyapunov centre
+// Periodic orbits of a heavy top's Euler–Poisson flow (or of a Cardan top's
+// flow reduced at p1 = ℓ, analysis/periodic/periodic_flow.hpp): the Lyapunov centre
 // families of the linearly stable relative equilibria, or families from seeds
 // or from points of a Poincaré section, continued in h at fixed ℓ or in ℓ at
 // fixed h, and the manifolds of hyperbolic orbits on the section
@@ -33,6 +34,7 @@
 #include "experiments/io/hdf5_support.hpp"
 #include "experiments/io/number_format.hpp"
 #include "experiments/io/scene_reader.hpp"
+#include "experiments/io/scene_suspension.hpp"
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
 #include "lgi/build_info.hpp"
@@ -108,7 +110,7 @@ std::string failures_text(const std::vector<std::string>& failures) {
 std::map<std::string, std::string> periodic_parameters(const PeriodicOptions& o, const system::Scene& scene, double l,
                                                        const std::vector<std::string>& failures) {
   const bool in_l = o.continue_in == "l";
-  return {{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
+  std::map<std::string, std::string> p{{"subcommand", "periodic"}, {"command_line", o.command_line}, {"scene_file", scene.file},
           {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version},
           {"l", format_general(l, 17)}, {"dt", format_general(o.dt, 17)},
           {"integrator", o.shooting_points == 1
@@ -124,6 +126,13 @@ std::map<std::string, std::string> periodic_parameters(const PeriodicOptions& o,
           {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
           {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
           {"failures", failures_text(failures)}};
+  if (scene.suspension) {
+    p["integrator"] = std::string("classical RK4 with its exact (dual-number) tangent flow on T^3 x R^3, ") +
+                      (o.shooting_points == 1 ? "ceil(T/dt) equal steps" : "ceil(T/(M dt)) equal steps a segment");
+    p["reduction"] = "Cardan top at p1 = l: q1 dropped (reset after each shot; its turn is cardan_drift), "
+                     "q2, q3 modulo 2 pi";
+  }
+  return p;
 }
 
 /// Counts the starts on `progress` (made at the first call, when their number is known);
@@ -139,7 +148,7 @@ PeriodicRequest::StartDone progress_of_starts(std::optional<SweepProgress>& prog
 
 /// After a signal: the families of the starts finished before it (not the manifolds) in
 /// <out>.partial, the HDF5 file alone, its status saying how many starts it holds.
-int write_interrupted(const PeriodicOptions& o, const system::Scene& scene, const HeavyTopBody& body,
+int write_interrupted(const PeriodicOptions& o, const system::Scene& scene, const PeriodicFlow& body,
                       const PeriodicResult& result) {
   const std::string partial = o.out + ".partial";
   auto parameters = periodic_parameters(o, scene, result.l, result.failures);
@@ -152,14 +161,28 @@ int write_interrupted(const PeriodicOptions& o, const system::Scene& scene, cons
   return interrupted_exit_status();
 }
 
+/// A Cardan top whose outer angle is cyclic (tilt 0, or no gravity): else no
+/// momentum to reduce at (exit 2, naming suspension.tilt); and only the starts it has.
+system::CardanTop cardan_top_for_periodic(const PeriodicOptions& o, const system::Scene& scene) {
+  system::CardanTop top = cardan_top(scene);
+  if (!top.outer_angle_cyclic())
+    throw UsageError("--scene: " + scene.file + ": suspension.tilt = " + format_general(top.suspension.tilt, 17) +
+                     ": a tilted outer axis under gravity leaves no cyclic angle (p1 is no integral), so there is no "
+                     "reduced flow at fixed --l; lgi periodic on a Cardan top needs tilt = 0");
+  if (!o.poincare.empty()) throw UsageError("--seeds-from-poincare: not for a Cardan top (" + scene.file + ")");
+  if (!o.critical.empty()) throw UsageError("--from-critical: a Kovalevskaya top only, not the Cardan top " + scene.file);
+  return top;
+}
+
 int run_periodic(const PeriodicOptions& o) {
   check_flags(o);
   hdf5::check_output_target(o.out, o.force);  // before the work, not after it
   const bool in_l = o.continue_in == "l";
   const auto [p_min, p_max] = bounds(in_l ? o.l_range : o.h_range, in_l ? "--l-range" : "--h-range");
   const system::Scene scene = read_scene(o.scene);
-  if (scene.suspension) throw UsageError("--scene: " + scene.file + " is a Cardan top; lgi periodic takes a heavy top");
-  const HeavyTopBody body = equilibria_body(scene);
+  std::optional<system::CardanTop> top;
+  if (scene.suspension) top = cardan_top_for_periodic(o, scene);
+  const PeriodicFlow body = top ? PeriodicFlow(*top) : PeriodicFlow(equilibria_body(scene));
   PeriodicRequest req;
   FamilySettings& s = req.settings;
   s.shooting.dt = o.dt, s.shooting.in_l = in_l, s.shooting.shooting_points = o.shooting_points;
@@ -199,8 +222,9 @@ int run_periodic(const PeriodicOptions& o) {
   if (o.quiet) return exit_ok;
   int degenerate = 0;
   for (const auto& r : rows) {
-    std::printf("family=%d index=%d l=%.12g h=%.12g period=%.12g residual=%.2e stability=%s%s%s%s\n", r.family,
-                r.index, r.orbit.l, r.orbit.h, r.orbit.period, r.orbit.residual, r.orbit.stability.c_str(),
+    std::printf("family=%d index=%d l=%.12g h=%.12g period=%.12g residual=%.2e%s stability=%s%s%s%s\n", r.family,
+                r.index, r.orbit.l, r.orbit.h, r.orbit.period, r.orbit.residual,
+                top ? (" drift=" + format_general(r.orbit.drift, 9)).c_str() : "", r.orbit.stability.c_str(),
                 r.orbit.degenerate ? " degenerate" : "", r.event == "none" ? "" : " event=", r.event == "none" ? "" : r.event.c_str());
     degenerate += r.orbit.degenerate ? 1 : 0;
     if (!r.family_end.empty()) std::printf("family=%d ended: %s\n", r.family, r.family_end.c_str());
@@ -208,7 +232,7 @@ int run_periodic(const PeriodicOptions& o) {
   if (degenerate)
     std::printf("note: %d orbit(s) degenerate: the Newton system is rank-deficient and all multipliers are at 1; "
                 "they lie on resonant tori (an integrable top) and are not isolated\n", degenerate);
-  if (const std::string k = appelrot_summary(body, rows); !k.empty()) std::printf("%s\n", k.c_str());
+  if (const std::string k = top ? "" : appelrot_summary(body.body, rows); !k.empty()) std::printf("%s\n", k.c_str());
   for (const RowManifolds& m : manifolds)
     std::printf("manifolds of family=%d: multiplier %.9g, %d crossings a period, %zu section points\n", m.family,
                 m.m.lambda, m.m.returns, m.m.points.size());
@@ -221,14 +245,14 @@ int run_periodic(const PeriodicOptions& o) {
 Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context) {
   auto o = std::make_shared<PeriodicOptions>();
   auto* sub = app.add_subcommand("periodic",
-                                 "Periodic orbits of a heavy top: Lyapunov families from the stable relative "
+                                 "Periodic orbits of a heavy top (or of a Cardan top at fixed p1): Lyapunov families from the stable relative "
                                  "equilibria, from seeds or from points of a Poincare section, their Floquet multipliers "
                                  "and stability, continued in h or in l, and the manifolds of hyperbolic orbits "
                                  "(experiments/PERIODIC.md)");
-  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top")->required();
+  sub->add_option("--scene", o->scene, "Scene file (TOML): a heavy top, or a Cardan top with a vertical outer axis (reduced at p1 = l)")->required();
   sub->add_option("--l", o->l, "The momentum l = Pi.Gamma (with --seeds-from-poincare: the file's, may be left out)");
   sub->add_flag("--from-equilibria", o->from_equilibria, "The Lyapunov families of every linearly stable equilibrium");
-  sub->add_option("--seed-file", o->seed_file, "Seeds, one per line: Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T");
+  sub->add_option("--seed-file", o->seed_file, "Seeds, one per line: Pi1 Pi2 Pi3 Gamma1 Gamma2 Gamma3 T (a Cardan top: q1 q2 q3 p1 p2 p3 T)");
   sub->add_option("--from-critical", o->critical,
                   "H1,H2,...: a Kovalevskaya top's critical periodic orbits at these energies (one per critical value)");
   sub->add_option("--seeds-from-poincare", o->poincare,

@@ -38,6 +38,7 @@ struct Shot {
   Vec6 end;
   Mat6 monodromy;  // ∂(end)/∂(start)
   bool ok = true;  // false: a midpoint solve did not converge, the state is not finite, or a signal came
+  double drift = 0.0;  // a Cardan top's turn of q1 over the shot (periodic_flow.hpp); 0 for a heavy top
 };
 
 /// φ_T(x0) and its derivative, with ⌈T/dt⌉ equal sixth-order steps (top of this file).

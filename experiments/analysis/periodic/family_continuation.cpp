@@ -38,7 +38,7 @@ std::string at_p(const FamilySettings& s, double p) { return (s.shooting.in_l ? 
 
 /// The first step, natural in h: from one orbit (and its equilibrium, if any).
 /// Returns "" or why the family ends.
-std::string natural_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double dh, const Vec6* xe,
+std::string natural_step(const PeriodicFlow& body, std::vector<FamilyOrbit>& rows, double dh, const Vec6* xe,
                          double h_e, const FamilySettings& s) {
   const FamilyOrbit last = rows.back();
   const bool in_l = s.shooting.in_l;
@@ -58,7 +58,7 @@ std::string natural_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& row
 }
 
 /// One pseudo-arclength step of length ds (halved up to five times). Returns "" or why the family ends.
-std::string arclength_step(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double& ds, double ds0,
+std::string arclength_step(const PeriodicFlow& body, std::vector<FamilyOrbit>& rows, double& ds, double ds0,
                            const FamilySettings& s) {
   const auto [a, b] = last_regular_pair(rows);
   const FamilyPoint za = family_point(rows[a].orbit), zb = family_point(rows[b].orbit);
@@ -87,7 +87,7 @@ struct Located {
 /// The orbit on the chord z_a → z_b where g(orbit) = 0 (Illinois regula falsi in s),
 /// found when |g| ≤ 1e-9 at the best iterate.
 template <class G>
-Located locate(const HeavyTopBody& body, const PeriodicOrbit& a, const PeriodicOrbit& b, G g, const FamilySettings& s) {
+Located locate(const PeriodicFlow& body, const PeriodicOrbit& a, const PeriodicOrbit& b, G g, const FamilySettings& s) {
   const FamilyPoint za = family_point(a), chord = family_point(b) - za;
   double s0 = 0.0, s1 = 1.0, g0 = g(a), g1 = g(b);
   int last_side = 0;
@@ -116,7 +116,7 @@ Located locate(const HeavyTopBody& body, const PeriodicOrbit& a, const PeriodicO
 
 /// Locates the events between the last two regular orbits; a sign change that
 /// is not located is added to `notes`.
-void locate_events(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, std::string& notes,
+void locate_events(const PeriodicFlow& body, std::vector<FamilyOrbit>& rows, std::string& notes,
                    const FamilySettings& s) {
   const auto [a, b] = last_regular_pair(rows);
   if (a == b) return;
@@ -163,7 +163,7 @@ void finish(std::vector<FamilyOrbit>& rows, const std::string& end, const std::s
 
 }  // namespace
 
-void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
+void continue_rows(const PeriodicFlow& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
                    double h_equilibrium, const FamilySettings& s, double ds0) {
   int taken = 0;
   std::string notes, end = "steps done";
@@ -189,7 +189,7 @@ void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, dou
   finish(rows, end, notes);
 }
 
-std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOrbit& pd, int family,
+std::vector<FamilyOrbit> doubled_family(const PeriodicFlow& body, const FamilyOrbit& pd, int family,
                                         const FamilySettings& s, std::string& why_not) {
   const PeriodicOrbit& o = pd.orbit;
   // The eigenvector of P for −1: at a period doubling A = P + I has rank one
@@ -221,7 +221,7 @@ std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOr
     }
     // Off the doubled parent (not periodic with half its period), and of period ≈ 2T.
     const Shot half = shoot(body, d.x0, 0.5 * d.period, s.shooting.dt);
-    if (!half.ok || (half.end - d.x0).norm() <= 1e-3 * eps || std::abs(d.period - 2.0 * o.period) > 0.1 * o.period) {
+    if (!half.ok || flow_difference(body, half.end, d.x0).norm() <= 1e-3 * eps || std::abs(d.period - 2.0 * o.period) > 0.1 * o.period) {
       why_not = "the orbit found at amplitude " + at_h(eps) + " is the doubled parent or not of period 2T";
       return {};
     }

@@ -73,13 +73,13 @@ struct FamilyOrbit {
 /// is the first step in h when rows holds one orbit; `equilibrium`, if
 /// given, is the family's equilibrium (the first predictor scales about it).
 /// ds0 > 0 sets the arclength step (else the length of the last chord).
-void continue_rows(const HeavyTopBody& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
+void continue_rows(const PeriodicFlow& body, std::vector<FamilyOrbit>& rows, double first_dh, const Vec6* equilibrium,
                    double h_equilibrium, const FamilySettings& s, double ds0 = 0.0);
 
 /// The doubled family started at a period-doubling row `pd`, numbered
 /// `family` and continued by s.steps orbits in the sense that ε > 0 gives
 /// (empty, with the reason in why_not, if no orbit of period ≈ 2T off the doubled one is found).
-std::vector<FamilyOrbit> doubled_family(const HeavyTopBody& body, const FamilyOrbit& pd, int family,
+std::vector<FamilyOrbit> doubled_family(const PeriodicFlow& body, const FamilyOrbit& pd, int family,
                                         const FamilySettings& s, std::string& why_not);
 
 }  // namespace lgi::experiments

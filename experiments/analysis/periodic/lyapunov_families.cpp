@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "experiments/analysis/cardan_equilibria.hpp"
+
 namespace lgi::experiments {
 
 namespace {
@@ -17,11 +19,12 @@ Vec6 state_of(const RelativeEquilibrium& e) {
   return x;
 }
 
-/// Minimum-norm Newton steps onto Π·Γ = ℓ, |Γ|² = 1.
-Vec6 project_to_leaf(const HeavyTopBody& body, Vec6 x, double l) {
+/// Minimum-norm Newton steps onto Π·Γ = ℓ, |Γ|² = 1 (a Cardan top: p1 = ℓ, q1 = 0).
+Vec6 project_to_leaf(const PeriodicFlow& body, Vec6 x, double l) {
+  const Eigen::Vector2d level = invariant_levels(body, 0.0, l).tail<2>();
   for (int it = 0; it < 8; ++it) {
-    const Invariants inv = euler_poisson_invariants(body, x);
-    const Eigen::Vector2d r(inv.value(1) - l, inv.value(2) - 1.0);
+    const Invariants inv = flow_invariants(body, x);
+    const Eigen::Vector2d r = inv.value.tail<2>() - level;
     const Eigen::Matrix<double, 2, 6> G = inv.gradients.bottomRows<2>();
     x -= G.transpose() * (G * G.transpose()).ldlt().solve(r);
   }
@@ -29,8 +32,8 @@ Vec6 project_to_leaf(const HeavyTopBody& body, Vec6 x, double l) {
 }
 
 /// The real part of the eigenvector of the linearisation at x_e nearest iω, unit length.
-Vec6 mode_direction(const HeavyTopBody& body, const Vec6& xe, double omega) {
-  const Eigen::EigenSolver<Mat6> es(euler_poisson_jacobian(body, xe));
+Vec6 mode_direction(const PeriodicFlow& body, const Vec6& xe, double omega) {
+  const Eigen::EigenSolver<Mat6> es(flow_jacobian(body, xe));
   int best = 0;
   for (int k = 1; k < 6; ++k)
     if (std::abs(es.eigenvalues()(k) - std::complex<double>(0.0, omega)) <
@@ -43,7 +46,7 @@ Vec6 mode_direction(const HeavyTopBody& body, const Vec6& xe, double omega) {
 
 /// Appends `family` and, with s.switch_branches, the doubled family of each of
 /// its period doublings, numbered from next_family on.
-void append_with_branches(const HeavyTopBody& body, std::vector<FamilyOrbit>& all, const std::vector<FamilyOrbit>& family,
+void append_with_branches(const PeriodicFlow& body, std::vector<FamilyOrbit>& all, const std::vector<FamilyOrbit>& family,
                           int& next_family, const FamilySettings& s) {
   const std::size_t last = all.size() + family.size() - 1;
   all.insert(all.end(), family.begin(), family.end());
@@ -64,7 +67,7 @@ void append_with_branches(const HeavyTopBody& body, std::vector<FamilyOrbit>& al
 /// The Lyapunov family from its first orbit at an equilibrium (x_e, h_e):
 /// continued in h, or (s.shooting.in_l) one natural step in h away from the
 /// equilibrium and then in ℓ at that h. Empty rows' family_end says why it ended early.
-std::vector<FamilyOrbit> family_from(const HeavyTopBody& body, const FamilyOrbit& first, const Vec6& xe, double h_e,
+std::vector<FamilyOrbit> family_from(const PeriodicFlow& body, const FamilyOrbit& first, const Vec6& xe, double h_e,
                                      double direction, const FamilySettings& s) {
   const double away = first.orbit.h >= h_e ? 1.0 : -1.0;
   std::vector<FamilyOrbit> rows{first};
@@ -97,20 +100,74 @@ std::vector<FamilyOrbit> family_from(const HeavyTopBody& body, const FamilyOrbit
   return rows;
 }
 
-}  // namespace
+/// A linearly stable equilibrium whose modes start families: its state, energy,
+/// row in the equilibria table, the scale of the start amplitude and its frequencies.
+struct ModeStart {
+  Vec6 xe = Vec6::Zero();
+  double h = 0.0, scale = 1.0;
+  int row = 0;
+  std::vector<double> omegas;
+};
 
-std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e) {
-  const double disc = e.g1 * e.g1 - 4.0 * e.g2;
+/// √(−μ) for the negative roots μ of μ² + g1 μ + g2, ascending.
+std::vector<double> frequencies_of(double g1, double g2) {
+  const double disc = g1 * g1 - 4.0 * g2;
   if (!(disc >= 0.0)) return {};
   const double s = std::sqrt(disc);
   std::vector<double> w;
-  for (const double mu : {0.5 * (-e.g1 - s), 0.5 * (-e.g1 + s)})
+  for (const double mu : {0.5 * (-g1 - s), 0.5 * (-g1 + s)})
     if (mu < 0.0) w.push_back(std::sqrt(-mu));
   std::sort(w.begin(), w.end());
   return w;
 }
 
-std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x0, double T, double h, double l,
+/// The Lyapunov families of every mode of every start (lyapunov_families' comment).
+std::vector<FamilyOrbit> families_of_starts(const PeriodicFlow& body, double l, const std::vector<ModeStart>& starts,
+                                            const FamilySettings& s, std::vector<std::string>& failures,
+                                            double direction,
+                                            const std::function<bool(std::size_t, std::size_t)>& mode_done) {
+  std::vector<FamilyOrbit> all;
+  std::size_t modes = 0, done = 0;
+  for (const ModeStart& e : starts) modes += e.omegas.size();
+  int family = 0;
+  for (const ModeStart& e : starts) {
+    for (const double omega : e.omegas) {
+      const std::size_t rows_before = all.size(), failures_before = failures.size();
+      // After the mode: false drops it (a signal may have cut it short) and stops.
+      const auto stop_after_mode = [&] {
+        if (!mode_done || mode_done(++done, modes)) return false;
+        all.erase(all.begin() + static_cast<std::ptrdiff_t>(rows_before), all.end());
+        failures.resize(failures_before);
+        return true;
+      };
+      const Vec6 start = project_to_leaf(body, e.xe + s.amplitude * e.scale * mode_direction(body, e.xe, omega), l);
+      const double h0 = flow_invariants(body, start).value(0);
+      ShootingSettings at_l = s.shooting;  // the first orbit at ℓ, even for a family continued in ℓ
+      at_l.in_l = false;
+      const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, at_l);
+      if (!o.converged) {
+        failures.push_back("equilibrium " + std::to_string(e.row) + ", omega = " + std::to_string(omega) +
+                           ": the first orbit did not converge (residual " + std::to_string(o.residual) + ")");
+        if (stop_after_mode()) return all;
+        continue;
+      }
+      FamilyOrbit first;
+      first.family = family, first.equilibrium = e.row, first.omega = omega, first.orbit = o;
+      const std::vector<FamilyOrbit> rows = family_from(body, first, e.xe, e.h, direction, s);
+      int next = family + 1;
+      append_with_branches(body, all, rows, next, s);
+      family = next;
+      if (stop_after_mode()) return all;
+    }
+  }
+  return all;
+}
+
+}  // namespace
+
+std::vector<double> equilibrium_frequencies(const RelativeEquilibrium& e) { return frequencies_of(e.g1, e.g2); }
+
+std::vector<FamilyOrbit> continue_family(const PeriodicFlow& body, const Vec6& x0, double T, double h, double l,
                                          double direction, int family, const FamilySettings& s,
                                          std::vector<std::string>& failures) {
   const PeriodicOrbit o = correct_orbit(body, x0, T, h, l, s.shooting);
@@ -132,46 +189,37 @@ std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x
 std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, const FamilySettings& s,
                                            std::vector<std::string>& failures, double direction,
                                            const std::function<bool(std::size_t, std::size_t)>& mode_done) {
-  std::vector<FamilyOrbit> all;
   const EquilibriumSet set = equilibria_at(body, l);
-  std::size_t modes = 0, done = 0;
-  for (const RelativeEquilibrium& e : set.rows)
-    modes += e.stability == EquilibriumStability::stable ? equilibrium_frequencies(e).size() : 0;
-  int family = 0;
+  std::vector<ModeStart> starts;
   for (std::size_t i = 0; i < set.rows.size(); ++i) {
     const RelativeEquilibrium& e = set.rows[i];
     if (e.stability != EquilibriumStability::stable) continue;
     const Vec6 xe = state_of(e);
-    for (const double omega : equilibrium_frequencies(e)) {
-      const std::size_t rows_before = all.size(), failures_before = failures.size();
-      // After the mode: false drops it (a signal may have cut it short) and stops.
-      const auto stop_after_mode = [&] {
-        if (!mode_done || mode_done(++done, modes)) return false;
-        all.erase(all.begin() + static_cast<std::ptrdiff_t>(rows_before), all.end());
-        failures.resize(failures_before);
-        return true;
-      };
-      const Vec6 start = project_to_leaf(body, xe + s.amplitude * xe.norm() * mode_direction(body, xe, omega), l);
-      const double h0 = euler_poisson_invariants(body, start).value(0);
-      ShootingSettings at_l = s.shooting;  // the first orbit at ℓ, even for a family continued in ℓ
-      at_l.in_l = false;
-      const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, at_l);
-      if (!o.converged) {
-        failures.push_back("equilibrium " + std::to_string(i) + ", omega = " + std::to_string(omega) +
-                           ": the first orbit did not converge (residual " + std::to_string(o.residual) + ")");
-        if (stop_after_mode()) return all;
-        continue;
-      }
-      FamilyOrbit first;
-      first.family = family, first.equilibrium = static_cast<int>(i), first.omega = omega, first.orbit = o;
-      const std::vector<FamilyOrbit> rows = family_from(body, first, xe, e.h, direction, s);
-      int next = family + 1;
-      append_with_branches(body, all, rows, next, s);
-      family = next;
-      if (stop_after_mode()) return all;
-    }
+    starts.push_back({xe, e.h, xe.norm(), static_cast<int>(i), equilibrium_frequencies(e)});
   }
-  return all;
+  return families_of_starts(body, l, starts, s, failures, direction, mode_done);
+}
+
+Vec6 cardan_equilibrium_state(const system::CardanTop& top, const Vec3& q, double omega, double l) {
+  Vec6 x;
+  x << 0.0, q(1), q(2), top.mass_matrix(q) * Vec3(omega, 0.0, 0.0);
+  x(3) = l;  // p1 = M₁₁ ω = ℓ, to the last bit
+  return x;
+}
+
+std::vector<FamilyOrbit> cardan_lyapunov_families(const system::CardanTop& top, double l, const FamilySettings& s,
+                                                  std::vector<std::string>& failures, double direction,
+                                                  const std::function<bool(std::size_t, std::size_t)>& mode_done) {
+  const std::vector<CardanEquilibrium> rows = cardan_equilibria_at(top, l);
+  std::vector<ModeStart> starts;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const CardanEquilibrium& e = rows[i];
+    // A circle of equilibria (degenerate) has a zero frequency and no isolated family.
+    if (e.stability != EquilibriumStability::stable || e.degenerate) continue;
+    const Vec6 xe = cardan_equilibrium_state(top, e.q, e.omega, l);
+    starts.push_back({xe, e.h, std::max(1.0, xe.norm()), static_cast<int>(i), frequencies_of(e.g1, e.g2)});
+  }
+  return families_of_starts(PeriodicFlow(top), l, starts, s, failures, direction, mode_done);
 }
 
 }  // namespace lgi::experiments

@@ -40,10 +40,21 @@ std::vector<FamilyOrbit> lyapunov_families(const HeavyTopBody& body, double l, c
                                            std::vector<std::string>& failures, double direction = 1.0,
                                            const std::function<bool(std::size_t, std::size_t)>& mode_done = {});
 
+/// The same for a Cardan top with a cyclic outer angle (periodic_flow.hpp) at
+/// p1 = l: the modes of its non-degenerate linearly stable relative
+/// equilibria (cardan_equilibria_at: `equilibrium` is the row there), the
+/// start amplitude relative to max(1, |x_e|), x_e = (0, q2, q3, p).
+std::vector<FamilyOrbit> cardan_lyapunov_families(const system::CardanTop& top, double l, const FamilySettings& s,
+                                                  std::vector<std::string>& failures, double direction = 1.0,
+                                                  const std::function<bool(std::size_t, std::size_t)>& mode_done = {});
+
+/// The state (q, p) of a Cardan relative equilibrium: q = (0, q2, q3), p = M(q)(ω, 0, 0), p1 = l.
+Vec6 cardan_equilibrium_state(const system::CardanTop& top, const Vec3& q, double omega, double l);
+
 /// One family from a start (x0, T) at h (a seed), numbered `family`, its
 /// first step `direction` · h_step in h; then its doubled families.
 /// A seed whose orbit does not converge is listed in `failures`.
-std::vector<FamilyOrbit> continue_family(const HeavyTopBody& body, const Vec6& x0, double T, double h, double l,
+std::vector<FamilyOrbit> continue_family(const PeriodicFlow& body, const Vec6& x0, double T, double h, double l,
                                          double direction, int family, const FamilySettings& s,
                                          std::vector<std::string>& failures);
 

@@ -18,7 +18,7 @@ struct Segments {
 };
 
 /// The equations of the header at Z = (x_0 … x_{M−1}, T, p) and their Jacobian.
-Segments linearise(const HeavyTopBody& body, const Eigen::VectorXd& Z, const FamilyPoint& z_p, const FamilyPoint& t,
+Segments linearise(const PeriodicFlow& body, const Eigen::VectorXd& Z, const FamilyPoint& z_p, const FamilyPoint& t,
                    const Vec6& f_ref, double fixed, const ShootingSettings& s) {
   const int M = s.shooting_points, n = 6 * M, iT = n, ip = n + 1;
   Segments g;
@@ -34,11 +34,11 @@ Segments linearise(const HeavyTopBody& body, const Eigen::VectorXd& Z, const Fam
       g.ok = false;
       return g;
     }
-    g.r.segment<6>(6 * k) = sh.end - Z.segment<6>(next);
+    g.r.segment<6>(6 * k) = flow_difference(body, sh.end, Z.segment<6>(next));
     matching = std::max(matching, g.r.segment<6>(6 * k).norm());
     g.A.block<6, 6>(6 * k, 6 * k) += sh.monodromy;
     g.A.block<6, 6>(6 * k, next) -= Mat6::Identity();
-    g.A.block<6, 1>(6 * k, iT) = euler_poisson_field(body, sh.end) / M;
+    g.A.block<6, 1>(6 * k, iT) = flow_field(body, sh.end) / M;
   }
   FamilyPoint z;
   z << Z.head<6>(), T, Z(ip);
@@ -55,13 +55,13 @@ Segments linearise(const HeavyTopBody& body, const Eigen::VectorXd& Z, const Fam
 
 }  // namespace
 
-PeriodicOrbit correct_multiple(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
+PeriodicOrbit correct_multiple(const PeriodicFlow& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                const ShootingSettings& s) {
   const int M = s.shooting_points, n = 6 * M;
   PeriodicOrbit o;
   o.in_l = s.in_l;
   (s.in_l ? o.h : o.l) = fixed;
-  const Vec6 f_ref = euler_poisson_field(body, z_p.head<6>()).normalized();
+  const Vec6 f_ref = flow_field(body, z_p.head<6>()).normalized();
   // The starts: the predictor's orbit at kT/M.
   Eigen::VectorXd Z(n + 2);
   Z.head<6>() = z_p.head<6>();
@@ -84,6 +84,8 @@ PeriodicOrbit correct_multiple(const HeavyTopBody& body, const FamilyPoint& z_p,
       z << Z.head<6>(), Z(n), Z(n + 1);
       const CondensedSystem c = condensed_system(body, z, z_p, t, f_ref, fixed, s, g.shots.back().end, product);
       record_iterate(o, z, g.residual, product, c.A);
+      o.drift = 0.0;
+      for (const Shot& sh : g.shots) o.drift += sh.drift;
     }
     if (newton_done(it, g.residual, previous, s)) break;
     previous = g.residual;

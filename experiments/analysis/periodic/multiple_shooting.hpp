@@ -24,7 +24,7 @@
 namespace lgi::experiments {
 
 /// correct_on_family with s.shooting_points = M > 1 segments.
-PeriodicOrbit correct_multiple(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
+PeriodicOrbit correct_multiple(const PeriodicFlow& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                const ShootingSettings& s);
 
 }  // namespace lgi::experiments

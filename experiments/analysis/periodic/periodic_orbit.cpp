@@ -22,7 +22,7 @@ struct Linearised {
 };
 
 /// The eleven equations of the header at z and their Jacobian.
-Linearised linearise(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p, const FamilyPoint& t,
+Linearised linearise(const PeriodicFlow& body, const FamilyPoint& z, const FamilyPoint& z_p, const FamilyPoint& t,
                      const Vec6& f_ref, double fixed, const ShootingSettings& s) {
   Linearised L;
   L.shot = shoot(body, z.head<6>(), z(6), s.dt);
@@ -38,30 +38,55 @@ double residual_of(const Residual& r) {
 }
 
 /// Q: (n₁, n₂, n₃, f̂, w₁, w₂) of classify_orbit's comment, from a QR of [∇H ∇C ∇|Γ|² f].
-Mat6 adapted_basis(const HeavyTopBody& body, const Vec6& x0) {
+Mat6 adapted_basis(const PeriodicFlow& body, const Vec6& x0) {
   Eigen::Matrix<double, 6, 4> G;
-  G.leftCols<3>() = euler_poisson_invariants(body, x0).gradients.transpose();
-  G.col(3) = euler_poisson_field(body, x0);
+  G.leftCols<3>() = flow_invariants(body, x0).gradients.transpose();
+  G.col(3) = flow_field(body, x0);
   const Eigen::HouseholderQR<Eigen::Matrix<double, 6, 4>> qr(G);
   return qr.householderQ() * Mat6::Identity();
 }
 
+/// The trivial multipliers again, with the left basis at the shot's end x_T
+/// (single shooting): the discrete map keeps H, C, |Γ|² exactly, so
+/// ∇I(x_T)ᵀ M = ∇I(x0)ᵀ and M f(x0) ≈ f(x_T) hold without the error
+/// (∇I(x0) − ∇I(x_T))ᵀ M, which the growth of M (≈ tr P) makes large on
+/// strongly hyperbolic orbits. The nontrivial pair keeps the basis at x0.
+void trivial_from_both_ends(const PeriodicFlow& body, PeriodicOrbit& o, const Vec6& end) {
+  const Mat6 Q0 = adapted_basis(body, o.x0);
+  Mat6 QT = adapted_basis(body, end);
+  for (int k = 0; k < 6; ++k)  // Householder's signs may differ between the ends
+    if (QT.col(k).dot(Q0.col(k)) < 0.0) QT.col(k) *= -1.0;
+  const Mat6 B = QT.transpose() * o.monodromy * Q0;
+  const Eigen::EigenSolver<Eigen::Matrix3d> normal(B.topLeftCorner<3, 3>(), false);
+  std::array<std::complex<double>, 4> mu{};
+  for (int k = 0; k < 3; ++k) mu[static_cast<std::size_t>(k)] = normal.eigenvalues()(k);
+  mu[3] = B(3, 3);
+  std::sort(mu.begin(), mu.end(), [](auto a, auto b) { return std::abs(a - 1.0) < std::abs(b - 1.0); });
+  std::complex<double> product = o.multipliers[4] * o.multipliers[5];
+  o.trivial_deviation = 0.0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    o.multipliers[k] = mu[k], product *= mu[k];
+    o.trivial_deviation = std::max(o.trivial_deviation, std::abs(mu[k] - 1.0));
+  }
+  o.product_deviation = std::abs(product - 1.0);
+}
+
 }  // namespace
 
-CondensedSystem condensed_system(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p,
+CondensedSystem condensed_system(const PeriodicFlow& body, const FamilyPoint& z, const FamilyPoint& z_p,
                                  const FamilyPoint& t, const Vec6& f_ref, double fixed, const ShootingSettings& s,
                                  const Vec6& end, const Mat6& monodromy) {
   CondensedSystem L;
   const Vec6 x0 = z.head<6>();
-  const Invariants inv = euler_poisson_invariants(body, x0);
-  L.r.head<6>() = end - x0;
-  L.r(6) = s.section ? section_value(body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
-  L.r.segment<3>(7) = inv.value - (s.in_l ? Eigen::Vector3d(fixed, z(7), 1.0) : Eigen::Vector3d(z(7), fixed, 1.0));
+  const Invariants inv = flow_invariants(body, x0);
+  L.r.head<6>() = flow_difference(body, end, x0);
+  L.r(6) = s.section ? section_value(body.body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
+  L.r.segment<3>(7) = inv.value - (s.in_l ? invariant_levels(body, fixed, z(7)) : invariant_levels(body, z(7), fixed));
   L.r(10) = t.dot(z - z_p);
   L.A.setZero();
   L.A.topLeftCorner<6, 6>() = monodromy - Mat6::Identity();
-  L.A.block<6, 1>(0, 6) = euler_poisson_field(body, end);
-  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body, *s.section, x0) : f_ref).transpose();
+  L.A.block<6, 1>(0, 6) = flow_field(body, end);
+  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body.body, *s.section, x0) : f_ref).transpose();
   L.A.block<3, 6>(7, 0) = inv.gradients;
   L.A(s.in_l ? 8 : 7, 7) = -1.0;
   L.A.row(10) = t.transpose();
@@ -85,7 +110,7 @@ FamilyPoint family_point(const PeriodicOrbit& o) {
   return z;
 }
 
-PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, double T_guess, double h, double l,
+PeriodicOrbit correct_orbit(const PeriodicFlow& body, const Vec6& x_guess, double T_guess, double h, double l,
                             const ShootingSettings& s) {
   FamilyPoint z_p, t = FamilyPoint::Zero();
   z_p << x_guess, T_guess, s.in_l ? l : h;
@@ -93,15 +118,16 @@ PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, doubl
   return correct_on_family(body, z_p, t, s.in_l ? h : l, s);
 }
 
-PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
+PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                 const ShootingSettings& s) {
   if (s.shooting_points > 1) return correct_multiple(body, z_p, t, fixed, s);
   PeriodicOrbit o;
   o.in_l = s.in_l;
   (s.in_l ? o.h : o.l) = fixed;
   FamilyPoint z = z_p;
-  const Vec6 f_ref = euler_poisson_field(body, z_p.head<6>()).normalized();
+  const Vec6 f_ref = flow_field(body, z_p.head<6>()).normalized();
   double best = INFINITY, previous = INFINITY;
+  Vec6 best_end = z_p.head<6>();
   for (int it = 0; it <= s.max_iterations; ++it) {
     Linearised L = linearise(body, z, z_p, t, f_ref, fixed, s);
     if (!L.shot.ok || !L.r.allFinite()) break;
@@ -110,6 +136,8 @@ PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p
     if (res < best) {
       best = res;
       record_iterate(o, z, res, L.shot.monodromy, L.A);
+      o.drift = L.shot.drift;
+      best_end = L.shot.end;
     }
     if (newton_done(it, res, previous, s)) break;
     previous = res;
@@ -121,10 +149,11 @@ PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p
   }
   o.converged = o.residual <= s.tolerance;  // false when no iterate was finite (residual ∞)
   if (o.residual < INFINITY) classify_orbit(body, o);
+  if (o.residual < INFINITY && !body.cardan) trivial_from_both_ends(body, o, best_end);
   return o;
 }
 
-void classify_orbit(const HeavyTopBody& body, PeriodicOrbit& o) {
+void classify_orbit(const PeriodicFlow& body, PeriodicOrbit& o) {
   const Mat6 Q = adapted_basis(body, o.x0);
   const Mat6 B = Q.transpose() * o.monodromy * Q;
   o.invariance_defect = std::max(B.topRightCorner<3, 3>().cwiseAbs().maxCoeff(),

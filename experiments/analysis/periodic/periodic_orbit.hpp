@@ -29,6 +29,7 @@
 
 #include <optional>
 
+#include "experiments/analysis/periodic/periodic_flow.hpp"
 #include "experiments/analysis/periodic/section_crossings.hpp"
 
 namespace lgi::experiments {
@@ -65,6 +66,7 @@ struct PeriodicOrbit {
   bool converged = false;
   bool in_l = false;  // found with p = ℓ at fixed h (ShootingSettings::in_l)
   int iterations = 0;
+  double drift = 0.0;  // a Cardan top's turn of q1 over one period (periodic_flow.hpp); 0 for a heavy top
 };
 
 /// The continued parameter p of the orbit (ℓ if in_l, else h) and the fixed one.
@@ -73,12 +75,12 @@ inline double fixed_of(const PeriodicOrbit& o) { return o.in_l ? o.h : o.l; }
 
 /// Newton from (x_guess, T_guess) towards the orbit at (h, l); the phase
 /// hyperplane passes through x_guess.
-PeriodicOrbit correct_orbit(const HeavyTopBody& body, const Vec6& x_guess, double T_guess, double h, double l,
+PeriodicOrbit correct_orbit(const PeriodicFlow& body, const Vec6& x_guess, double T_guess, double h, double l,
                             const ShootingSettings& s);
 
 /// Newton from the predictor z_p with the continuation condition ⟨t, z − z_p⟩ = 0
 /// (t need not be normalised; t = e_p is correct_orbit); `fixed` is ℓ, or h with s.in_l.
-PeriodicOrbit correct_on_family(const HeavyTopBody& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
+PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                 const ShootingSettings& s);
 
 /// (x0, T, p) of an orbit.
@@ -92,7 +94,7 @@ struct CondensedSystem {
   Eigen::Matrix<double, 11, 1> r;
   Eigen::Matrix<double, 11, 8> A;
 };
-CondensedSystem condensed_system(const HeavyTopBody& body, const FamilyPoint& z, const FamilyPoint& z_p,
+CondensedSystem condensed_system(const PeriodicFlow& body, const FamilyPoint& z, const FamilyPoint& z_p,
                                  const FamilyPoint& t, const Vec6& f_ref, double fixed, const ShootingSettings& s,
                                  const Vec6& end, const Mat6& monodromy);
 
@@ -123,6 +125,6 @@ void record_iterate(PeriodicOrbit& o, const FamilyPoint& z, double residual, con
 /// a Jordan block moves by √ε under a perturbation ε, a diagonal entry by ε.
 /// The entries taken as zero are reported as `invariance_defect` (their
 /// largest magnitude).
-void classify_orbit(const HeavyTopBody& body, PeriodicOrbit& o);
+void classify_orbit(const PeriodicFlow& body, PeriodicOrbit& o);
 
 }  // namespace lgi::experiments

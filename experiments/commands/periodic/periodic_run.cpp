@@ -15,7 +15,7 @@ namespace {
 
 /// The families of the seeds (of a seed file or a poincare file), numbered from 0.
 /// `seed_done` as PeriodicRequest::start_done: after each seed; false drops it and stops.
-std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vector<SectionSeed>& seeds, double l,
+std::vector<FamilyOrbit> seed_families(const PeriodicFlow& body, const std::vector<SectionSeed>& seeds, double l,
                                        double direction, const FamilySettings& s, std::vector<std::string>& failures,
                                        const PeriodicRequest::StartDone& seed_done, bool& stopped) {
   std::vector<FamilyOrbit> rows;
@@ -27,7 +27,7 @@ std::vector<FamilyOrbit> seed_families(const HeavyTopBody& body, const std::vect
     if (!seed.failure.empty()) {
       failures.push_back(seed.failure);
     } else {
-      const double h = std::isnan(seed.h) ? euler_poisson_invariants(body, seed.x).value(0) : seed.h;
+      const double h = std::isnan(seed.h) ? flow_invariants(body, seed.x).value(0) : seed.h;
       f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
     }
     if (seed_done && !seed_done(k + 1, seeds.size())) {  // the signal may have cut this seed short: dropped
@@ -57,9 +57,36 @@ std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSect
   return out;
 }
 
+/// The seeds of a Cardan top: q1 set to 0 (it is cyclic), p1 checked against ℓ.
+std::vector<SectionSeed> cardan_seeds(const std::vector<std::pair<Vec6, double>>& seeds, double l) {
+  std::vector<SectionSeed> out;
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    Vec6 x = seeds[k].first;
+    if (std::abs(x(3) - l) > 1e-9 * std::max(1.0, std::abs(l)))
+      throw UsageError("--seed-file: seed " + std::to_string(k + 1) + " has p1 = " + format_general(x(3), 17) +
+                       ", not --l " + format_general(l, 17) + " (a Cardan seed is q1 q2 q3 p1 p2 p3 T)");
+    x(0) = 0.0, x(3) = l;
+    out.push_back({x, seeds[k].second, "seed " + std::to_string(k + 1), ""});
+  }
+  return out;
+}
+
+/// A Cardan top's families: its relative equilibria's Lyapunov families, or seeds.
+void cardan_families(const PeriodicFlow& flow, const PeriodicRequest& r, PeriodicResult& out) {
+  if (!r.critical.empty()) throw UsageError("--from-critical: a Kovalevskaya top only, not a Cardan top");
+  if (!r.poincare.empty()) throw UsageError("--seeds-from-poincare: not for a Cardan top (its section is not Richter's)");
+  out.l = r.l.value_or(0.0);
+  if (r.from_equilibria)
+    out.rows = cardan_lyapunov_families(*flow.cardan, out.l, r.settings, out.failures, r.direction, r.start_done);
+  else
+    out.rows = seed_families(flow, cardan_seeds(r.seeds, out.l), out.l, r.direction, r.settings, out.failures,
+                             r.start_done, out.stopped);
+}
+
 }  // namespace
 
-PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest& request) {
+PeriodicResult periodic_families(const PeriodicFlow& flow, const PeriodicRequest& request) {
+  const HeavyTopBody& body = flow.body;
   PeriodicResult out;
   // The caller's start_done, counting the starts kept for the result.
   PeriodicRequest r = request;
@@ -71,6 +98,10 @@ PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest
       out.stopped = !go_on;
       return go_on;
     };
+  if (flow.cardan) {
+    cardan_families(flow, r, out);
+    return out;
+  }
   out.l = r.l.value_or(0.0);
   const FamilySettings& s = r.settings;
   bool& stopped = out.stopped;

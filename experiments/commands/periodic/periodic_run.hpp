@@ -45,7 +45,9 @@ struct PeriodicResult {
 };
 
 /// The families of exactly one kind of start of `r` (UsageError naming the
-/// flag on a poincare file that does not fit).
-PeriodicResult periodic_families(const HeavyTopBody& body, const PeriodicRequest& r);
+/// flag on a poincare file that does not fit). A Cardan top (flow.cardan)
+/// takes --from-equilibria and seeds (x = (q, p); q1 is set to 0, p1 must
+/// equal ℓ: UsageError naming --seed-file), not the section or the critical orbits.
+PeriodicResult periodic_families(const PeriodicFlow& flow, const PeriodicRequest& r);
 
 }  // namespace lgi::experiments

@@ -6,7 +6,33 @@
 
 namespace lgi::experiments {
 
-std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::vector<FamilyOrbit>& rows,
+namespace {
+
+/// A Cardan top's columns: the Kovalevskaya ones do not apply (NaN, −1); its state q, p and q1's drift.
+void append_cardan_columns(const std::vector<FamilyOrbit>& rows, std::vector<TableColumn>& c) {
+  TableColumn k{"k"}, family{"appelrot_family", 1, true}, distance{"appelrot_distance"}, gap{"critical_rank_gap"};
+  TableColumn q{"cardan_angles", 3}, p{"cardan_momenta", 3}, drift{"cardan_drift"};
+  for (const FamilyOrbit& r : rows) {
+    k.real.push_back(NAN), family.whole.push_back(-1), distance.real.push_back(NAN), gap.real.push_back(NAN);
+    for (int j = 0; j < 3; ++j) q.real.push_back(r.orbit.x0(j)), p.real.push_back(r.orbit.x0(j + 3));
+    drift.real.push_back(r.orbit.drift);
+  }
+  for (TableColumn* col : {&k, &family, &distance, &gap, &q, &p, &drift}) c.push_back(std::move(*col));
+}
+
+/// The body's (Π, Γ) at an orbit's point: x0 itself, or from (q, p) on a Cardan top.
+Vec6 body_point(const PeriodicFlow& flow, const Vec6& x0) {
+  if (!flow.cardan) return x0;
+  const system::TorusState s = system::unstack(x0);
+  const lie::SO3xR3 b = flow.cardan->body_state(s);
+  Vec6 x;
+  x << b.Pi, b.R.transpose() * Vec3::UnitZ();
+  return x;
+}
+
+}  // namespace
+
+std::vector<TableColumn> periodic_columns(const PeriodicFlow& flow, const std::vector<FamilyOrbit>& rows,
                                           const std::optional<PhaseSection>& section) {
   std::vector<TableColumn> c = {{"family", 1, true}, {"index", 1, true}, {"l"}, {"h"}, {"period"},
                                 {"angular_momentum", 3}, {"gamma", 3}, {"residual"}, {"multipliers", 12},
@@ -20,7 +46,8 @@ std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::v
     const PeriodicOrbit& o = r.orbit;
     c[0].whole.push_back(r.family), c[1].whole.push_back(r.index);
     c[2].real.push_back(o.l), c[3].real.push_back(o.h), c[4].real.push_back(o.period);
-    for (int k = 0; k < 3; ++k) c[5].real.push_back(o.x0(k)), c[6].real.push_back(o.x0(k + 3));
+    const Vec6 x = body_point(flow, o.x0);
+    for (int k = 0; k < 3; ++k) c[5].real.push_back(x(k)), c[6].real.push_back(x(k + 3));
     c[7].real.push_back(o.residual);
     for (const auto& m : o.multipliers) c[8].real.push_back(m.real()), c[8].real.push_back(m.imag());
     c[9].text.push_back(o.stability), c[10].text.push_back(r.event);
@@ -28,10 +55,13 @@ std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::v
     c[13].real.push_back(r.omega), c[14].real.push_back(o.trivial_deviation), c[15].real.push_back(o.product_deviation);
     c[16].whole.push_back(r.parent), c[17].real.push_back(o.reduced_trace), c[18].real.push_back(o.invariance_defect);
     c[19].text.push_back(r.family_end);
-    const SectionPoint p = section ? section_coordinates(body, *section, o.x0) : SectionPoint{NAN, NAN, 0};
+    const SectionPoint p = section ? section_coordinates(flow.body, *section, o.x0) : SectionPoint{NAN, NAN, 0};
     c[20].real.push_back(p.phi), c[21].real.push_back(p.theta), c[22].whole.push_back(p.sheet);
   }
-  append_appelrot_columns(body, rows, c);  // k, appelrot_family, appelrot_distance, critical_rank_gap
+  if (flow.cardan)
+    append_cardan_columns(rows, c);
+  else
+    append_appelrot_columns(flow.body, rows, c);  // k, appelrot_family, appelrot_distance, critical_rank_gap
   return c;
 }
 

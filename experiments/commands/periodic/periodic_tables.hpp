@@ -13,7 +13,11 @@ namespace lgi::experiments {
 
 /// The /periodic columns; with a section, section_phi, section_theta and
 /// section_sheet are the coordinates of each orbit's point (NaN, 0 without).
-std::vector<TableColumn> periodic_columns(const HeavyTopBody& body, const std::vector<FamilyOrbit>& rows,
+/// A Cardan top (flow.cardan): angular_momentum and gamma are the body's
+/// Π = J E(q) q̇ and Γ = R(q)ᵀ e3 at the orbit's point, the Kovalevskaya
+/// columns NaN (−1), and three columns follow: cardan_angles (q, q1 = 0),
+/// cardan_momenta (p) and cardan_drift (q1's turn over one period).
+std::vector<TableColumn> periodic_columns(const PeriodicFlow& flow, const std::vector<FamilyOrbit>& rows,
                                           const std::optional<PhaseSection>& section);
 
 /// The manifolds of the orbit of /periodic row (family, index).

@@ -1,0 +1,144 @@
+"""`lgi periodic` on a Cardan top with a vertical outer axis (experiments/PERIODIC.md,
+"Cardan tops"): the flow reduced at p1 = l.
+ - --from-equilibria on cardan_general_asymmetric_up at l = 1: every family's
+   first period is 2*pi/omega to 1e-6, omega from g1, g2 of `lgi equilibria`;
+   residuals <= 1e-10; the four trivial multipliers (q1, p1, H, the flow) at 1
+   to 1e-8 and the product of all six at 1 to 1e-8;
+ - each orbit's point (cardan_angles, cardan_momenta), integrated for one period
+   by SciPy's DOP853 on the canonical field recomputed here from docs/cardan.md
+   eqs. (1)-(5) (dH/dq by complex steps), returns to itself in q2, q3 (mod 2 pi),
+   p to 1e-8, q1 turned by cardan_drift; angular_momentum and gamma are the
+   body's J E(q) qdot and R(q)^T e3;
+ - --seed-file (q1 q2 q3 p1 p2 p3 T) finds a family's orbit again, by single
+   shooting and by multiple shooting on 3 segments (period to 1e-9, same drift);
+ - refusals with exit 2 and one line: a tilted frame (naming suspension.tilt
+   and the missing cyclic angle), a seed whose p1 is not --l, --from-critical."""
+import math
+import os
+
+import numpy as np
+from lgi_cli import SCENES, columns, lgi, refused
+from scipy.integrate import solve_ivp
+
+UP = os.path.join(SCENES, "cardan_general_asymmetric_up.toml")
+HORIZONTAL = os.path.join(SCENES, "cardan_general_horizontal.toml")
+
+# cardan_general_asymmetric_up.toml: J about the fixed point, m chi, g; thin rings.
+J = np.diag([1.0, 1.5, 2.0])
+M_CHI = np.array([0.8, 0.4, 0.3])
+G = 1.0
+C_O, K = 0.3, np.array([0.15, 0.3, 0.15])
+
+
+def rz(a):
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, -s, 0 * a], [s, c, 0 * a], [0 * a, 0 * a, 1 + 0 * a]])
+
+
+def rx(a):
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[1 + 0 * a, 0 * a, 0 * a], [0 * a, c, -s], [0 * a, s, c]])
+
+
+def e_matrix(q):
+    s2, c2, s3, c3 = np.sin(q[1]), np.cos(q[1]), np.sin(q[2]), np.cos(q[2])
+    return np.array([[s2 * s3, c3, 0 * s2], [s2 * c3, -s3, 0 * s2], [c2, 0 * s2, 0 * s2 + 1]])
+
+
+def mass_matrix(q):
+    """docs/cardan.md eq. (4)."""
+    E = e_matrix(q)
+    F = np.array([[0 * q[1], 1 + 0 * q[1], 0 * q[1]], [np.sin(q[1]), 0 * q[1], 0 * q[1]],
+                  [np.cos(q[1]), 0 * q[1], 0 * q[1]]])
+    M = E.T @ J @ E + F.T @ np.diag(K) @ F
+    M[0, 0] = M[0, 0] + C_O
+    return M
+
+
+def energy(q, p):
+    """H = p M^-1 p / 2 + V, V = g e3 . Rz(q1) Rx(q2) Rz(q3) m chi (eq. (5), tilt 0, massless-centred rings)."""
+    return 0.5 * p @ np.linalg.solve(mass_matrix(q), p) + G * (rz(q[0]) @ rx(q[1]) @ rz(q[2]) @ M_CHI)[2]
+
+
+def field(_, x):
+    q, p = x[:3], x[3:]
+    qdot = np.linalg.solve(mass_matrix(q), p)
+    h = 1e-30  # complex step: dH/dq_k = Im H(q + i h e_k) / h, exact to round-off
+    dH = [energy(q + 1j * h * np.eye(3)[k], p.astype(complex)).imag / h for k in range(3)]
+    return np.concatenate([qdot, -np.array(dH)])
+
+
+def frequencies(g1, g2):
+    disc = math.sqrt(g1 * g1 - 4 * g2)
+    return sorted(math.sqrt(-mu) for mu in (0.5 * (-g1 - disc), 0.5 * (-g1 + disc)) if mu < 0)
+
+
+def test_lyapunov_families_of_a_cardan_top(tmp_path):
+    eq_out, out = str(tmp_path / "e.h5"), str(tmp_path / "p.h5")
+    lgi("equilibria", "--scene", UP, "--l", "1", "--out", eq_out, "--quiet")
+    lgi("periodic", "--scene", UP, "--l", "1", "--from-equilibria", "--steps", "2", "--h-step", "0.02",
+        "--out", out, "--quiet")
+    e, p = columns(eq_out, "equilibria"), columns(out, "periodic")
+    for column in ("angular_momentum", "gamma", "multipliers", "stability", "event", "cardan_angles",
+                   "cardan_momenta", "cardan_drift", "trivial_deviation"):
+        assert column in p, column
+    first = np.flatnonzero(p["index"] == 0)
+    stable = np.flatnonzero(e["stability"] == 0)
+    assert len(stable) >= 1 and len(first) >= len(stable)
+    for i in first:
+        row = p["equilibrium"][i]
+        omegas = frequencies(e["g1"][row], e["g2"][row])
+        assert min(abs(p["period"][i] - 2 * math.pi / w) for w in omegas) < 1e-6
+    assert (p["residual"] <= 1e-10).all()
+    assert (p["l"] == 1.0).all()
+    mu = p["multipliers"].reshape(-1, 6, 2)
+    assert np.abs(mu[:, :4, 0] - 1).max() <= 1e-8 and np.abs(mu[:, :4, 1]).max() <= 1e-8
+    assert (p["trivial_deviation"] <= 1e-8).all() and (p["product_deviation"] <= 1e-8).all()
+    assert set(p["stability"].astype(str)) <= {"elliptic", "hyperbolic", "inverse_hyperbolic"}
+
+    # Each row's point returns after one period under an independent integrator.
+    for i in range(len(p["h"])):
+        q0, p0 = p["cardan_angles"][i], p["cardan_momenta"][i]
+        assert abs(q0[0]) < 1e-12 and abs(p0[0] - 1.0) < 1e-12
+        assert abs(energy(q0, p0) - p["h"][i]) < 1e-10
+        s = solve_ivp(field, (0, p["period"][i]), np.concatenate([q0, p0]), method="DOP853", rtol=1e-13,
+                      atol=1e-13)
+        end = s.y[:, -1]
+        dq = (end[1:3] - q0[1:3] + math.pi) % (2 * math.pi) - math.pi
+        assert np.abs(dq).max() < 1e-8 and np.abs(end[3:] - p0).max() < 1e-8, (i, dq, end[3:] - p0)
+        assert abs(end[0] - q0[0] - p["cardan_drift"][i]) < 1e-8
+        R = rz(q0[0]) @ rx(q0[1]) @ rz(q0[2])
+        qdot = np.linalg.solve(mass_matrix(q0), p0)
+        assert np.allclose(p["gamma"][i], R.T @ [0, 0, 1], atol=1e-14)
+        assert np.allclose(p["angular_momentum"][i], J @ e_matrix(q0) @ qdot, atol=1e-12)
+
+    # A seed from the last orbit, q1 anywhere (it is dropped), the period 1 % long, is found again.
+    last = len(p["h"]) - 1
+    seed = tmp_path / "seeds.txt"
+    q0, p0 = p["cardan_angles"][last], p["cardan_momenta"][last]
+    seed.write_text("# q1 q2 q3 p1 p2 p3 T\n" + " ".join(repr(float(v)) for v in
+                    [0.7, q0[1], q0[2], p0[0], p0[1], p0[2], p["period"][last] * 1.01]) + "\n")
+    lgi("periodic", "--scene", UP, "--l", "1", "--seed-file", str(seed), "--steps", "0", "--out",
+        str(tmp_path / "s.h5"), "--quiet")
+    s = columns(str(tmp_path / "s.h5"), "periodic")
+    assert abs(s["period"][0] - p["period"][last]) < 1e-9 and abs(s["h"][0] - p["h"][last]) < 1e-12
+    assert s["residual"][0] <= 1e-10 and abs(s["cardan_angles"][0][0]) < 1e-12
+    lgi("periodic", "--scene", UP, "--l", "1", "--seed-file", str(seed), "--steps", "0", "--shooting-points", "3",
+        "--out", str(tmp_path / "m.h5"), "--quiet")
+    m = columns(str(tmp_path / "m.h5"), "periodic")
+    assert abs(m["period"][0] - p["period"][last]) < 1e-9 and m["residual"][0] <= 1e-10
+    assert abs(m["cardan_drift"][0] - p["cardan_drift"][last]) < 1e-8
+
+    # Refusals: a seed off the level p1 = l; --from-critical.
+    bad = tmp_path / "bad.txt"
+    bad.write_text(" ".join(repr(float(v)) for v in [0, q0[1], q0[2], 1.5, p0[1], p0[2], 6.0]) + "\n")
+    line = refused("periodic", "--scene", UP, "--l", "1", "--seed-file", str(bad), "--out", str(tmp_path / "b.h5"))
+    assert "--seed-file" in line and "p1" in line
+    line = refused("periodic", "--scene", UP, "--l", "1", "--from-critical", "1", "--out", str(tmp_path / "c.h5"))
+    assert "--from-critical" in line
+
+
+def test_tilted_cardan_top_refused(tmp_path):
+    line = refused("periodic", "--scene", HORIZONTAL, "--l", "1", "--from-equilibria", "--out", str(tmp_path / "t.h5"))
+    assert "suspension.tilt" in line and "cyclic" in line
+    assert not os.path.exists(tmp_path / "t.h5")
