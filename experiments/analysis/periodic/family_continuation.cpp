@@ -118,7 +118,9 @@ Located locate(const PeriodicFlow& body, const PeriodicOrbit& a, const PeriodicO
 /// is not located is added to `notes`.
 void locate_events(const PeriodicFlow& body, std::vector<FamilyOrbit>& rows, std::string& notes,
                    const FamilySettings& s) {
-  const auto [a, b] = last_regular_pair(rows);
+  // Not a structured binding: clang 14 (the fuzz preset) cannot capture one in the lambda below.
+  const auto pair = last_regular_pair(rows);
+  const std::size_t a = pair.first, b = pair.second;
   if (a == b) return;
   const PeriodicOrbit &oa = rows[a].orbit, &ob = rows[b].orbit;
   if (oa.degenerate || ob.degenerate) return;
