@@ -14,7 +14,7 @@
 namespace lgi::experiments {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 /// f(u) = u̇² = c3 u³ + c2 u² + c1 u + c0 (docs/actions.md §1).
 struct Cubic {

@@ -17,7 +17,7 @@
 namespace lgi::experiments {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 /// Keeps every step's state.
 class Samples final : public integrators::Observer {

@@ -30,7 +30,7 @@
 namespace lgi::experiments {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 struct SectionPoint4 {
   double t = 0.0;

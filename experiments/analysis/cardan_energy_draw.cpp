@@ -13,7 +13,7 @@ namespace {
 
 using system::Mat3;
 using system::Vec3;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 constexpr std::uint64_t energy_draw_stream = 0xe4e5afULL;  // apart from cardan_section's streams
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace {
 
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 double torus_distance(const Vec2& a, const Vec2& b) {
   return std::hypot(wrap_angle_signed(a(0) - b(0)), wrap_angle_signed(a(1) - b(1)));
@@ -60,7 +60,7 @@ struct ShapePotential {
   }
 };
 
-struct CriticalPoint {
+struct ShapeCriticalPoint {
   Vec2 r;
   bool degenerate = false;
   double residual = 0.0;
@@ -83,7 +83,7 @@ bool newton(const ShapePotential& P, Vec2& r, double tol) {
 }
 
 /// A circle of critical points along q3 is reported at q3 = 0 (header).
-void canonicalise(const ShapePotential& P, CriticalPoint& c, double tol, double value_scale) {
+void canonicalise(const ShapePotential& P, ShapeCriticalPoint& c, double tol, double value_scale) {
   c.r = {wrap_angle_signed(c.r(0)), wrap_angle_positive(c.r(1))};
   if (std::abs(std::sin(c.r(0))) < 1e-9) {  // a pole: exactly 0 or π if it is critical there
     const Vec2 pole(std::cos(c.r(0)) > 0.0 ? 0.0 : pi, c.r(1));
@@ -101,7 +101,7 @@ void canonicalise(const ShapePotential& P, CriticalPoint& c, double tol, double 
   c.degenerate = true;
 }
 
-std::vector<CriticalPoint> critical_points(const ShapePotential& P, int grid) {
+std::vector<ShapeCriticalPoint> critical_points(const ShapePotential& P, int grid) {
   const int n = std::max(grid, 8);
   const double d = 2.0 * pi / n;
   std::vector<Vec2> g(static_cast<std::size_t>((n + 1) * (n + 1)));
@@ -115,7 +115,7 @@ std::vector<CriticalPoint> critical_points(const ShapePotential& P, int grid) {
     }
   const double tol = 1e-11 * std::max(g_scale, 1e-300) + 1e-14;
   v_scale = std::max(v_scale, 1e-300);
-  std::vector<CriticalPoint> found;
+  std::vector<ShapeCriticalPoint> found;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
@@ -129,18 +129,18 @@ std::vector<CriticalPoint> critical_points(const ShapePotential& P, int grid) {
       // (the Lagrange top's ∂U/∂q3 ≡ 0, a pole where sin q2 is ±1e-16).
       const double zero = 1e-12 * g_scale;
       if (lo[0] > zero || hi[0] < -zero || lo[1] > zero || hi[1] < -zero) continue;
-      CriticalPoint c{Vec2(-pi + (i + 0.5) * d, (j + 0.5) * d)};
+      ShapeCriticalPoint c{Vec2(-pi + (i + 0.5) * d, (j + 0.5) * d)};
       if (!newton(P, c.r, tol)) continue;
       canonicalise(P, c, tol, v_scale);
       c.residual = P.gradient(c.r).norm();
-      const bool seen = std::any_of(found.begin(), found.end(), [&](const CriticalPoint& f) {
+      const bool seen = std::any_of(found.begin(), found.end(), [&](const ShapeCriticalPoint& f) {
         return torus_distance(f.r, c.r) < 1e-6 || (f.degenerate && c.degenerate && std::abs(f.r(0) - c.r(0)) < 1e-6 &&
                                                    std::abs(P.value(f.r) - P.value(c.r)) <= 1e-10 * v_scale);
       });
       if (!seen) found.push_back(c);
     }
   std::sort(found.begin(), found.end(),
-            [](const CriticalPoint& a, const CriticalPoint& b) { return a.r(0) != b.r(0) ? a.r(0) < b.r(0) : a.r(1) < b.r(1); });
+            [](const ShapeCriticalPoint& a, const ShapeCriticalPoint& b) { return a.r(0) != b.r(0) ? a.r(0) < b.r(0) : a.r(1) < b.r(1); });
   return found;
 }
 
@@ -160,7 +160,7 @@ EquilibriumStability stability_class(double g1, double g2) {
 
 /// Fills the motion, the body's Γ and Π, (g1, g2), the classes and the flags.
 /// False at a pole with massless rings (M singular: outside the Cardan system).
-bool describe(const system::CardanTop& top, const ShapePotential& P, const CriticalPoint& c, CardanEquilibrium& e) {
+bool describe(const system::CardanTop& top, const ShapePotential& P, const ShapeCriticalPoint& c, CardanEquilibrium& e) {
   e.q = ShapePotential::config(c.r);
   P.motion(c.r, e.omega, e.l, e.h);
   e.degenerate = c.degenerate;
@@ -214,7 +214,7 @@ double cardan_amended_potential(const system::CardanTop& top, double l, double q
 std::vector<CardanEquilibrium> cardan_equilibria_at(const system::CardanTop& top, double l, int grid) {
   const ShapePotential P{top, true, l};
   std::vector<CardanEquilibrium> rows;
-  for (const CriticalPoint& c : critical_points(P, grid)) {
+  for (const ShapeCriticalPoint& c : critical_points(P, grid)) {
     CardanEquilibrium e;
     if (!describe(top, P, c, e)) continue;
     e.branch = static_cast<int>(rows.size());
@@ -244,7 +244,7 @@ std::vector<CardanEquilibrium> cardan_equilibrium_branches(const system::CardanT
     const double omega = omega_max * (2.0 * (k + 0.5) / n - 1.0);
     const ShapePotential P{top, false, omega};
     std::vector<CardanEquilibrium> now;
-    for (const CriticalPoint& c : critical_points(P, grid)) {
+    for (const ShapeCriticalPoint& c : critical_points(P, grid)) {
       CardanEquilibrium e;
       if (!describe(top, P, c, e)) continue;
       // Continuation: the nearest point of the previous ω (within 0.3 rad) gives the branch.
@@ -269,7 +269,7 @@ std::vector<CardanEquilibrium> cardan_equilibrium_branches(const system::CardanT
 double cardan_minimum_energy(const system::CardanTop& top, double l) {
   const ShapePotential P{top, true, l};
   double lowest = std::numeric_limits<double>::infinity();
-  for (const CriticalPoint& c : critical_points(P, 96)) lowest = std::min(lowest, P.value(c.r));
+  for (const ShapeCriticalPoint& c : critical_points(P, 96)) lowest = std::min(lowest, P.value(c.r));
   for (int i = 0; i < 256; ++i)
     for (int j = 0; j < 256; ++j)
       lowest = std::min(lowest, P.value(Vec2(-pi + (i + 0.5) * pi / 128.0, (j + 0.5) * pi / 128.0)));

@@ -16,7 +16,7 @@ namespace lgi::experiments {
 namespace {
 
 using system::TorusState;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 constexpr std::uint64_t draw_stream = 0x5ec7104ULL, tangent_stream = 0x7a1e5cULL;
 
 /// The two factors of S = −sin q2 · q̇2 (header): 0 is q̇2, 1 is sin q2.

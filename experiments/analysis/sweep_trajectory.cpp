@@ -142,7 +142,7 @@ class SweepObserver final : public integrators::BasicObserver<S> {
 };
 
 using BodyObserver = SweepObserver<system::State, system::SceneInvariants>;
-using CardanObserver = SweepObserver<system::TorusState, CardanInvariants>;
+using CardanSweepObserver = SweepObserver<system::TorusState, CardanInvariants>;
 
 }  // namespace
 
@@ -302,7 +302,7 @@ void SweepRunner::run_cardan(std::int64_t i, std::vector<double>& events, const 
                              TrajectoryRow& row) {
   const Context& c = *context_;
   const std::size_t events_before = events.size();
-  CardanObserver observer(*c.cardan_invariants, &*c.cardan, c.error_slots, i, spec_.max_events,
+  CardanSweepObserver observer(*c.cardan_invariants, &*c.cardan, c.error_slots, i, spec_.max_events,
                           spec_.trajectory_every, events, row.max_errors, scratch_);
   auto cfg = integrators::run_config_with<system::TorusState>(config_);
   cfg.stop = stop;

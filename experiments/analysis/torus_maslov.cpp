@@ -15,7 +15,7 @@
 namespace lgi::experiments {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 /// A Hamiltonian field of the Lie–Poisson brackets at (Γ, Π): (Γ × ∇_Π F, Π × ∇_Π F + Γ × ∇_Γ F).
 /// Both fields of the plane use the same formula, so the bracket's overall sign does not matter.

@@ -54,7 +54,6 @@ struct FrequenciesOptions {
   std::string command_line;
 };
 
-std::string number(double x) { return format_general(x, 17); }
 std::string shown(double x) { return format_general(x, 12); }  // in messages
 
 void check_flags(const FrequenciesOptions& o) {
@@ -281,8 +280,8 @@ int run_frequencies(const FrequenciesOptions& o) {
   const std::map<std::string, std::string> parameters = {
       {"subcommand", "frequencies"}, {"command_line", o.command_line}, {"scene_file", scene.file},
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
-      {"cxx_flags", build_info::cxx_flags}, {"scheme", a.scheme}, {"t_end", number(a.s.t_end)},
-      {"dt", number(a.s.dt)}, {"output_dt", number(a.s.output_dt)}, {"samples", std::to_string(a.samples)},
+      {"cxx_flags", build_info::cxx_flags}, {"scheme", a.scheme}, {"t_end", format_exact(a.s.t_end)},
+      {"dt", format_exact(a.s.dt)}, {"output_dt", format_exact(a.s.output_dt)}, {"samples", std::to_string(a.samples)},
       {"terms", std::to_string(o.terms)}, {"window_order", std::to_string(o.window_order)},
       {"states", a.source}, {"state_count", std::to_string(a.states.size())},
       {"method", "NAFF (Laskar 1990, 1993): window chi_p, FFT peak, Brent, zero of the derivative, Gram-Schmidt; "

@@ -59,7 +59,6 @@ struct IndicatorsOptions {
   std::string command_line;
 };
 
-std::string number(double x) { return format_general(x, 17); }
 
 void check_flags(const IndicatorsOptions& o) {
   if (o.t_end && (!(*o.t_end > 0.0) || !std::isfinite(*o.t_end))) throw UsageError("--t-end: must be a positive number");
@@ -235,9 +234,9 @@ int run_indicators(const IndicatorsOptions& o) {
   const std::map<std::string, std::string> parameters = {
       {"subcommand", "indicators"}, {"command_line", o.command_line}, {"scene_file", scene.file},
       {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
-      {"cxx_flags", build_info::cxx_flags}, {"t_end", number(s.t_end)}, {"dt", number(s.dt)},
+      {"cxx_flags", build_info::cxx_flags}, {"t_end", format_exact(s.t_end)}, {"dt", format_exact(s.dt)},
       {"scheme", cardan ? torus_tangent_scheme : tangent_scheme}, {"seed", std::to_string(o.seed)},
-      {"rtol", number(o.rtol)}, {"states", source}, {"state_file", o.state_file},
+      {"rtol", format_exact(o.rtol)}, {"states", source}, {"state_file", o.state_file},
       {"spectrum", o.spectrum ? "yes" : "no"}, {"gali", o.gali ? "yes" : "no"},
       {"gali_samples", std::to_string(o.gali_samples)}, {"gali_spacing", o.gali_spacing},
       {"converged_rule", "|lyapunov_last_half - lyapunov| <= rtol * max(|lyapunov_last_half|, |lyapunov|)"},

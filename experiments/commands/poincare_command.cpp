@@ -48,11 +48,6 @@ namespace {
 
 using PoincareOptions = PoincareRequest;
 
-std::string number(double x) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
-}
 
 constexpr const char* default_so3_scheme = "split-exact@yoshida4";
 std::string so3_scheme(const PoincareOptions& o) { return o.scheme.empty() ? default_so3_scheme : o.scheme; }
@@ -66,13 +61,13 @@ std::string spec_text(const PoincareOptions& o, const std::string& scene_path, d
   for (int k = 0; k < 3; ++k)
     if (e(k) == 1.0) component = k + 1;
   std::string t = "name = \"lgi poincare\"\nscene = \"" + scene_path + "\"\nscheme = \"" + so3_scheme(o) +
-                  "\"\ndt = " + number(dt) + "\nt_end = " + number(o.t_end) + "\nseed = " + std::to_string(o.seed) +
+                  "\"\ndt = " + format_exact(dt) + "\nt_end = " + format_exact(o.t_end) + "\nseed = " + std::to_string(o.seed) +
                   "\nsamples = " + std::to_string(o.ics) + "\nmax_events = " + std::to_string(o.max_events) +
-                  "\n\n[level_set]\nh = " + number(o.h) + "\nl = " + number(o.l) + "\nmeasure = \"" + measure(o) +
+                  "\n\n[level_set]\nh = " + format_exact(o.h) + "\nl = " + format_exact(o.l) + "\nmeasure = \"" + measure(o) +
                   "\"\n\n[[event]]\n";
   t += kind == SectionKind::richter ? "quantity = \"gamma_rate\"\n" : "quantity = \"gamma\"\n";
   t += "component = " + std::to_string(component) + "\nname = \"" + (kind == SectionKind::richter ? "richter" : "gamma") +
-       "_section\"\n# section axis e = (" + number(e.x()) + ", " + number(e.y()) + ", " + number(e.z()) + ")\n";
+       "_section\"\n# section axis e = (" + format_exact(e.x()) + ", " + format_exact(e.y()) + ", " + format_exact(e.z()) + ")\n";
   return t;
 }
 

@@ -49,7 +49,6 @@ struct QuantumOptions {
   std::string command_line;
 };
 
-std::string number(double x) { return format_general(x, 17); }
 
 /// --energy-window LO:HI: two finite numbers, LO < HI; only with --statistics.
 void parse_window(QuantumOptions& o) {
@@ -130,7 +129,7 @@ void print_extra(const std::vector<TableGroup>& extra) {
 }
 
 std::string vector_text(const Eigen::Vector3d& v) {
-  return "[" + number(v(0)) + ", " + number(v(1)) + ", " + number(v(2)) + "]";
+  return "[" + format_exact(v(0)) + ", " + format_exact(v(1)) + ", " + format_exact(v(2)) + "]";
 }
 
 std::map<std::string, std::string> parameters_of(const QuantumOptions& o, const system::Scene& scene,
@@ -138,12 +137,12 @@ std::map<std::string, std::string> parameters_of(const QuantumOptions& o, const 
   const Eigen::Matrix3d& f = q.top.frame;
   return {{"subcommand", "quantum"}, {"command_line", o.command_line}, {"scene_file", scene.file},
           {"scene_toml", scene.toml_text}, {"lgi_version", build_info::version}, {"compiler", build_info::compiler},
-          {"cxx_flags", build_info::cxx_flags}, {"hbar", number(o.hbar)}, {"m", std::to_string(o.m)},
+          {"cxx_flags", build_info::cxx_flags}, {"hbar", format_exact(o.hbar)}, {"m", std::to_string(o.m)},
           {"jmax", std::to_string(o.jmax)}, {"jmax_step", std::to_string(o.jmax_step)},
-          {"levels", std::to_string(o.levels)}, {"tol", number(o.tol)},
+          {"levels", std::to_string(o.levels)}, {"tol", format_exact(o.tol)},
           {"converged_rule", "|change_with_jmax| <= tol * max(|energy|, energy_unit), change_with_jmax = "
                              "E(jmax + jmax_step) - E(jmax) for the same level (same block, same rank)"},
-          {"energy_unit", number(q.energy_unit)},
+          {"energy_unit", format_exact(q.energy_unit)},
           {"hamiltonian", "sum_i L_i^2/(2 J_i) + c.Gamma in the Wigner basis |j,k,m>, j = |m|..jmax (docs/quantum.md)"},
           {"potential", q.top.potential}, {"moments", vector_text(q.top.moments)},
           {"weight", vector_text(q.top.weight)},

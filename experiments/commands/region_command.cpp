@@ -43,11 +43,6 @@ struct RegionOptions {
   std::string command_line;
 };
 
-std::string number(double x) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
-}
 
 const char* index_name(const CriticalPoint& c) {
   static const char* names[] = {"minimum", "saddle", "maximum"};
@@ -88,7 +83,7 @@ int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTo
   const CriticalSet& critical = single.critical;
   const Region& region = single.region;
   auto parameters = provenance(o, scene);
-  parameters["l"] = number(l), parameters["h"] = number(h), parameters["topology"] = region.topology;
+  parameters["l"] = format_exact(l), parameters["h"] = format_exact(h), parameters["topology"] = region.topology;
   parameters["resolved"] = region.resolved ? "yes" : "no";
   parameters["degenerate"] = region.degenerate ? "yes" : "no";
   parameters["u_constant"] = critical.constant ? "yes" : "no";

@@ -103,7 +103,14 @@ std::string json_value(const SchemeField& f) {
     std::string operator()(std::monostate) const { return "null"; }
     std::string operator()(bool b) const { return b ? "true" : "false"; }
     std::string operator()(int i) const { return std::to_string(i); }
-    std::string operator()(const std::string& s) const { return "\"" + json_escape(s) + "\""; }
+    // Appended, not '"' + ... + '"': GCC 12 warns falsely (-Wrestrict) on the inlined
+    // operator+ of a literal and a temporary when this unit is compiled in a unity batch.
+    std::string operator()(const std::string& s) const {
+      std::string quoted = "\"";
+      quoted += json_escape(s);
+      quoted += '"';
+      return quoted;
+    }
   };
   return std::visit(Text{}, f.value);
 }

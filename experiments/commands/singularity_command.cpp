@@ -34,6 +34,9 @@
 
 namespace lgi::experiments {
 namespace {
+// This file's own namespace: its `using namespace` below does not reach the next
+// file of a unity batch (experiments/CMakeLists.txt).
+namespace singularity_cli {
 
 using namespace singularity;
 
@@ -163,9 +166,11 @@ int singularity_command(const SingularityOptions& o) {
   return exit_ok;
 }
 
+}  // namespace singularity_cli
 }  // namespace
 
 Subcommand add_singularity_subcommand(CLI::App& app, const CommandContext& context) {
+  using namespace singularity_cli;
   auto o = std::make_shared<SingularityOptions>();
   auto* sub = app.add_subcommand(
       "singularity",

@@ -35,6 +35,9 @@
 
 namespace lgi::experiments {
 namespace {
+// This file's own namespace: its `using namespace` below does not reach the next
+// file of a unity batch (experiments/CMakeLists.txt).
+namespace stress_cli {
 
 using integrators::SchemeInfo;
 using namespace stress;
@@ -171,9 +174,11 @@ int stress_command(const StressOptions& o) {
   return exit_ok;
 }
 
+}  // namespace stress_cli
 }  // namespace
 
 Subcommand add_stress_subcommand(CLI::App& app, const CommandContext& context) {
+  using namespace stress_cli;
   auto o = std::make_shared<StressOptions>();
   auto* sub = app.add_subcommand(
       "stress", "Run the suite of stiff and extreme cases (experiments/STRESS.md) against every scheme that applies");

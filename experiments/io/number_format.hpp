@@ -29,4 +29,8 @@ inline std::string format_general(double x, int digits = 6) {
   return buf;
 }
 
+/// Every significant digit a double needs to be read back (%.17g): the tables a
+/// reader compares bit for bit.
+inline std::string format_exact(double x) { return format_general(x, 17); }
+
 }  // namespace lgi::experiments

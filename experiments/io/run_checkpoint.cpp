@@ -46,9 +46,9 @@ class Writer {
   std::vector<unsigned char> bytes;
 };
 
-class Reader {
+class CheckpointBytes {
  public:
-  explicit Reader(std::span<const unsigned char> b) : b_(b) {}
+  explicit CheckpointBytes(std::span<const unsigned char> b) : b_(b) {}
   template <class T>
   bool get(T& x) {
     static_assert(sizeof(T) == 8);
@@ -115,7 +115,7 @@ std::optional<std::pair<BasicRunCheckpoint<S>, std::uint64_t>> decode_checkpoint
                                                                                  std::size_t error_columns) {
   using Space = integrators::StateSpace<S>;
   if (slot.size() < header_bytes || std::memcmp(slot.data(), magic, 8) != 0) return std::nullopt;
-  Reader h(slot.subspan(8, 24));
+  CheckpointBytes h(slot.subspan(8, 24));
   std::uint64_t sequence = 0, length = 0, hash = 0;
   (void)h.get(sequence);
   (void)h.get(length);
@@ -125,7 +125,7 @@ std::optional<std::pair<BasicRunCheckpoint<S>, std::uint64_t>> decode_checkpoint
   if (slot_hash(sequence, length, payload) != hash) return std::nullopt;
   BasicRunCheckpoint<S> c;
   integrators::BasicLoopCheckpoint<S>& l = c.loop;
-  Reader p(payload);
+  CheckpointBytes p(payload);
   bool ok = p.get(c.rows) && p.get(l.step) && p.get(l.t) && p.get(l.h);
   double state[Space::dimension] = {};
   for (std::size_t i = 0; i < Space::dimension && ok; ++i) ok = p.get(state[i]);

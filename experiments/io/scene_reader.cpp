@@ -36,6 +36,9 @@
 
 namespace lgi::experiments {
 namespace {
+// This file's own namespace: its `using namespace` below does not reach the next
+// file of a unity batch (experiments/CMakeLists.txt).
+namespace scene_reader_toml {
 
 using namespace scene_toml;
 
@@ -242,9 +245,11 @@ void read_run(const Table& run, Scene& s) {
     run.fail(*run.get("tol"), "tol", "must be in (0, 1) (a relative tolerance), got " + fmt(*s.tol));
 }
 
+}  // namespace scene_reader_toml
 }  // namespace
 
-Scene parse_scene(std::string_view toml_text, const std::string& path_for_messages) {
+system::Scene parse_scene(std::string_view toml_text, const std::string& path_for_messages) {
+  using namespace scene_reader_toml;
   const Reader rd(path_for_messages);
   toml::table doc;
   try {
@@ -291,14 +296,16 @@ Scene parse_scene(std::string_view toml_text, const std::string& path_for_messag
   return s;
 }
 
-void refuse_cardan_scene(const Scene& scene, const std::string& command) {
+void refuse_cardan_scene(const system::Scene& scene, const std::string& command) {
+  using namespace scene_reader_toml;
   if (scene.suspension)
     throw InputError(scene.file + ": [suspension]: lgi " + command +
                      " works on SO(3) and does not take a Cardan top (simulate, equilibria, bifurcation, poincare "
                      "and indicators do; docs/cardan.md)");
 }
 
-Scene read_scene(const std::string& path) {
+system::Scene read_scene(const std::string& path) {
+  using namespace scene_reader_toml;
   return parse_scene(read_text_input(path, "scene file"), path);
 }
 

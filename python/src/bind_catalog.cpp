@@ -55,8 +55,6 @@ std::string scenes_dir(const std::optional<std::string>& directory) {
                                          {LGI_PYTHON_SCENES_INSTALLED, "../../../../experiments/scenes"});
 }
 
-py::object optional_number(const std::optional<double>& x) { return x ? py::object(py::float_(*x)) : py::none(); }
-
 py::dict scene_dict(const std::filesystem::path& file) {
   const system::Scene scene = experiments::read_scene(file.string());
   const system::AnyModel model = system::make_model(scene);

@@ -74,8 +74,6 @@ PyScene scene_from_toml(const std::string& text, const std::string& name) {
   return {std::make_shared<const system::Scene>(experiments::parse_scene(text, name))};
 }
 
-py::object optional_number(const std::optional<double>& x) { return x ? py::object(py::float_(*x)) : py::none(); }
-
 std::vector<std::string> invariant_names(const system::Scene& scene) {
   const system::AnyModel model = system::make_model(scene);
   return system::SceneInvariants(scene, model).all_names();

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,11 @@ py::array_t<T> to_numpy(std::vector<T>&& values, std::vector<py::ssize_t> shape)
   auto* owned = new std::vector<T>(std::move(values));
   py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
   return py::array_t<T>(std::move(shape), owned->data(), owner);
+}
+
+/// A scene's optional number ([run] dt, tol, t_end, the mass) as a float, or None.
+inline py::object optional_number(const std::optional<double>& x) {
+  return x ? py::object(py::float_(*x)) : py::none();
 }
 
 }  // namespace lgi::python

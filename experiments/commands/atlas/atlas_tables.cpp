@@ -16,11 +16,6 @@
 namespace lgi::experiments {
 namespace {
 
-std::string number(double x) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
-}
 
 TableGroup potential_group(const SphereGrid& grid, const Region& region) {
   TableGroup g{"potential"};
@@ -131,8 +126,8 @@ std::vector<double> appelrot_energies(const KovalevskayaScale& scale, const std:
 void check_level_not_empty(const HeavyTopBody& body, double l, double h, const std::string& scene_file) {
   const double lowest = minimum_energy(body, l);
   if (h < lowest - 1e-12 * std::max(1.0, std::abs(lowest)))
-    throw UsageError("--h: h is below the minimum energy at this l: h = " + number(h) + " < " + number(lowest) +
-                     " = min H at l = " + number(l) + " for " + scene_file + " (the level set is empty)");
+    throw UsageError("--h: h is below the minimum energy at this l: h = " + format_exact(h) + " < " + format_exact(lowest) +
+                     " = min H at l = " + format_exact(l) + " for " + scene_file + " (the level set is empty)");
 }
 
 SingleRegion single_region(const HeavyTopBody& body, double l, double h, int grid) {

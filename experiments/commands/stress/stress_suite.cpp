@@ -11,7 +11,7 @@
 namespace lgi::experiments::stress {
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 Scene shipped(const std::string& dir, const std::string& file) { return read_scene(dir + "/" + file); }
 
