@@ -280,7 +280,9 @@ void bind_periodic(py::module_& m) {
         "One periodic orbit of a heavy top by Newton's method from a point and a period guess, at energy h and "
         "momentum l (default: those of the point), by single (shooting_points=1) or multiple shooting, with its "
         "Floquet multipliers and stability: the columns of `lgi periodic`'s /periodic for one row, plus converged, "
-        "iterations and the 6x6 monodromy (experiments/PERIODIC.md).");
+        "iterations and the 6x6 monodromy. On a Cardan scene with a vertical outer axis the point is (q, p) in the "
+        "places of (angular_momentum, gamma), reduced at p1 = l, with the CLI's Cardan columns "
+        "(experiments/PERIODIC.md).");
   m.def(
       "continue_family",
       [](const py::object& scene, const py::object& l, const py::object& seed, int steps, double h_step, double dt,
@@ -310,7 +312,8 @@ void bind_periodic(py::module_& m) {
       "(seeds_from_poincare=path with poincare_rows=[...] and/or poincare_points=[(phi, theta, sheet), ...]; l "
       "may be left out), with manifolds=N the stable and unstable manifolds of its hyperbolic orbits "
       "(d['manifolds']); shooting_points=M > 1 corrects by multiple shooting. The columns of `lgi periodic`'s "
-      "/periodic, failures and l_file (the l used) (experiments/PERIODIC.md).");
+      "/periodic, failures and l_file (the l used). On a Cardan scene with a vertical outer axis: its equilibria's "
+      "families or seed=(q, p, period), the CLI's Cardan columns (experiments/PERIODIC.md).");
 }
 
 }  // namespace lgi::python
