@@ -165,10 +165,7 @@ int write_interrupted(const PeriodicOptions& o, const system::Scene& scene, cons
 /// momentum to reduce at (exit 2, naming suspension.tilt); and only the starts it has.
 system::CardanTop cardan_top_for_periodic(const PeriodicOptions& o, const system::Scene& scene) {
   system::CardanTop top = cardan_top(scene);
-  if (!top.outer_angle_cyclic())
-    throw UsageError("--scene: " + scene.file + ": suspension.tilt = " + format_general(top.suspension.tilt, 17) +
-                     ": a tilted outer axis under gravity leaves no cyclic angle (p1 is no integral), so there is no "
-                     "reduced flow at fixed --l; lgi periodic on a Cardan top needs tilt = 0");
+  if (const std::string why = cardan_tilt_refusal(top, scene.file); !why.empty()) throw UsageError("--scene: " + why);
   if (!o.poincare.empty()) throw UsageError("--seeds-from-poincare: not for a Cardan top (" + scene.file + ")");
   if (!o.critical.empty()) throw UsageError("--from-critical: a Kovalevskaya top only, not the Cardan top " + scene.file);
   return top;

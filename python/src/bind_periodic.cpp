@@ -3,15 +3,18 @@
 #include <pybind11/complex.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "experiments/analysis/periodic/kovalevskaya_orbits.hpp"
 #include "experiments/analysis/periodic/lyapunov_families.hpp"
 #include "experiments/commands/atlas/atlas_tables.hpp"
 #include "experiments/commands/periodic/periodic_run.hpp"
+#include "experiments/io/scene_suspension.hpp"
 #include "python/src/bindings.hpp"
 
 namespace lgi::python {
@@ -19,9 +22,50 @@ namespace {
 
 namespace ex = experiments;
 
-ex::HeavyTopBody heavy_top(const system::Scene& scene, const char* what) {
-  if (scene.suspension) throw py::value_error(std::string(what) + ": " + scene.file + " is a Cardan top; heavy tops only");
-  return ex::equilibria_body(scene);
+/// A scene's flow for lgi periodic: a heavy top, or a Cardan top with a cyclic outer
+/// angle (the CLI's refusal of a tilted frame, naming suspension.tilt, as ValueError).
+struct SceneFlow {
+  std::optional<system::CardanTop> top;
+  std::optional<ex::PeriodicFlow> flow;
+};
+
+void flow_of(SceneFlow& f, const system::Scene& scene, const char* what) {
+  if (!scene.suspension) {
+    f.flow.emplace(ex::equilibria_body(scene));
+    return;
+  }
+  f.top.emplace(ex::cardan_top(scene));
+  if (const std::string why = ex::cardan_tilt_refusal(*f.top, scene.file); !why.empty())
+    throw py::value_error(std::string(what) + ": " + why);
+  f.flow.emplace(*f.top);
+}
+
+/// A Cardan top's point (q, p) as the CLI's seed line: q1 dropped (0, it is cyclic).
+ex::Vec6 cardan_point_of(const py::object& q_arg, const py::object& p_arg) {
+  const auto q = q_arg.cast<std::vector<double>>(), p = p_arg.cast<std::vector<double>>();
+  if (q.size() != 3 || p.size() != 3) throw py::value_error("a Cardan scene's point: expected q and p as 3-vectors");
+  ex::Vec6 x;
+  x << 0.0, q[1], q[2], p[0], p[1], p[2];
+  if (!x.allFinite()) throw py::value_error("a Cardan scene's point: q and p must be finite");
+  return x;
+}
+
+/// Every column of `lgi periodic`'s /periodic for `rows`, as the CLI writes them (periodic_columns).
+py::dict table_columns(std::vector<ex::TableColumn> columns) {
+  py::dict d;
+  for (ex::TableColumn& c : columns) {
+    const std::string name = c.name;
+    if (c.is_text) {
+      d[py::str(name)] = py::cast(c.text);
+      continue;
+    }
+    const auto w = static_cast<py::ssize_t>(c.width);
+    const auto rows = static_cast<py::ssize_t>(c.integer ? c.whole.size() : c.real.size()) / w;
+    std::vector<py::ssize_t> shape{rows};
+    if (w > 1) shape.push_back(w);
+    d[py::str(name)] = c.integer ? py::array(to_numpy(std::move(c.whole), shape)) : py::array(to_numpy(std::move(c.real), shape));
+  }
+  return d;
 }
 
 ex::Vec6 point_of(const py::object& angular_momentum, const py::object& gamma) {
@@ -36,7 +80,7 @@ ex::Vec6 point_of(const py::object& angular_momentum, const py::object& gamma) {
 /// The columns of /periodic for `rows` (experiments/PERIODIC.md).
 py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
   const std::size_t n = rows.size();
-  std::vector<std::int64_t> family(n), index(n), degenerate(n), equilibrium(n), parent(n);
+  std::vector<std::int64_t> family(n), index(n), degenerate(n), equilibrium(n), parent(n), pieces(n);
   std::vector<double> l(n), h(n), period(n), pi(3 * n), gamma(3 * n), residual(n), mult(12 * n), omega(n), trivial(n),
       product(n), trace(n), defect(n);
   py::list stability, event, family_end;
@@ -46,7 +90,7 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
     family[i] = r.family, index[i] = r.index, degenerate[i] = o.degenerate ? 1 : 0, equilibrium[i] = r.equilibrium;
     parent[i] = r.parent, l[i] = o.l, h[i] = o.h, period[i] = o.period, residual[i] = o.residual, omega[i] = r.omega;
     trivial[i] = o.trivial_deviation, product[i] = o.product_deviation, trace[i] = o.reduced_trace;
-    defect[i] = o.invariance_defect;
+    defect[i] = o.invariance_defect, pieces[i] = static_cast<std::int64_t>(o.pieces.size());
     for (std::size_t k = 0; k < 3; ++k) pi[3 * i + k] = o.x0(static_cast<int>(k)), gamma[3 * i + k] = o.x0(static_cast<int>(k) + 3);
     for (std::size_t k = 0; k < 6; ++k) mult[12 * i + 2 * k] = o.multipliers[k].real(), mult[12 * i + 2 * k + 1] = o.multipliers[k].imag();
     stability.append(o.stability), event.append(r.event), family_end.append(r.family_end);
@@ -63,6 +107,7 @@ py::dict family_columns(const std::vector<ex::FamilyOrbit>& rows) {
   d["omega"] = to_numpy(std::move(omega), {N}), d["trivial_deviation"] = to_numpy(std::move(trivial), {N});
   d["product_deviation"] = to_numpy(std::move(product), {N}), d["parent"] = to_numpy(std::move(parent), {N});
   d["reduced_trace"] = to_numpy(std::move(trace), {N}), d["invariance_defect"] = to_numpy(std::move(defect), {N});
+  d["monodromy_pieces"] = to_numpy(std::move(pieces), {N});
   return d;
 }
 
@@ -81,28 +126,40 @@ void add_appelrot_columns(py::dict& d, const ex::HeavyTopBody& body, const std::
   d["appelrot_distance"] = to_numpy(std::move(distance), {N}), d["critical_rank_gap"] = to_numpy(std::move(gap), {N});
 }
 
+/// The columns of `rows`: a heavy top's (with the Kovalevskaya ones), or on a Cardan top
+/// those of periodic_columns, the CLI's (angular_momentum, gamma the body's; cardan_*).
+py::dict rows_columns(const SceneFlow& f, const std::vector<ex::FamilyOrbit>& rows) {
+  if (f.top) return table_columns(ex::periodic_columns(*f.flow, rows, std::nullopt));
+  py::dict d = family_columns(rows);
+  add_appelrot_columns(d, f.flow->body, rows);
+  return d;
+}
+
 py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_momentum, const py::object& gamma,
                         double period, std::optional<double> h, std::optional<double> l, double dt,
                         int shooting_points) {
   const auto scene = scene_argument(scene_arg);
-  const ex::HeavyTopBody body = heavy_top(*scene, "periodic_orbit");
-  const ex::Vec6 x = point_of(angular_momentum, gamma);
+  SceneFlow f;
+  flow_of(f, *scene, "periodic_orbit");
+  const ex::Vec6 x = f.top ? cardan_point_of(angular_momentum, gamma) : point_of(angular_momentum, gamma);
   if (!(period > 0.0) || !std::isfinite(period)) throw py::value_error("period: must be a positive number");
   if (!(dt > 0.0) || !(dt <= 1.0)) throw py::value_error("dt: must be in (0, 1]");
   if (period / dt > 1e8) throw py::value_error("period, dt: more than 1e8 steps a shot");
   if ((h && !std::isfinite(*h)) || (l && !std::isfinite(*l))) throw py::value_error("h, l: must be finite numbers");
   if (shooting_points < 1 || shooting_points > 1000) throw py::value_error("shooting_points: must be in [1, 1000]");
-  const auto inv = ex::euler_poisson_invariants(body, x).value;
+  const auto inv = ex::flow_invariants(*f.flow, x).value;
+  // As the CLI's Cardan seeds (q1 q2 q3 p1 p2 p3 T): p1 is the momentum ℓ, not a guess of it.
+  if (f.top && l && std::abs(x(3) - *l) > 1e-9 * std::max(1.0, std::abs(*l)))
+    throw py::value_error("periodic_orbit: a Cardan scene's p1 is l: p1 = " + std::to_string(x(3)) + ", l = " + std::to_string(*l));
   ex::ShootingSettings s;
   s.dt = dt, s.shooting_points = shooting_points;
   ex::FamilyOrbit r;
   {
     const py::gil_scoped_release release;
-    r.orbit = ex::correct_orbit(body, x, period, h.value_or(inv(0)), l.value_or(inv(1)), s);
+    r.orbit = ex::correct_orbit(*f.flow, x, period, h.value_or(inv(0)), l.value_or(inv(1)), s);
   }
   r.omega = 2.0 * std::acos(-1.0) / r.orbit.period;
-  py::dict d = family_columns({r});
-  add_appelrot_columns(d, body, {r});
+  py::dict d = rows_columns(f, {r});
   d["converged"] = r.orbit.converged;
   d["iterations"] = r.orbit.iterations;
   std::vector<double> m(r.orbit.monodromy.data(), r.orbit.monodromy.data() + 36);
@@ -112,24 +169,11 @@ py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_m
 
 /// /manifolds as a dict of columns (text columns as lists of str).
 py::dict manifold_columns(const std::vector<ex::RowManifolds>& manifolds) {
-  py::dict d;
-  for (ex::TableColumn& c : ex::manifold_group(manifolds).columns) {
-    const std::string name = c.name;
-    if (c.is_text) {
-      d[py::str(name)] = py::cast(c.text);
-      continue;
-    }
-    const auto w = static_cast<py::ssize_t>(c.width);
-    const auto rows = static_cast<py::ssize_t>(c.integer ? c.whole.size() : c.real.size()) / w;
-    std::vector<py::ssize_t> shape{rows};
-    if (w > 1) shape.push_back(w);
-    d[py::str(name)] = c.integer ? py::array(to_numpy(std::move(c.whole), shape)) : py::array(to_numpy(std::move(c.real), shape));
-  }
-  return d;
+  return table_columns(ex::manifold_group(manifolds).columns);
 }
 
 /// The starts of continue_family: a seed (angular_momentum, gamma, period), or a poincare file's rows and points.
-void starts_of(ex::PeriodicRequest& r, const py::object& seed, const py::object& poincare,
+void starts_of(ex::PeriodicRequest& r, bool cardan, const py::object& seed, const py::object& poincare,
                const py::object& poincare_rows, const py::object& poincare_points) {
   if (!seed.is_none() && !poincare.is_none()) throw py::value_error("seed, seeds_from_poincare: give at most one");
   if (poincare.is_none()) {
@@ -141,7 +185,7 @@ void starts_of(ex::PeriodicRequest& r, const py::object& seed, const py::object&
       throw py::value_error("seed: expected (angular_momentum, gamma, period)");
     const auto t = seed.cast<py::tuple>();
     if (t.size() != 3) throw py::value_error("seed: expected (angular_momentum, gamma, period)");
-    const ex::Vec6 x = point_of(t[0], t[1]);
+    const ex::Vec6 x = cardan ? cardan_point_of(t[0], t[1]) : point_of(t[0], t[1]);
     const double T = t[2].cast<double>();
     if (!(T > 0.0) || !std::isfinite(T)) throw py::value_error("seed: the period must be a positive number");
     r.seeds.push_back({x, T});
@@ -201,7 +245,8 @@ ex::FamilySettings settings_of(const FamilyOptions& o) {
 py::dict continue_family(const py::object& scene_arg, const py::object& l, const py::object& seed, const FamilyOptions& o,
                          const py::object& poincare, const py::object& poincare_rows, const py::object& poincare_points) {
   const auto scene = scene_argument(scene_arg);
-  const ex::HeavyTopBody body = heavy_top(*scene, "continue_family");
+  SceneFlow f;
+  flow_of(f, *scene, "continue_family");
   ex::PeriodicRequest r;
   if (!l.is_none()) r.l = l.cast<double>();
   if ((r.l && !std::isfinite(*r.l)) || (!r.l && poincare.is_none())) throw py::value_error("l: must be a finite number");
@@ -212,14 +257,14 @@ py::dict continue_family(const py::object& scene_arg, const py::object& l, const
   r.manifolds.points = o.manifolds, r.manifolds.periods = o.manifold_periods;
   r.manifolds.epsilon = o.manifold_epsilon, r.manifolds.dt = o.dt;
   if (o.manifolds > 0 && poincare.is_none()) throw py::value_error("manifolds: only with seeds_from_poincare");
-  starts_of(r, seed, poincare, poincare_rows, poincare_points);
+  if (f.top && !poincare.is_none()) throw py::value_error("seeds_from_poincare: not for a Cardan top (" + scene->file + ")");
+  starts_of(r, f.top.has_value(), seed, poincare, poincare_rows, poincare_points);
   ex::PeriodicResult result;
   {
     const py::gil_scoped_release release;
-    result = ex::periodic_families(body, r);
+    result = ex::periodic_families(*f.flow, r);
   }
-  py::dict d = family_columns(result.rows);
-  add_appelrot_columns(d, body, result.rows);
+  py::dict d = rows_columns(f, result.rows);
   d["failures"] = result.failures;
   d["l_file"] = result.l;
   if (o.manifolds > 0) d["manifolds"] = manifold_columns(result.manifolds);
@@ -235,7 +280,9 @@ void bind_periodic(py::module_& m) {
         "One periodic orbit of a heavy top by Newton's method from a point and a period guess, at energy h and "
         "momentum l (default: those of the point), by single (shooting_points=1) or multiple shooting, with its "
         "Floquet multipliers and stability: the columns of `lgi periodic`'s /periodic for one row, plus converged, "
-        "iterations and the 6x6 monodromy (experiments/PERIODIC.md).");
+        "iterations and the 6x6 monodromy. On a Cardan scene with a vertical outer axis the point is (q, p) in the "
+        "places of (angular_momentum, gamma), reduced at p1 = l, with the CLI's Cardan columns "
+        "(experiments/PERIODIC.md).");
   m.def(
       "continue_family",
       [](const py::object& scene, const py::object& l, const py::object& seed, int steps, double h_step, double dt,
@@ -265,7 +312,8 @@ void bind_periodic(py::module_& m) {
       "(seeds_from_poincare=path with poincare_rows=[...] and/or poincare_points=[(phi, theta, sheet), ...]; l "
       "may be left out), with manifolds=N the stable and unstable manifolds of its hyperbolic orbits "
       "(d['manifolds']); shooting_points=M > 1 corrects by multiple shooting. The columns of `lgi periodic`'s "
-      "/periodic, failures and l_file (the l used) (experiments/PERIODIC.md).");
+      "/periodic, failures and l_file (the l used). On a Cardan scene with a vertical outer axis: its equilibria's "
+      "families or seed=(q, p, period), the CLI's Cardan columns (experiments/PERIODIC.md).");
 }
 
 }  // namespace lgi::python

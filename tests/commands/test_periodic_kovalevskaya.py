@@ -6,6 +6,11 @@
    families 0, 1 and 2 are all met, no orbit is degenerate; the CSV has the columns;
    each orbit integrated for one period by SciPy's DOP853 (another integrator)
    returns to its point to 1e-8;
+ - at l = 0, h = 0.9 (default options, single shooting) the strongly hyperbolic
+   critical orbit (tr P = 1.05e4) meets the bar of issue 51 from the file's
+   multipliers: residual <= 1e-10, four multipliers within 1e-8 of 1, their
+   product within 1e-8 of 1; it was read from more than one monodromy piece,
+   and the pair is (lambda, 1/lambda) with lambda + 1/lambda = reduced_trace;
  - a general top's rows have k = NaN and appelrot_family = -1;
  - bad input: --from-critical on a top that is not Kovalevskaya's, a malformed
    list, or with --from-equilibria: one line naming the flag, exit 2."""
@@ -55,7 +60,7 @@ def test_critical_orbits_on_the_appelrot_curves(tmp_path):
     assert np.all(t["appelrot_distance"] <= 1e-8)
     assert set(t["appelrot_family"]) == {0, 1, 2}
     assert np.all(t["degenerate"] == 0)
-    assert np.all(t["residual"] <= 1e-10)
+    multiplier_bar(t)
     J, weight = np.array([2.0, 2.0, 1.0]), np.array([1.0, 0.0, 0.0])  # the scene's J and m g chi
 
     def field(_, x):
@@ -69,6 +74,30 @@ def test_critical_orbits_on_the_appelrot_curves(tmp_path):
         header = c.readline()
     for col in ("k", "appelrot_family", "appelrot_distance", "critical_rank_gap"):
         assert col in header
+
+
+def multiplier_bar(t):
+    """The multipliers' checks of the file, recomputed from its `multipliers` column."""
+    mu = t["multipliers"].reshape(-1, 6, 2)
+    mu = mu[..., 0] + 1j * mu[..., 1]
+    assert np.all(t["residual"] <= 1e-10)
+    assert np.all(np.abs(mu[:, :4] - 1.0) <= 1e-8)
+    assert np.all(np.abs(np.prod(mu, axis=1) - 1.0) <= 1e-8)
+    return mu
+
+
+def test_strongly_hyperbolic_orbit_meets_the_bar(tmp_path):
+    out = str(tmp_path / "h.h5")
+    lgi("periodic", "--scene", KOVALEVSKAYA, "--l", "0", "--from-critical", "0.9", "--steps", "0", "--out", out,
+        "--quiet")
+    with h5py.File(out, "r") as f:
+        t = {c: f["periodic"][c][()] for c in f["periodic"]}
+    mu = multiplier_bar(t)
+    strong = np.abs(t["reduced_trace"]) > 800
+    assert strong.sum() >= 1
+    assert np.all(t["monodromy_pieces"][strong] > 1) and np.all(t["monodromy_pieces"] >= 1)
+    pair = mu[strong][:, 4:].real
+    assert np.allclose(pair.sum(axis=1), t["reduced_trace"][strong], rtol=1e-12, atol=0)
 
 
 def test_general_top_and_bad_input(tmp_path):

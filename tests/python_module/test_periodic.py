@@ -131,5 +131,5 @@ def test_refusals():
         lgi.periodic_orbit(RICHTER, [1, 0, 0], [0, 0], 1.0)
     with pytest.raises(ValueError, match="h_step"):
         lgi.continue_family(RICHTER, 2.2, h_step=0.0)
-    with pytest.raises(ValueError, match="Cardan"):
-        lgi.continue_family(os.path.join(SCENES, "cardan_lagrange_upright.toml"), 1.0)
+    with pytest.raises(ValueError, match="suspension.tilt"):  # a vertical frame is accepted (test_periodic_cardan.py)
+        lgi.continue_family(os.path.join(SCENES, "cardan_general_horizontal.toml"), 1.0)

@@ -87,17 +87,35 @@ Invariants euler_poisson_invariants(const HeavyTopBody& body, const Vec6& x) {
   return v;
 }
 
+void cut_piece(Shot& s, Vec6& start, Mat6& X) {
+  s.pieces.push_back({start, s.end, X});
+  start = s.end;
+  X.setIdentity();
+}
+
+Mat6 pieces_product(const std::vector<MonodromyPiece>& pieces) {
+  if (pieces.size() == 1) return pieces.front().monodromy;
+  Mat6 product = Mat6::Identity();
+  for (const MonodromyPiece& p : pieces) product = p.monodromy * product;
+  return product;
+}
+
 Shot shoot(const HeavyTopBody& body, const Vec6& x0, double T, double dt) {
   static const std::array<double, 9> w = composition_weights();
   Shot s{x0, Mat6::Identity(), true};
+  Mat6 X = Mat6::Identity();
+  Vec6 start = x0;
   const auto n = static_cast<long>(std::ceil(std::abs(T) / dt - 1e-9));
   const long steps = n < 1 ? 1 : n;
   const double h = T / static_cast<double>(steps);
   for (long k = 0; k < steps && s.ok; ++k) {
     // Ctrl-C: one shot over a long period is seconds of work; a step is microseconds, so a load a step is free.
     if (interrupt_requested.load(std::memory_order_relaxed)) s.ok = false;
-    for (const double wi : w) s.ok = s.ok && midpoint_substep(body, s.end, &s.monodromy, wi * h);
+    for (const double wi : w) s.ok = s.ok && midpoint_substep(body, s.end, &X, wi * h);
+    if (k + 1 < steps && X.cwiseAbs().maxCoeff() > piece_growth) cut_piece(s, start, X);
   }
+  cut_piece(s, start, X);
+  s.monodromy = pieces_product(s.pieces);
   return s;
 }
 

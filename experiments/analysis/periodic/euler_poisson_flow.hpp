@@ -15,7 +15,16 @@
 // exact derivative of the discrete map: X' = (I − h/2 A(m))⁻¹(I + h/2 A(m)) X,
 // A the field's Jacobian at the substep's midpoint m.
 // A shot over [0, T] takes N = ⌈T/dt⌉ equal steps, so it lands exactly on T.
+// Its tangent flow is kept in pieces: a piece ends after the step at which
+// its tangent flow's largest entry passes piece_growth, and the monodromy is
+// the product of the pieces' (the same discrete map, the same steps). The
+// multipliers are read from the pieces one by one (periodic_orbit.hpp,
+// classify_orbit): on a strongly hyperbolic orbit the single product has
+// entries of the size of its multiplier λ, and its small multiplier 1/λ and
+// det P are lost to round-off amplified by λ² (K. Lust, Int. J. Bifurcation
+// and Chaos 11 (2001) 2389–2410).
 #include <Eigen/Core>
+#include <vector>
 
 #include "experiments/analysis/relative_equilibria.hpp"
 
@@ -34,12 +43,29 @@ struct Invariants {
 };
 Invariants euler_poisson_invariants(const HeavyTopBody& body, const Vec6& x);
 
+/// A piece of a shot: from `start` to `end` with the tangent flow `monodromy`.
+struct MonodromyPiece {
+  Vec6 start, end;
+  Mat6 monodromy;
+};
+
+/// A piece ends once its tangent flow's largest entry exceeds this (top of this file).
+inline constexpr double piece_growth = 10.0;
+
 struct Shot {
   Vec6 end;
-  Mat6 monodromy;  // ∂(end)/∂(start)
+  Mat6 monodromy;  // ∂(end)/∂(start): the product of the pieces' (last first)
   bool ok = true;  // false: a midpoint solve did not converge, the state is not finite, or a signal came
   double drift = 0.0;  // a Cardan top's turn of q1 over the shot (periodic_flow.hpp); 0 for a heavy top
+  std::vector<MonodromyPiece> pieces{};  // in order along the shot; one when the tangent flow stays below piece_growth
 };
+
+/// Ends the shot's current piece (from `start` to s.end with tangent flow X): appends it,
+/// restarts X at I and start at s.end.
+void cut_piece(Shot& s, Vec6& start, Mat6& X);
+
+/// The product of the pieces' tangent flows, the last first (I for none).
+Mat6 pieces_product(const std::vector<MonodromyPiece>& pieces);
 
 /// φ_T(x0) and its derivative, with ⌈T/dt⌉ equal sixth-order steps (top of this file).
 /// Reads interrupt_requested (io/trajectory_observer.hpp) before every step and fails

@@ -85,7 +85,11 @@ PeriodicOrbit correct_multiple(const PeriodicFlow& body, const FamilyPoint& z_p,
       const CondensedSystem c = condensed_system(body, z, z_p, t, f_ref, fixed, s, g.shots.back().end, product);
       record_iterate(o, z, g.residual, product, c.A);
       o.drift = 0.0;
-      for (const Shot& sh : g.shots) o.drift += sh.drift;
+      o.pieces.clear();
+      for (const Shot& sh : g.shots) {
+        o.drift += sh.drift;
+        o.pieces.insert(o.pieces.end(), sh.pieces.begin(), sh.pieces.end());
+      }
     }
     if (newton_done(it, g.residual, previous, s)) break;
     previous = g.residual;

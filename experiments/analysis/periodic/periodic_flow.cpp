@@ -12,23 +12,31 @@ namespace {
 
 constexpr double two_pi = 2.0 * std::numbers::pi;
 
-/// The reduced map's end: q1 put back where it started, the drift kept.
+/// The reduced map's end: q1 put back where it started, the drift kept; each
+/// piece's tangent flow gets the q1 row e_q1ᵀ (their product is the reduced
+/// monodromy, as q1 is cyclic: M e_q1 = e_q1).
 void reduce(Shot& s, const Vec6& x0) {
   s.drift = s.end(0) - x0(0);
   s.end(0) = x0(0);
-  s.monodromy.row(0) = Vec6::Unit(0).transpose();
+  s.pieces.back().end(0) = x0(0);
+  for (MonodromyPiece& p : s.pieces) p.monodromy.row(0) = Vec6::Unit(0).transpose();
+  s.monodromy = pieces_product(s.pieces);
 }
 
 Shot shoot_cardan(const system::CardanTop& top, const Vec6& x0, double T, double dt) {
   Shot s{x0, Mat6::Identity(), true};
+  Mat6 X = Mat6::Identity();
+  Vec6 start = x0;
   const auto n = static_cast<long>(std::ceil(std::abs(T) / dt - 1e-9));
   const long steps = n < 1 ? 1 : n;
   const double h = T / static_cast<double>(steps);
   for (long k = 0; k < steps && s.ok; ++k) {
-    integrators::torus::torus_tangent_step(top, s.end, s.monodromy, h);
+    integrators::torus::torus_tangent_step(top, s.end, X, h);
     // Ctrl-C read every step, as the heavy top's shoot (euler_poisson_flow.cpp).
-    s.ok = s.end.allFinite() && s.monodromy.allFinite() && !interrupt_requested.load(std::memory_order_relaxed);
+    s.ok = s.end.allFinite() && X.allFinite() && !interrupt_requested.load(std::memory_order_relaxed);
+    if (k + 1 < steps && X.cwiseAbs().maxCoeff() > piece_growth) cut_piece(s, start, X);
   }
+  cut_piece(s, start, X);
   reduce(s, x0);
   return s;
 }

@@ -25,9 +25,9 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <string>
-
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "experiments/analysis/periodic/periodic_flow.hpp"
 #include "experiments/analysis/periodic/section_crossings.hpp"
@@ -67,6 +67,7 @@ struct PeriodicOrbit {
   bool in_l = false;  // found with p = ℓ at fixed h (ShootingSettings::in_l)
   int iterations = 0;
   double drift = 0.0;  // a Cardan top's turn of q1 over one period (periodic_flow.hpp); 0 for a heavy top
+  std::vector<MonodromyPiece> pieces{};  // the monodromy's factors, in order (euler_poisson_flow.hpp; classify_orbit)
 };
 
 /// The continued parameter p of the orbit (ℓ if in_l, else h) and the fixed one.
@@ -110,21 +111,29 @@ inline bool newton_done(int it, double res, double previous, const ShootingSetti
 void record_iterate(PeriodicOrbit& o, const FamilyPoint& z, double residual, const Mat6& monodromy,
                     const Eigen::Matrix<double, 11, 8>& A);
 
-/// Multipliers, their checks, the stability class and the degeneracy of a corrected orbit.
+/// Multipliers, their checks, the stability class and the degeneracy of a corrected orbit
+/// (floquet_multipliers.cpp).
 ///
-/// The multipliers are the eigenvalues of M in an orthonormal basis adapted
-/// to what the exact flow keeps: (n₁, n₂, n₃) spanning the gradients of H,
-/// Π·Γ and |Γ|² at x0, then f̂ (the flow), then (w₁, w₂) completing the
-/// tangent space of the level set. There B = QᵀMQ is block triangular,
-///   B = [N 0; * C],  C = [1 *; 0 P],
-/// since ∇Iᵀ M = ∇Iᵀ for each invariant I (so N = I and nᵢᵀMv = 0 for v in
-/// the level set's tangent space) and M f = f. The trivial multipliers are
-/// eig(N) and C_ff, the nontrivial pair eig(P) (P: the monodromy of the
-/// section in the level set, Seydel §7.4). Taking them from the diagonal
-/// blocks is a conditioning choice, not a renormalisation: the eigenvalue of
-/// a Jordan block moves by √ε under a perturbation ε, a diagonal entry by ε.
+/// The multipliers are read in an orthonormal basis adapted to what the exact
+/// flow keeps: (n₁, n₂, n₃) spanning the gradients of H, Π·Γ and |Γ|² (a
+/// Cardan top: H, p1, q1), then f̂ (the flow), then (w₁, w₂) completing the
+/// tangent space of the level set. Each piece M_k of the monodromy (from x_k
+/// to e_k; one piece, or several when the tangent flow grows: Shot::pieces,
+/// and one or more a segment of multiple shooting) is written
+/// B_k = Q(e_k)ᵀ M_k Q(x_k), block triangular for the exact flow,
+///   B_k = [N_k 0; * C_k],  C_k = [1 *; 0 P_k],
+/// since ∇I(e_k)ᵀ M_k = ∇I(x_k)ᵀ for each invariant I and M_k f(x_k) = f(e_k).
+/// The diagonal blocks of the product are the products of the pieces' blocks:
+/// the trivial multipliers are eig(∏N_k) and ∏(C_k)_ff, the nontrivial pair the
+/// roots of μ² − tr P μ + det P with P = ∏P_k (the monodromy of the section in
+/// the level set, Seydel §7.4) and det P = ∏ det P_k. Taking them from the
+/// diagonal blocks is a conditioning choice, not a renormalisation: the
+/// eigenvalue of a Jordan block moves by √ε under a perturbation ε, a diagonal
+/// entry by ε; and a piece's blocks have entries of the size of its own growth
+/// (≤ piece_growth), not of λ, so the small multiplier 1/λ and det P keep their
+/// relative accuracy (K. Lust, Int. J. Bifurcation and Chaos 11 (2001) 2389).
 /// The entries taken as zero are reported as `invariance_defect` (their
-/// largest magnitude).
+/// largest magnitude over the pieces).
 void classify_orbit(const PeriodicFlow& body, PeriodicOrbit& o);
 
 }  // namespace lgi::experiments

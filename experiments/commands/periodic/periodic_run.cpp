@@ -145,4 +145,11 @@ PeriodicResult periodic_families(const PeriodicFlow& flow, const PeriodicRequest
   return out;
 }
 
+std::string cardan_tilt_refusal(const system::CardanTop& top, const std::string& scene_file) {
+  if (top.outer_angle_cyclic()) return "";
+  return scene_file + ": suspension.tilt = " + format_general(top.suspension.tilt, 17) +
+         ": a tilted outer axis under gravity leaves no cyclic angle (p1 is no integral), so there is no "
+         "reduced flow at fixed --l; lgi periodic on a Cardan top needs tilt = 0";
+}
+
 }  // namespace lgi::experiments

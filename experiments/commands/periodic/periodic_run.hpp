@@ -16,6 +16,11 @@
 
 namespace lgi::experiments {
 
+/// Why a Cardan top has no reduced flow for lgi periodic: "" when its outer
+/// angle is cyclic (tilt 0, or no gravity), else one line naming the scene file
+/// and suspension.tilt (the command prefixes "--scene: ", the Python module its function).
+std::string cardan_tilt_refusal(const system::CardanTop& top, const std::string& scene_file);
+
 struct PeriodicRequest {
   /// Called after each start (an equilibrium's mode, a seed) with the starts done and their
   /// number; false stops there (a signal): that start is dropped (the signal may have cut it

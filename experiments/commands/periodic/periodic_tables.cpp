@@ -62,6 +62,10 @@ std::vector<TableColumn> periodic_columns(const PeriodicFlow& flow, const std::v
     append_cardan_columns(rows, c);
   else
     append_appelrot_columns(flow.body, rows, c);  // k, appelrot_family, appelrot_distance, critical_rank_gap
+  // Last, for every top: how many factors the multipliers were read from (periodic_orbit.hpp, classify_orbit).
+  TableColumn pieces{"monodromy_pieces", 1, true};
+  for (const auto& r : rows) pieces.whole.push_back(static_cast<std::int64_t>(r.orbit.pieces.size()));
+  c.push_back(std::move(pieces));
   return c;
 }
 
