@@ -1,7 +1,7 @@
 """Issue 50, item 1: every loop reads the stop flag at least once a second, also the
 loops inside one row, run or analysis that can take many seconds: the rows of
 `lgi region --cells` (a row's triangulation, sort and sweep), each run of `lgi
-singularity` and the NAFF of `lgi frequencies`. Each test starts the command on an
+singularity`, the NAFF of `lgi frequencies` and the reference of `lgi work-precision`. Each test starts the command on an
 input whose loop lasts far longer than the wait (tens of seconds here), signals it
 and checks that it ends within about a second and a half with 130 (143 after
 SIGTERM), says so in one line and publishes nothing as complete."""
@@ -81,3 +81,20 @@ def test_frequencies_sigterm_inside_the_analysis(tmp_path):
                    "nothing written\n"), err
     assert not os.path.exists(out) and not os.path.exists(out + ".partial")
     assert not os.path.exists(str(tmp_path / "f.csv"))
+
+
+def test_work_precision_sigint_inside_the_reference(tmp_path):
+    """The converged reference (rkmk-dop853 at tol 1e-14) of the general top over t = 1e5 runs far longer
+    than the wait; its runs read the flag every step: no row yet, the .partial files are kept and named."""
+    out = str(tmp_path / "w.h5")
+    code, err, waited = signal_and_time(["work-precision", "--scene", os.path.join(SCENES, "general_top_richter.toml"),
+                                         "--schemes", "rkmk4", "--dt", "0.01", "--t-end", "1e5", "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    csv = str(tmp_path / "w.csv")
+    assert err == (f"lgi: work-precision interrupted by signal after 0 rows; partial results kept in {out}.partial "
+                   f"and {csv}.partial\n"), err
+    assert not os.path.exists(out) and not os.path.exists(csv)
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["diagnostics"].attrs["status"]) == "interrupted by signal"
+        assert int(f["diagnostics"].attrs["rows"]) == 0
