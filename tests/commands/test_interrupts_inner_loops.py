@@ -1,7 +1,8 @@
 """Issue 50, item 1: every loop reads the stop flag at least once a second, also the
 loops inside one row, run or analysis that can take many seconds: the rows of
 `lgi region --cells` (a row's triangulation, sort and sweep), each run of `lgi
-singularity`, the NAFF of `lgi frequencies` and the reference of `lgi work-precision`. Each test starts the command on an
+singularity`, the NAFF of `lgi frequencies`, the reference of `lgi work-precision` and
+one branch of `lgi bifurcation` on a heavy top. Each test starts the command on an
 input whose loop lasts far longer than the wait (tens of seconds here), signals it
 and checks that it ends within about a second and a half with 130 (143 after
 SIGTERM), says so in one line and publishes nothing as complete."""
@@ -98,3 +99,15 @@ def test_work_precision_sigint_inside_the_reference(tmp_path):
     with h5py.File(out + ".partial", "r") as f:
         assert text(f["diagnostics"].attrs["status"]) == "interrupted by signal"
         assert int(f["diagnostics"].attrs["rows"]) == 0
+
+
+def test_bifurcation_sigint_inside_one_branch(tmp_path):
+    """A heavy top's branch at --samples 10^7 takes tens of seconds; the sampling and the classification
+    read the flag every 2^16 samples: exit 130, nothing written."""
+    out = str(tmp_path / "b.h5")
+    code, err, waited = signal_and_time(["bifurcation", "--scene", os.path.join(SCENES, "general_top_richter.toml"),
+                                         "--samples", "10000000", "--quiet", "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    assert err == "lgi: bifurcation: interrupted by signal; nothing written\n", err
+    assert not os.listdir(tmp_path), os.listdir(tmp_path)
