@@ -197,3 +197,33 @@ TEST_CASE("the Kovalevskaya top at l = 2: a degenerate critical point, not an un
   CHECK_FALSE(region.degenerate);
   CHECK(region.resolved);
 }
+
+TEST_CASE("a polled row: the same cells as without the polls; a false poll stops it with no result", "[region]") {
+  // At grid 300 the row has more than 2^20 simplices: the polled sort is a merge of sorted pieces.
+  const auto scene = testing::shipped_scene("general_top_richter");
+  const HeavyTopBody body = experiments::heavy_top_of(scene, "region");
+  const double l = 1.5;
+  std::vector<double> hs;
+  for (int j = 0; j < 30; ++j) hs.push_back(-1.0 + 0.12 * j);
+  const auto grid = experiments::potential_grid(body, l, 300);
+  const auto critical = experiments::critical_points(body, l);
+  const auto plain = experiments::region_summaries(grid, critical, hs);
+  int polls = 0;
+  std::size_t last_done = 0;
+  const auto polled = experiments::region_summaries(grid, critical, hs, [&](std::size_t done) {
+    ++polls, last_done = done;
+    return true;
+  });
+  REQUIRE(polled.size() == plain.size());
+  for (std::size_t j = 0; j < hs.size(); ++j) {
+    CHECK(polled[j].topology == plain[j].topology);
+    CHECK(polled[j].euler == plain[j].euler);
+    CHECK(polled[j].components == plain[j].components);
+    CHECK(polled[j].resolved == plain[j].resolved);
+  }
+  CHECK(polls > static_cast<int>(hs.size()));  // within the row too
+  CHECK(last_done == hs.size() - 1);            // the last poll: before the last cell
+  int left = 5;
+  CHECK(experiments::region_summaries(grid, critical, hs, [&](std::size_t) { return --left > 0; }).empty());
+  CHECK(experiments::potential_grid(body, l, 300, [] { return false; }).n == 0);
+}

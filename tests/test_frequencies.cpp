@@ -13,6 +13,7 @@
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <catch2/catch.hpp>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <complex>
 #include <iostream>
@@ -134,6 +135,20 @@ TEST_CASE("NAFF recovers the amplitudes and phases of a real quasi-periodic sign
   // A torus: the two halves agree (the diffusion index is at the precision of NAFF on T/2 = 200).
   const fq::FrequencyDiffusion d = fq::frequency_diffusion(f, dt, {4, 2}, r.terms[0].frequency);
   CHECK(d.relative_change < 1e-7);
+}
+
+TEST_CASE("NAFF reads its stop flag: unset, the same terms; set, it throws NaffStopped", "[frequencies]") {
+  const double dt = 0.02;
+  std::vector<double> f;
+  for (int i = 0; i <= 200000; ++i) f.push_back(std::cos(1.3 * i * dt) + 0.2 * std::cos(0.7 * i * dt));
+  std::atomic<bool> stop{false};
+  const fq::NaffResult plain = fq::naff_real(f, dt, {3, 2}), polled = fq::naff_real(f, dt, {3, 2, &stop});
+  REQUIRE(plain.terms.size() == polled.terms.size());
+  for (std::size_t k = 0; k < plain.terms.size(); ++k) CHECK(plain.terms[k].frequency == polled.terms[k].frequency);
+  stop = true;
+  CHECK_THROWS_AS(fq::naff_real(f, dt, {3, 2, &stop}), fq::NaffStopped);
+  std::vector<std::complex<double>> z(f.begin(), f.end());
+  CHECK_THROWS_AS(fq::frequency_diffusion(z, dt, {3, 2, &stop}, 1.3), fq::NaffStopped);
 }
 
 TEST_CASE("NAFF's frequency of the free body's Pi is 2 pi / T_exact to 1e-10", "[frequencies]") {

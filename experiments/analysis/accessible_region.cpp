@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <numbers>
 
@@ -15,6 +16,15 @@
 namespace lgi::experiments {
 
 namespace {
+
+/// A poll of the caller's stop flag (region_summaries' keep_going); false stops the work:
+/// it throws Stopped, which region_summaries catches. Empty: never stops.
+using Poll = std::function<bool()>;
+struct Stopped {};
+void check(const Poll& poll) {
+  if (poll && !poll()) throw Stopped{};
+}
+constexpr std::size_t poll_every = std::size_t{1} << 20;  // simplices between two polls: well under 0.1 s
 
 /// The triangulation of a SphereGrid: the pole rows are one vertex each;
 /// between two rings every quad is cut along (i, j)–(i+1, j+1); the poles
@@ -31,21 +41,26 @@ struct Triangulation {
   }
 };
 
-Triangulation triangulate(const SphereGrid& g) {
+Triangulation triangulate(const SphereGrid& g, const Poll& poll = {}) {
   Triangulation t;
   t.n = g.n, t.m = g.meridians();
   const int vertices = 2 + (t.n - 1) * t.m;
   t.value.assign(static_cast<std::size_t>(vertices), 0.0);
   t.area.assign(static_cast<std::size_t>(vertices), 0.0);
+  t.edges.reserve(3 * static_cast<std::size_t>(vertices));
+  t.triangles.reserve(2 * static_cast<std::size_t>(vertices));
   const double half = 0.5 * std::numbers::pi / t.n;
-  for (int i = 0; i <= t.n; ++i)
+  for (int i = 0; i <= t.n; ++i) {
+    check(poll);
     for (int j = 0; j < t.m; ++j) {
       const auto v = static_cast<std::size_t>(t.vertex(i, j));
       t.value[v] = g.at(i, j);
       if (i == 0 || i == t.n) t.area[v] = 0.5 * (1.0 - std::cos(half));
       else t.area[v] = 0.5 * (std::cos(g.theta(i) - half) - std::cos(g.theta(i) + half)) / t.m;
     }
-  for (int i = 1; i < t.n; ++i)
+  }
+  for (int i = 1; i < t.n; ++i) {
+    check(poll);  // a ring: at most 4000 quads
     for (int j = 0; j < t.m; ++j) {
       const int a = t.vertex(i, j), b = t.vertex(i, j + 1);
       t.edges.push_back({a, b});
@@ -65,6 +80,7 @@ Triangulation triangulate(const SphereGrid& g) {
       t.triangles.push_back({a, b, d});
       t.triangles.push_back({a, c, d});
     }
+  }
   return t;
 }
 
@@ -75,22 +91,51 @@ struct Entry {
   int dim, index;
 };
 
-std::vector<Entry> entry_order(const Triangulation& t) {
+/// std::stable_sort in pieces of poll_every entries, then a bottom-up merge sort of the
+/// pieces (ties from the left run first: the same order, a stable sort's result being
+/// unique), with a poll after each piece and every poll_every entries merged.
+template <class Less>
+void stable_sort_polled(std::vector<Entry>& v, Less less, const Poll& poll) {
+  const std::size_t n = v.size();
+  for (std::size_t a = 0; a < n; a += poll_every) {
+    std::stable_sort(v.begin() + static_cast<std::ptrdiff_t>(a),
+                     v.begin() + static_cast<std::ptrdiff_t>(std::min(n, a + poll_every)), less);
+    check(poll);
+  }
+  std::vector<Entry> to;
+  to.reserve(n);  // filled by push_back: its pages are touched (slowly, at first) between the polls
+  for (std::size_t width = poll_every; width < n; width *= 2) {
+    to.clear();
+    for (std::size_t a = 0; a < n; a += 2 * width) {
+      const std::size_t mid = std::min(n, a + width), end = std::min(n, a + 2 * width);
+      for (std::size_t i = a, j = mid; i < mid || j < end;) {
+        to.push_back(j < end && (i == mid || less(v[j], v[i])) ? v[j++] : v[i++]);
+        if (to.size() % poll_every == 0) check(poll);
+      }
+    }
+    v.swap(to);
+  }
+}
+
+std::vector<Entry> entry_order(const Triangulation& t, const Poll& poll = {}) {
   std::vector<Entry> order;
   order.reserve(t.value.size() + t.edges.size() + t.triangles.size());
   for (std::size_t v = 0; v < t.value.size(); ++v) order.push_back({t.value[v], 0, static_cast<int>(v)});
   for (std::size_t e = 0; e < t.edges.size(); ++e) {
+    if (e % poll_every == 0) check(poll);
     const auto& [a, b] = t.edges[e];
     order.push_back({std::max(t.value[static_cast<std::size_t>(a)], t.value[static_cast<std::size_t>(b)]), 1,
                      static_cast<int>(e)});
   }
   for (std::size_t f = 0; f < t.triangles.size(); ++f) {
+    if (f % poll_every == 0) check(poll);
     double v = -INFINITY;
     for (int k : t.triangles[f]) v = std::max(v, t.value[static_cast<std::size_t>(k)]);
     order.push_back({v, 2, static_cast<int>(f)});
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [](const Entry& a, const Entry& b) { return a.value != b.value ? a.value < b.value : a.dim < b.dim; });
+  const auto less = [](const Entry& a, const Entry& b) { return a.value != b.value ? a.value < b.value : a.dim < b.dim; };
+  if (poll) stable_sort_polled(order, less, poll);
+  else std::stable_sort(order.begin(), order.end(), less);
   return order;
 }
 
@@ -99,7 +144,8 @@ std::vector<Entry> entry_order(const Triangulation& t) {
 /// characteristic and area.
 class ComponentSweep {
  public:
-  ComponentSweep(const Triangulation& t, std::vector<Entry> order) : t_(t), order_(std::move(order)) {
+  ComponentSweep(const Triangulation& t, std::vector<Entry> order, Poll poll = {})
+      : t_(t), order_(std::move(order)), poll_(std::move(poll)) {
     parent_.assign(t.value.size(), -1);
     euler_.assign(t.value.size(), 0);
     area_.assign(t.value.size(), 0.0);
@@ -107,6 +153,7 @@ class ComponentSweep {
   /// Adds every simplex with value ≤ h (h non-decreasing between calls).
   void advance_to(double h) {
     for (; next_ < order_.size() && order_[next_].value <= h; ++next_) {
+      if (next_ % poll_every == 0) check(poll_);
       const Entry& s = order_[next_];
       if (s.dim == 0) {
         const auto v = static_cast<std::size_t>(s.index);
@@ -149,6 +196,7 @@ class ComponentSweep {
   }
   const Triangulation& t_;
   std::vector<Entry> order_;
+  Poll poll_;
   std::size_t next_ = 0;
   std::vector<int> parent_, euler_;
   std::vector<double> area_;
@@ -270,16 +318,18 @@ Vec3 SphereGrid::direction(int i, int j) const {
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
-SphereGrid potential_grid(const HeavyTopBody& body, double l, int n) {
+SphereGrid potential_grid(const HeavyTopBody& body, double l, int n, const std::function<bool()>& keep_going) {
   SphereGrid g;
   g.n = n;
   g.U.resize(static_cast<std::size_t>(n + 1) * static_cast<std::size_t>(2 * n));
-  for (int i = 0; i <= n; ++i)
+  for (int i = 0; i <= n; ++i) {
+    if (keep_going && !keep_going()) return {};
     for (int j = 0; j < 2 * n; ++j) {
       const int column = i == 0 || i == n ? 0 : j;  // a pole: one value for its row
       g.U[static_cast<std::size_t>(i) * static_cast<std::size_t>(2 * n) + static_cast<std::size_t>(j)] =
           amended_potential(body, l, g.direction(i, column));
     }
+  }
   return g;
 }
 
@@ -345,32 +395,41 @@ Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, do
 }
 
 std::vector<RegionSummary> region_summaries(const SphereGrid& grid, const CriticalSet& critical,
-                                            const std::vector<double>& energies) {
-  const Triangulation t = triangulate(grid);
-  ComponentSweep sweep(t, entry_order(t));
-  std::vector<std::size_t> order(energies.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return energies[a] < energies[b]; });
-  std::vector<RegionSummary> out(energies.size());
-  for (const std::size_t k : order) {
-    const double h = energies[k];
-    sweep.advance_to(h);
-    std::map<int, MorseCount> morse;
-    RegionSummary& s = out[k];
-    s.resolved = critical.constant || morse_counts(t, sweep, critical, h, morse);
-    std::vector<std::string> names;
-    for (const int root : sweep.roots()) {
-      const int euler = sweep.euler(root);
-      names.push_back(component_topology(2 - euler));
-      s.euler += euler;
-      s.euler_morse += morse[root].euler;
-      s.degenerate = s.degenerate || morse[root].degenerate > 0;
-      if (!critical.constant && morse[root].degenerate == 0 && morse[root].euler != euler) s.resolved = false;
+                                            const std::vector<double>& energies,
+                                            const std::function<bool(std::size_t)>& keep_going) {
+  std::size_t done = 0;
+  const Poll poll = keep_going ? Poll([&] { return keep_going(done); }) : Poll();
+  try {
+    const Triangulation t = triangulate(grid, poll);
+    ComponentSweep sweep(t, entry_order(t, poll), poll);
+    std::vector<std::size_t> order(energies.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return energies[a] < energies[b]; });
+    std::vector<RegionSummary> out(energies.size());
+    for (const std::size_t k : order) {
+      check(poll);
+      const double h = energies[k];
+      sweep.advance_to(h);
+      std::map<int, MorseCount> morse;
+      RegionSummary& s = out[k];
+      s.resolved = critical.constant || morse_counts(t, sweep, critical, h, morse);
+      std::vector<std::string> names;
+      for (const int root : sweep.roots()) {
+        const int euler = sweep.euler(root);
+        names.push_back(component_topology(2 - euler));
+        s.euler += euler;
+        s.euler_morse += morse[root].euler;
+        s.degenerate = s.degenerate || morse[root].degenerate > 0;
+        if (!critical.constant && morse[root].degenerate == 0 && morse[root].euler != euler) s.resolved = false;
+      }
+      s.components = static_cast<int>(names.size());
+      s.topology = energy_surface_topology(names);
+      ++done;
     }
-    s.components = static_cast<int>(names.size());
-    s.topology = energy_surface_topology(names);
+    return out;
+  } catch (const Stopped&) {
+    return {};
   }
-  return out;
 }
 
 }  // namespace lgi::experiments

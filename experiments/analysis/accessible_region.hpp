@@ -25,6 +25,7 @@
 // e.g. the Kovalevskaya top's Γ = e1 at ℓ̃ = 2, docs/atlas.md §8): U_ℓ is not
 // a Morse function there, the count does not apply, and the grid alone decides.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,8 @@ struct SphereGrid {
   Vec3 direction(int i, int j) const;
   double at(int i, int j) const { return U[static_cast<std::size_t>(i) * static_cast<std::size_t>(2 * n) + static_cast<std::size_t>(j)]; }
 };
-SphereGrid potential_grid(const HeavyTopBody& body, double l, int n);
+/// `keep_going`, if given, is called before each ring; false stops: the grid is then empty (n = 0).
+SphereGrid potential_grid(const HeavyTopBody& body, double l, int n, const std::function<bool()>& keep_going = {});
 
 /// "RP3" (b = 0), "S3" (b = 1), "S1xS2" (b = 2), "#k(S1xS2)" (b = k + 1 ≥ 3).
 std::string component_topology(int boundaries);
@@ -110,7 +112,13 @@ struct RegionSummary {
   bool resolved = true;
   bool degenerate = false;  // as Region::degenerate
 };
+/// `keep_going`, if given, is called with the number of energies done after each
+/// energy and, with that number, every 2^20 simplices of the triangulation, its sort
+/// and the sweep (well under 0.1 s apart even at --grid 2000: a row of `lgi region
+/// --cells` reads the stop flag within itself); false stops the work and the result
+/// is then empty.
 std::vector<RegionSummary> region_summaries(const SphereGrid& grid, const CriticalSet& critical,
-                                            const std::vector<double>& energies);
+                                            const std::vector<double>& energies,
+                                            const std::function<bool(std::size_t)>& keep_going = {});
 
 }  // namespace lgi::experiments

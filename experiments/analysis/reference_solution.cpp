@@ -103,7 +103,8 @@ double row_floor(double reference_error, double amplification, std::int64_t step
   return std::max(reference_error, 4.0 * amplification * unit_roundoff * static_cast<double>(steps));
 }
 
-Reference compute_reference(const system::Scene& scene, const system::AnyModel& model, double t_end) {
+Reference compute_reference(const system::Scene& scene, const system::AnyModel& model, double t_end,
+                            const std::atomic<bool>* stop) {
   Reference ref;
   if (const auto* free = std::get_if<system::FreeBody>(&model)) {
     ref.kind = "exact";
@@ -121,13 +122,20 @@ Reference compute_reference(const system::Scene& scene, const system::AnyModel& 
     throw RunError(std::string("work-precision: the reference scheme ") + converged_reference_scheme +
                    " is not registered");
   std::string last_failure;
+  const auto config = [&](double tol) {
+    integrators::RunConfig cfg = make_config(t_end, std::nullopt, tol);
+    cfg.stop = stop;
+    return cfg;
+  };
   for (const double tol : {1e-14, 1e-13, 1e-12}) {
-    const RunResult fine = run_once(*scheme, model, scene.initial, make_config(t_end, std::nullopt, tol));
+    const RunResult fine = run_once(*scheme, model, scene.initial, config(tol));
+    if (fine.stats.interrupted) throw ReferenceInterrupted{};
     if (!fine.stats.ok) {
       last_failure = "at tol " + format_general(tol, 3) + ": " + fine.stats.status;
       continue;
     }
-    const RunResult coarse = run_once(*scheme, model, scene.initial, make_config(t_end, std::nullopt, 10.0 * tol));
+    const RunResult coarse = run_once(*scheme, model, scene.initial, config(10.0 * tol));
+    if (coarse.stats.interrupted) throw ReferenceInterrupted{};
     if (!coarse.stats.ok) {
       last_failure = "at tol " + format_general(10.0 * tol, 3) + ": " + coarse.stats.status;
       continue;

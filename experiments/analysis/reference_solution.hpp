@@ -20,6 +20,7 @@
 //              magnetic_top 4.3e-11 -> 2.1e-12), which resolves errors of
 //              1e-10 on the long runs. If a run fails (step size collapse),
 //              both tolerances are relaxed tenfold, up to 1e-12 / 1e-11.
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -65,8 +66,13 @@ struct Reference {
   system::State state{};
 };
 
+/// Thrown by compute_reference when `stop` ended one of its runs (a signal).
+struct ReferenceInterrupted {};
+
 /// The reference at t_end for a scene's model; throws RunError if no converged run can be had.
-Reference compute_reference(const system::Scene& scene, const system::AnyModel& model, double t_end);
+/// `stop`, if given, is read every step of its runs (RunConfig::stop): once set, ReferenceInterrupted.
+Reference compute_reference(const system::Scene& scene, const system::AnyModel& model, double t_end,
+                            const std::atomic<bool>* stop = nullptr);
 
 /// The floor of one row: the reference's estimated error, or the round-off a
 /// run of `steps` steps accumulates (one unit round-off a step, worst case,

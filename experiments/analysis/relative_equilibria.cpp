@@ -347,11 +347,16 @@ EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples,
   const Principal f = principal_frame(body);
   EquilibriumSet out;
   const auto branches = make_branches(f);
+  // Within a branch too, every 2^16 samples (up to 10^7 a branch: seconds): the branches done so far.
+  const auto stopped_within = [&](std::size_t k) {
+    return branch_done && k % (std::size_t{1} << 16) == 0 && !branch_done(out.branches.size() - 1, branches.size());
+  };
   for (const Branch& br : branches) {
     out.branches.push_back({br.id, br.kind, br.label});
     std::vector<double> taus, ls;
     std::vector<Point> pts;
     for (int k = 1; k < samples; ++k) {
+      if (stopped_within(static_cast<std::size_t>(k))) return out;
       const double tau = static_cast<double>(k) / samples;
       const Point p = point_on(f, br, tau);
       if (!p.valid) continue;
@@ -359,6 +364,7 @@ EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples,
     }
     EquilibriumStability prev_class = EquilibriumStability::stable;
     for (std::size_t k = 0; k < pts.size(); ++k) {
+      if (stopped_within(k + 1)) return out;
       RelativeEquilibrium e = to_body(f, pts[k], br.id);
       classify(body, e);
       if (k > 0 && prev_class != e.stability)

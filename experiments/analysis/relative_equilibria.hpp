@@ -75,7 +75,9 @@ EquilibriumSet equilibria_at(const HeavyTopBody& body, double l);
 /// between neighbouring samples located (class_change = true, bisection to
 /// round-off in the branch parameter; the row has the class of the far side),
 /// in branch order and along each branch. `branch_done`, if given, is called
-/// after each branch with the branches done and their number; false stops there.
+/// after each branch with the branches done and their number, and with the same
+/// count every 2^16 samples within a branch; false stops there (the set is then
+/// incomplete: a signal, the caller writes nothing).
 EquilibriumSet equilibrium_branches(const HeavyTopBody& body, int samples,
                                     const std::function<bool(std::size_t, std::size_t)>& branch_done = {});
 

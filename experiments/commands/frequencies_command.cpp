@@ -37,6 +37,7 @@
 #include "experiments/io/state_file.hpp"
 #include "experiments/io/table_file.hpp"
 #include "experiments/io/trajectory_observer.hpp"  // interrupt_requested
+#include "integrators/core/run_config.hpp"  // interrupted_status
 #include "integrators/system/model.hpp"
 #include "lgi/build_info.hpp"
 
@@ -203,7 +204,6 @@ Analysis analyse_cardan(const FrequenciesOptions& o, const system::Scene& scene,
   a.states.resize(x0.size());
   a.threads = threads;
   std::vector<std::string> failures(x0.size());
-  const InterruptGuard interrupt_guard;
   const auto n = static_cast<std::int64_t>(x0.size());
   // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8): in place on a terminal, else every 10 s.
   SweepProgress progress(o.quiet, n, 0, "frequencies", "states");
@@ -217,7 +217,12 @@ Analysis analyse_cardan(const FrequenciesOptions& o, const system::Scene& scene,
       failures[k] = run.stats.interrupted ? "interrupted" : run.stats.status;
       continue;
     }
-    a.states[k] = fq::observable_frequencies(run, names, {o.terms, o.window_order}, 1);
+    try {  // the analysis reads the flag too (NaffOptions::stop); an exception may not leave the loop
+      a.states[k] = fq::observable_frequencies(run, names, {o.terms, o.window_order, &interrupt_requested}, 1);
+    } catch (const fq::NaffStopped&) {
+      failures[k] = "interrupted";
+      continue;
+    }
 #pragma omp critical(lgi_frequencies_samples)
     {
       a.samples = run.series[0].size();
@@ -246,11 +251,9 @@ Analysis analyse_so3(const FrequenciesOptions& o, const system::Scene& scene, co
   a.s = sampling(o, scene, scheme);
   a.threads = threads;
   hdf5::check_output_target(o.out, o.force);
-  fq::SampledRun run;
-  {
-    const InterruptGuard interrupt_guard;
-    run = fq::sample_observables(scene, scheme, a.s, fq::components_of(names), &interrupt_requested);
-  }
+  // The run reads the flag every step, its NAFF every 2^16 samples of each pass (naff.hpp); a signal
+  // in either ends the command with nothing written (the file is written only at the end).
+  const fq::SampledRun run = fq::sample_observables(scene, scheme, a.s, fq::components_of(names), &interrupt_requested);
   // One state: its line comes when the run is done (the same line as a Cardan top's states).
   SweepProgress progress(o.quiet, 1, 0, "frequencies", "states");
   if (run.stats.ok) progress.update(1, 0);
@@ -261,7 +264,13 @@ Analysis analyse_so3(const FrequenciesOptions& o, const system::Scene& scene, co
     return a;
   }
   a.samples = run.series[0].size();
-  a.states = {fq::observable_frequencies(run, names, {o.terms, o.window_order}, threads)};
+  try {
+    a.states = {fq::observable_frequencies(run, names, {o.terms, o.window_order, &interrupt_requested}, threads)};
+  } catch (const fq::NaffStopped&) {
+    std::cerr << "lgi: frequencies: " << integrators::interrupted_status << " in the frequency analysis of "
+              << a.samples << " samples; nothing written\n";
+    a.exit = interrupted_exit_status();
+  }
   return a;
 }
 
@@ -274,6 +283,8 @@ int run_frequencies(const FrequenciesOptions& o) {
   check_observables(names, cardan);
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   const auto start = std::chrono::steady_clock::now();
+  // Ctrl-C / SIGTERM set the flag from here until the file is written (interrupt_guard.hpp).
+  const InterruptGuard interrupt_guard;
   const Analysis a = cardan ? analyse_cardan(o, scene, names, threads) : analyse_so3(o, scene, names, threads);
   if (a.exit != exit_ok) return a.exit;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

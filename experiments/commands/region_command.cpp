@@ -111,20 +111,22 @@ int run_cells(const RegionOptions& o, const system::Scene& scene, const HeavyTop
   const std::vector<double> ls = parse_grid_range(o.l_range, "--l-range"), hs = parse_grid_range(o.h_range, "--h-range");
   std::int64_t unresolved = 0;
   hdf5::check_output_target(o.out, o.force);  // before the work, not after it
-  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8); a signal stops between rows of l
-  // and nothing is written (the file is written only at the end).
+  // Progress on stderr (cli/sweep_progress.hpp; issue 50, item 8). A signal is read after every cell and
+  // within a row's triangulation, sort and sweep (well under a second apart, atlas_tables.hpp); the
+  // raster stops there and nothing is written (the file is written only at the end).
   const auto total = static_cast<std::int64_t>(ls.size() * hs.size());
   SweepProgress progress(o.quiet, total, 0, "region --cells", "cells");
   const InterruptGuard interrupt_guard;
-  const TableGroup cells = cells_group(body, ls, hs, o.grid, unresolved, [&](std::int64_t done) {
+  std::int64_t done = 0;
+  const TableGroup cells = cells_group(body, ls, hs, o.grid, unresolved, [&](std::int64_t cells_done) {
     if (interrupt_requested.load()) return false;
-    progress.update(done, 0);
+    if (cells_done != done) progress.update(done = cells_done, 0);
     return true;
   });
   progress.finish();
-  if (interrupt_signal() != 0) {
-    std::cerr << "lgi: region --cells: interrupted by signal after " << cells.columns[3].whole.size() << " of "
-              << total << " cells; nothing written\n";
+  if (cells.columns[0].real.size() != ls.size()) {  // cut short by a signal
+    std::cerr << "lgi: region --cells: interrupted by signal after " << done << " of " << total
+              << " cells; nothing written\n";
     return interrupted_exit_status();
   }
   auto parameters = provenance(o, scene);

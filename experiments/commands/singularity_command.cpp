@@ -135,20 +135,30 @@ int singularity_command(const SingularityOptions& o) {
   std::vector<std::vector<RunRecord>> all(cases.size());
   std::vector<SummaryRow> rows;
   double tol_used = 0.0, dt_used = 0.0;
-  // Ctrl-C / SIGTERM: the run in progress finishes, the study stops after it and keeps what is done.
+  // Ctrl-C / SIGTERM: every run reads the flag every step (RunConfig::stop); the run it cuts (or the
+  // scene's reference) is dropped and the runs finished before it are kept.
   bool stopped = false;  // a signal came before every run was done
   const auto interrupted = [&stopped] { return stopped = stopped || interrupt_requested.load(); };
   for (std::size_t ci = 0; ci < cases.size() && !interrupted(); ++ci) {
     const StudyScene sc = study_scene(scenes[ci], cases[ci], o);
     tol_used = sc.tol;
     dt_used = sc.dt;
-    const std::vector<double> reference = reference_center_of_mass(sc);
+    const std::optional<std::vector<double>> reference = reference_center_of_mass(sc, &interrupt_requested);
+    if (!reference) {
+      stopped = true;
+      break;
+    }
     for (const Method& m : study_methods(o.quick, sc.model)) {
       if (interrupted()) break;
-      all[ci].push_back(run_study_method(m, sc, reference));
+      std::optional<RunRecord> run = run_study_method(m, sc, *reference, &interrupt_requested);
+      if (!run) {
+        stopped = true;
+        break;
+      }
+      all[ci].push_back(std::move(*run));
       if (!o.quiet) print_run(cases[ci].key, all[ci].back());
     }
-    write_scene_group(h5, cases[ci].key, sc, reference, all[ci]);
+    write_scene_group(h5, cases[ci].key, sc, *reference, all[ci]);
     for (const RunRecord& r : all[ci]) rows.push_back({cases[ci].key, &r, sc.tol, sc.dt});
     h5.flush();
   }

@@ -365,7 +365,7 @@ int work_precision(const WorkPrecisionOptions& o) {
 
   Study st{scene, model, invariants, {}, invariants.evaluate(scene.initial), {}, t_end, o.repeat};
   // Signals only set the flag from before the first file exists until the results are published (interrupt_guard.hpp).
-  const InterruptGuard interrupt_guard;  // the reference's runs finish; the rows' stop (measure)
+  const InterruptGuard interrupt_guard;  // the reference's runs and the rows' read the flag every step
   ResultsFile file(o.out, o.force, result_columns(invariants, st.invariant_columns));
   ResultAttributes params = scene_parameters(scene);
   params.text["subcommand"] = "work-precision";
@@ -380,7 +380,10 @@ int work_precision(const WorkPrecisionOptions& o) {
   const double cpu0 = integrators::detail::cpu_now();
   if (progress) std::cerr << "\rwork-precision: reference..." << std::flush;
   try {
-    st.reference = compute_reference(scene, model, t_end);
+    st.reference = compute_reference(scene, model, t_end, &interrupt_requested);
+  } catch (const ReferenceInterrupted&) {
+    if (progress) std::cerr << "\r\033[K" << std::flush;
+    return abandon_interrupted(file, 0, integrators::detail::cpu_now() - cpu0);
   } catch (const RunError& e) {
     ResultAttributes diag;
     diag.text["status"] = e.what();

@@ -68,7 +68,8 @@ Complex at_first_sample(const WindowedGrid& grid, Complex a, double nu) {
 
 NaffResult analyse(const std::vector<Complex>& f, double dt, const NaffOptions& o, bool real_signal) {
   check(f.size(), dt, o);
-  const WindowedGrid grid = windowed_grid(f.size(), dt, o.window_order);
+  WindowedGrid grid = windowed_grid(f.size(), dt, o.window_order);
+  grid.stop = o.stop;
   Basis basis(grid, f);
   if (real_signal) basis.add(0.0);  // the constant first, so that its window lobe is never taken for a term
   std::vector<Complex> r = real_signal ? basis.residual(basis.coefficients()) : f;

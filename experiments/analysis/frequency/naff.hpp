@@ -10,7 +10,9 @@
 //
 // A real signal f is analysed as f(t) = c + Σ A_k cos(ω_k (t − t0) + φ_k), ω_k > 0:
 // each term is the pair e^{±iω_k t}, the constant c a term of its own.
+#include <atomic>
 #include <complex>
+#include <stdexcept>
 #include <vector>
 
 namespace lgi::experiments::frequency {
@@ -18,6 +20,14 @@ namespace lgi::experiments::frequency {
 struct NaffOptions {
   int terms = 5;         // terms to find (fewer if the residual is exhausted)
   int window_order = 1;  // p of Laskar's window χ_p (hann_window.hpp); the error decays as T^−(2p+2)
+  /// A stop flag (Ctrl-C, lgi frequencies), read every 2^16 samples of each pass over the
+  /// series (sums, FFT stages): once set, the analysis throws NaffStopped. Null: never.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+/// Thrown by the analysis when NaffOptions::stop is set.
+struct NaffStopped : std::runtime_error {
+  NaffStopped() : std::runtime_error("frequency analysis interrupted by signal") {}
 };
 
 struct NaffTerm {

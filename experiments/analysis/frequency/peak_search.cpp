@@ -39,7 +39,7 @@ double coarse_peak(const WindowedGrid& grid, const std::vector<Complex>& r, bool
   while (m < 2 * grid.n) m <<= 1;
   std::vector<Complex> x(m);
   for (std::size_t i = 0; i < grid.n; ++i) x[i] = grid.weight[i] * r[i];
-  fft_in_place(x);
+  fft_in_place(x, [&grid] { check_stop(grid); });
   bin = 2.0 * std::numbers::pi / (static_cast<double>(m) * grid.dt);
   const std::size_t first = real_signal ? 1 : 0, last = real_signal ? m / 2 : m - 1;
   std::size_t best = first;

@@ -6,17 +6,20 @@
 #include <algorithm>
 
 #include "experiments/analysis/frequency/hann_window.hpp"
+#include "experiments/analysis/frequency/naff.hpp"  // NaffStopped
 
 namespace lgi::experiments::frequency {
 namespace {
 
 constexpr std::size_t reseed = 256;
+constexpr std::size_t stop_every = std::size_t{1} << 16;  // samples between two reads of the stop flag
 
 /// Calls visit(i, e^{−iωτ_i}) for every sample, in order.
 template <class Visit>
 void for_each_exponential(const WindowedGrid& grid, double omega, Visit&& visit) {
   const Complex step = std::polar(1.0, -omega * grid.dt);
   for (std::size_t start = 0; start < grid.n; start += reseed) {
+    if (start % stop_every == 0) check_stop(grid);
     Complex e = std::polar(1.0, -omega * grid.tau(start));
     const std::size_t end = std::min(grid.n, start + reseed);
     for (std::size_t i = start; i < end; ++i, e *= step) visit(i, e);
@@ -24,6 +27,10 @@ void for_each_exponential(const WindowedGrid& grid, double omega, Visit&& visit)
 }
 
 }  // namespace
+
+void check_stop(const WindowedGrid& grid) {
+  if (grid.stop && grid.stop->load(std::memory_order_relaxed)) throw NaffStopped();
+}
 
 WindowedGrid windowed_grid(std::size_t n, double dt, int p) {
   WindowedGrid grid;

@@ -4,6 +4,7 @@
 //   ⟨f, g⟩ = Σ_i ω_i f_i conj(g_i),  ω_i = χ_p(i) c_i / (n − 1),
 // the trapezoid rule (c_i = 1/2 at the ends, 1 inside) on Laskar's window χ_p
 // (hann_window.hpp). Centring the times keeps the window's transform real.
+#include <atomic>
 #include <complex>
 #include <cstddef>
 #include <vector>
@@ -17,9 +18,13 @@ struct WindowedGrid {
   double dt = 0.0;
   std::vector<double> weight;  // ω_i
   double mass = 0.0;           // Σ ω_i = ⟨1, 1⟩ (1 up to the trapezoid rule's error)
+  const std::atomic<bool>* stop = nullptr;  // NaffOptions::stop: every pass reads it (naff.hpp)
   double tau(std::size_t i) const { return (static_cast<double>(i) - 0.5 * static_cast<double>(n - 1)) * dt; }
   double half_span() const { return 0.5 * static_cast<double>(n - 1) * dt; }
 };
+
+/// Throws NaffStopped (naff.hpp) if grid.stop is set; every pass over the samples calls it every 2^16.
+void check_stop(const WindowedGrid& grid);
 
 /// The grid of n ≥ 2 samples spaced dt with the window of order p ≥ 0.
 WindowedGrid windowed_grid(std::size_t n, double dt, int p);

@@ -143,7 +143,7 @@ std::vector<TableGroup> single_region_groups(const SingleRegion& r, double h) {
 }
 
 TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, const std::vector<double>& hs, int grid,
-                       std::int64_t& unresolved, const std::function<bool(std::int64_t)>& row_done) {
+                       std::int64_t& unresolved, const std::function<bool(std::int64_t)>& keep_going) {
   std::vector<std::string> names = {"empty"};
   TableColumn l_col{"l"}, h_col{"h"}, h_min{"h_min"};
   const int width = static_cast<int>(hs.size());
@@ -152,10 +152,21 @@ TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, 
       degenerate{"degenerate", width, true};
   h_col.real = hs;
   unresolved = 0;
+  std::function<bool(std::size_t)> cell_done;  // within a row: the cells before it and those of it done
+  if (keep_going)
+    cell_done = [&](std::size_t k) {
+      return keep_going(static_cast<std::int64_t>(topology.whole.size() + k));
+    };
   for (const double l : ls) {
+    if (keep_going && !keep_going(static_cast<std::int64_t>(topology.whole.size()))) break;
+    const double least = minimum_energy(body, l);
+    const auto row_start = [&] { return cell_done(0); };
+    SphereGrid potential = potential_grid(body, l, grid, keep_going ? std::function<bool()>(row_start) : nullptr);
+    if (potential.n == 0) break;  // stopped
+    const auto summaries = region_summaries(potential, critical_points(body, l), hs, cell_done);
+    if (summaries.size() != hs.size()) break;  // stopped within the row: it is not kept
     l_col.real.push_back(l);
-    h_min.real.push_back(minimum_energy(body, l));
-    const auto summaries = region_summaries(potential_grid(body, l, grid), critical_points(body, l), hs);
+    h_min.real.push_back(least);
     for (const auto& s : summaries) {
       topology.whole.push_back(code_of(names, s.topology));
       components.whole.push_back(s.components);
@@ -164,8 +175,8 @@ TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, 
       degenerate.whole.push_back(s.degenerate ? 1 : 0);
       unresolved += s.resolved ? 0 : 1;
     }
-    if (row_done && !row_done(static_cast<std::int64_t>(topology.whole.size()))) break;
   }
+  if (keep_going && l_col.real.size() == ls.size()) keep_going(static_cast<std::int64_t>(topology.whole.size()));
   TableGroup cells{"cells", {l_col, h_col, h_min, topology, components, euler, euler_morse, resolved, degenerate}};
   std::string legend;
   for (const auto& n : names) legend += (legend.empty() ? "" : "\n") + n;

@@ -70,10 +70,11 @@ std::vector<TableGroup> single_region_groups(const SingleRegion& r, double h);
 
 /// `lgi region --cells`: the /cells group (with the attribute topology_names)
 /// on the raster ls × hs; `unresolved` counts the cells the grid leaves unresolved.
-/// `row_done`, if given, is called after each l with the cells done so far; false stops
-/// the raster there (a signal: the group then holds only the rows done).
+/// `keep_going`, if given, is called with the cells done so far after each cell and, within a
+/// row, well under 0.1 s apart (region_summaries); false stops the raster (a signal: the group
+/// then holds only the whole rows done).
 TableGroup cells_group(const HeavyTopBody& body, const std::vector<double>& ls, const std::vector<double>& hs, int grid,
-                       std::int64_t& unresolved, const std::function<bool(std::int64_t)>& row_done = {});
+                       std::int64_t& unresolved, const std::function<bool(std::int64_t)>& keep_going = {});
 
 /// The /equilibria group beside the cells: l, h, omega, branch, stability, fold.
 TableGroup branches_group(const HeavyTopBody& body, int samples);

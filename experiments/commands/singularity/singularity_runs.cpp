@@ -162,24 +162,27 @@ std::vector<Method> study_methods(bool quick, const system::AnyModel& model) {
   return out;
 }
 
-std::vector<double> reference_center_of_mass(const StudyScene& sc) {
+std::optional<std::vector<double>> reference_center_of_mass(const StudyScene& sc, const std::atomic<bool>* stop) {
   std::vector<double> ref(3 * sc.grid.size(), nan);
   Method m;
   m.scheme = integrators::find_scheme(reference_scheme);
   RunConfig cfg;
   cfg.t_end = sc.t_end;
   cfg.tol = reference_tol;
+  cfg.stop = stop;
   State s = sc.scene->initial;
   GridObserver g(sc.grid, sc.chi, ref);
-  run_method(m, sc.model, s, cfg, g, &sc.grid);
+  if (run_method(m, sc.model, s, cfg, g, &sc.grid).interrupted) return std::nullopt;
   return ref;
 }
 
-RunRecord run_study_method(const Method& m, const StudyScene& sc, const std::vector<double>& reference) {
+std::optional<RunRecord> run_study_method(const Method& m, const StudyScene& sc, const std::vector<double>& reference,
+                                          const std::atomic<bool>* stop) {
   RunRecord r;
   r.method = m;
   RunConfig cfg;
   cfg.t_end = sc.t_end;
+  cfg.stop = stop;  // every step reads it (issue 50): a run cut by a signal is not a result
   if (m.adaptive) cfg.tol = sc.tol;
   else cfg.dt = sc.dt;
   const State initial = sc.scene->initial;
@@ -189,7 +192,9 @@ RunRecord run_study_method(const Method& m, const StudyScene& sc, const std::vec
     RunConfig c = cfg;
     c.save_every = std::int64_t{1} << 62;
     integrators::NullObserver none;
-    r.cpu_seconds = run_method(m, sc.model, s, c, none, nullptr).cpu_seconds;
+    const RunStats timing = run_method(m, sc.model, s, c, none, nullptr);
+    if (timing.interrupted) return std::nullopt;
+    r.cpu_seconds = timing.cpu_seconds;
   }
   // History: every accepted step.
   {
@@ -198,6 +203,7 @@ RunRecord run_study_method(const Method& m, const StudyScene& sc, const std::vec
     c.save_every = 1;
     HistoryObserver h(r, sc.J_inv, is_euler(m));
     r.stats = run_method(m, sc.model, s, c, h, nullptr);
+    if (r.stats.interrupted) return std::nullopt;
     step_statistics(r, h.times());
     if (is_euler(m)) {
       double mn = std::numeric_limits<double>::infinity();
@@ -210,7 +216,7 @@ RunRecord run_study_method(const Method& m, const StudyScene& sc, const std::vec
   {
     State s = initial;
     GridObserver g(sc.grid, sc.chi, r.com);
-    run_method(m, sc.model, s, cfg, g, &sc.grid);
+    if (run_method(m, sc.model, s, cfg, g, &sc.grid).interrupted) return std::nullopt;
   }
   compare_with_reference(r, reference, sc.grid.size());
   return r;

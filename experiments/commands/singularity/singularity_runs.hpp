@@ -2,7 +2,9 @@
 // The runs of the Euler-angle singularity study (experiments/SINGULARITY.md):
 // which methods, and per run its counts, CPU time, step history, raw Euler
 // angles and centre of mass on a common grid against a tight reference.
+#include <atomic>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,10 +76,13 @@ struct RunRecord {
 /// unguarded) and the Lie-group schemes that apply; a few with --quick.
 std::vector<Method> study_methods(bool quick, const system::AnyModel& model);
 
-/// The reference centre of mass on the grid ([G][3], NaN where not reached).
-std::vector<double> reference_center_of_mass(const StudyScene& sc);
+/// The reference centre of mass on the grid ([G][3], NaN where not reached);
+/// nullopt if `stop` (RunConfig::stop: read every step) ended the run.
+std::optional<std::vector<double>> reference_center_of_mass(const StudyScene& sc, const std::atomic<bool>* stop);
 
-/// Runs one method three times (timing, history, grid) and compares with `reference`.
-RunRecord run_study_method(const Method& m, const StudyScene& sc, const std::vector<double>& reference);
+/// Runs one method three times (timing, history, grid) and compares with `reference`;
+/// nullopt if `stop` ended one of the three (the run is then not a result).
+std::optional<RunRecord> run_study_method(const Method& m, const StudyScene& sc, const std::vector<double>& reference,
+                                          const std::atomic<bool>* stop);
 
 }  // namespace lgi::experiments::singularity

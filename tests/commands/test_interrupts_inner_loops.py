@@ -1,0 +1,113 @@
+"""Issue 50, item 1: every loop reads the stop flag at least once a second, also the
+loops inside one row, run or analysis that can take many seconds: the rows of
+`lgi region --cells` (a row's triangulation, sort and sweep), each run of `lgi
+singularity`, the NAFF of `lgi frequencies`, the reference of `lgi work-precision` and
+one branch of `lgi bifurcation` on a heavy top. Each test starts the command on an
+input whose loop lasts far longer than the wait (tens of seconds here), signals it
+and checks that it ends within about a second and a half with 130 (143 after
+SIGTERM), says so in one line and publishes nothing as complete."""
+import os
+import signal
+import subprocess
+import time
+
+import h5py
+from pacing import slowdown
+
+LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "experiments", "scenes")
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def signal_and_time(args, sig=signal.SIGINT, after=1.0):
+    """Sends `sig` `after` s (scaled to the build's speed) into the command and returns (exit status,
+    stderr, seconds from the signal to the exit)."""
+    p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(after * slowdown(LGI))
+    assert p.poll() is None, "the command ended before it could be interrupted"
+    p.send_signal(sig)
+    sent = time.monotonic()
+    _, err = p.communicate(timeout=60)
+    return p.returncode, err, time.monotonic() - sent
+
+
+def test_region_cells_sigint_within_a_row(tmp_path):
+    """At --grid 700 one row of l is a 1.5-million-vertex triangulation, its sort and sweep (seconds);
+    40 rows run far longer than the wait. The row in progress is dropped; nothing is written."""
+    out = str(tmp_path / "cells.h5")
+    code, err, waited = signal_and_time(["region", "--scene", os.path.join(SCENES, "lagrange_top_oblate.toml"),
+                                         "--cells", "--l-range", "0:3:40", "--h-range", "-1.2:3:50", "--grid", "700",
+                                         "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    last = err.replace("\r", "\n").strip().splitlines()[-1]
+    assert last.startswith("lgi: region --cells: interrupted by signal after ") and last.endswith(
+        " of 2000 cells; nothing written"), err
+    assert not os.path.exists(out) and not os.path.exists(out + ".partial")
+
+
+def test_singularity_sigint_inside_one_run(tmp_path):
+    """--quick at --dt 1e-8: the seven quick baselines end in milliseconds (euler-zxz/rk4 at the
+    singular set, the rest adaptive), then rkmk4 takes 2.5e8 steps. The signal cuts that run: it is
+    dropped, the seven before it are kept in <out>.partial, no CSV."""
+    out = str(tmp_path / "s.h5")
+    code, err, waited = signal_and_time(["singularity", "--scenes-dir", SCENES, "--quick", "--dt", "1e-8", "--quiet",
+                                         "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    assert err == f"lgi: singularity interrupted by signal after 7 runs; they are kept in {out}.partial\n", err
+    assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "s.csv"))
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
+        methods = [text(m) for m in f["results/method"][()]]
+        assert len(methods) == 7 and "rkmk4" not in methods, methods
+        assert "trindade_4" not in f["scenes"]
+
+
+def test_frequencies_sigterm_inside_the_analysis(tmp_path):
+    """The exact flow samples 500 001 points in a fraction of a second; NAFF's 100 terms of them (whole
+    run and halves) take far longer. SIGTERM inside the analysis: exit 143, nothing written."""
+    out = str(tmp_path / "f.h5")
+    code, err, waited = signal_and_time(["frequencies", "--scene", os.path.join(SCENES, "free_body_hlw.toml"),
+                                         "--t-end", "5000", "--scheme", "exact", "--dt", "0.01", "--observable",
+                                         "angular_momentum_1", "--terms", "100", "--quiet", "--out", out],
+                                        sig=signal.SIGTERM, after=1.5)
+    assert code == 143, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    assert err == ("lgi: frequencies: interrupted by signal in the frequency analysis of 500001 samples; "
+                   "nothing written\n"), err
+    assert not os.path.exists(out) and not os.path.exists(out + ".partial")
+    assert not os.path.exists(str(tmp_path / "f.csv"))
+
+
+def test_work_precision_sigint_inside_the_reference(tmp_path):
+    """The converged reference (rkmk-dop853 at tol 1e-14) of the general top over t = 1e5 runs far longer
+    than the wait; its runs read the flag every step: no row yet, the .partial files are kept and named."""
+    out = str(tmp_path / "w.h5")
+    code, err, waited = signal_and_time(["work-precision", "--scene", os.path.join(SCENES, "general_top_richter.toml"),
+                                         "--schemes", "rkmk4", "--dt", "0.01", "--t-end", "1e5", "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    csv = str(tmp_path / "w.csv")
+    assert err == (f"lgi: work-precision interrupted by signal after 0 rows; partial results kept in {out}.partial "
+                   f"and {csv}.partial\n"), err
+    assert not os.path.exists(out) and not os.path.exists(csv)
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["diagnostics"].attrs["status"]) == "interrupted by signal"
+        assert int(f["diagnostics"].attrs["rows"]) == 0
+
+
+def test_bifurcation_sigint_inside_one_branch(tmp_path):
+    """A heavy top's branch at --samples 10^7 takes tens of seconds; the sampling and the classification
+    read the flag every 2^16 samples: exit 130, nothing written."""
+    out = str(tmp_path / "b.h5")
+    code, err, waited = signal_and_time(["bifurcation", "--scene", os.path.join(SCENES, "general_top_richter.toml"),
+                                         "--samples", "10000000", "--quiet", "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    assert err == "lgi: bifurcation: interrupted by signal; nothing written\n", err
+    assert not os.listdir(tmp_path), os.listdir(tmp_path)
