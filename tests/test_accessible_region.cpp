@@ -16,6 +16,8 @@
 #include "experiments/analysis/accessible_region.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_accessible_region {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::HeavyTopBody;
 
@@ -197,3 +199,5 @@ TEST_CASE("the Kovalevskaya top at l = 2: a degenerate critical point, not an un
   CHECK_FALSE(region.degenerate);
   CHECK(region.resolved);
 }
+
+}  // namespace test_accessible_region

@@ -65,6 +65,8 @@
 #include "support/free_body_scenes.hpp"
 #include "support/verbose.hpp"
 
+namespace test_free_body_exact {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using lgi::lie::Mat3;
 using lgi::lie::Vec3;
 using lgi::system::FreeBodyExactFlow;
@@ -113,13 +115,18 @@ struct Quad {
   friend Quad abs(Quad a) { return a.v < 0 ? -a : a; }
   friend Quad pow(Quad a, Quad b) { return Quad(std::pow(static_cast<double>(a), static_cast<double>(b))); }
 };
+}  // namespace test_free_body_exact
+// A specialisation of a std template is declared at global scope, outside this file's namespace.
 template <>
-struct std::numeric_limits<Quad> : std::numeric_limits<double> {
+struct std::numeric_limits<test_free_body_exact::Quad> : std::numeric_limits<double> {
+  using Quad = test_free_body_exact::Quad;
+  using float128_t = test_free_body_exact::float128_t;
   static Quad epsilon() { return Quad::raw(float128_t(1) / (float128_t(1ull << 56) * float128_t(1ull << 56))); }
   static Quad min() { return Quad(std::numeric_limits<double>::min()); }
   static Quad max() { return Quad(std::numeric_limits<double>::max()); }
   static Quad lowest() { return -max(); }
 };
+namespace test_free_body_exact {
 #endif
 
 namespace {
@@ -362,3 +369,6 @@ TEST_CASE("exact free flow vs long-double odeint: random bodies and states", "[f
   CHECK(elliptic_1 > 0);  // both sides of the separatrix were exercised
   CHECK(elliptic_3 > 0);
 }
+
+}  // namespace test_free_body_exact
+#undef LGI_HAVE_QUAD  // this file's alone, not the next one's in a unity batch

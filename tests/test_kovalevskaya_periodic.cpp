@@ -21,6 +21,8 @@
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_kovalevskaya_periodic {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::FamilyOrbit;
 using experiments::HeavyTopBody;
@@ -132,3 +134,5 @@ TEST_CASE("Kovalevskaya: a rescaled top's critical orbits, and a general top", "
                                                  1.0, 2e-3)
             .empty());
 }
+
+}  // namespace test_kovalevskaya_periodic

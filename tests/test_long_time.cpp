@@ -18,6 +18,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_long_time {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 extern char** environ;
 
 namespace fs = std::filesystem;
@@ -188,3 +190,5 @@ TEST_CASE("long-time refuses bad input with exit 2 and no file", "[long-time]") 
     CHECK(fs::is_empty(dir));
   }
 }
+
+}  // namespace test_long_time

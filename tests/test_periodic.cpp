@@ -32,6 +32,8 @@
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_periodic {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::body_of;
 using experiments::HeavyTopBody;
@@ -250,3 +252,5 @@ TEST_CASE("A fold on a family of Richter's top at l = 3", "[periodic]") {
   CHECK(std::abs(f.h - 4.918819764955638) <= 1e-6);  // where the 20-step family of `lgi periodic` places it
   CHECK(std::abs(independent_monodromy(body, f.x0, f.period).trace() - 6.0) <= 1e-6);
 }
+
+}  // namespace test_periodic
