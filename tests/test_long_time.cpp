@@ -18,9 +18,9 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
-namespace test_long_time {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+extern char** environ;  // POSIX's, at global scope (not in this file's namespace)
 
-extern char** environ;
+namespace test_long_time {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 namespace fs = std::filesystem;
 using namespace lgi::testing;
