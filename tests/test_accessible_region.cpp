@@ -16,6 +16,8 @@
 #include "experiments/analysis/accessible_region.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_accessible_region {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::HeavyTopBody;
 
@@ -227,3 +229,4 @@ TEST_CASE("a polled row: the same cells as without the polls; a false poll stops
   CHECK(experiments::region_summaries(grid, critical, hs, [&](std::size_t) { return --left > 0; }).empty());
   CHECK(experiments::potential_grid(body, l, 300, [] { return false; }).n == 0);
 }
+}  // namespace test_accessible_region

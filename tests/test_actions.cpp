@@ -28,6 +28,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_actions {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::LagrangeBody;
 using lie::Mat3;
@@ -279,3 +281,5 @@ TEST_CASE("Kovalevskaya tori at h = 2: the actions of a torus do not depend on t
   // scheme: all 6 (the whole grid's rate is measured in docs/actions.md §3).
   CHECK(ok == 6);
 }
+
+}  // namespace test_actions

@@ -18,6 +18,8 @@
 
 #include "experiments/analysis/actions.hpp"
 
+namespace test_actions_lagrange_poles {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using lgi::experiments::LagrangeBody;
 
 namespace {
@@ -160,3 +162,5 @@ TEST_CASE("Lagrange actions are continuous across l = +-L3 and the grid holds th
     CHECK(found);
   }
 }
+
+}  // namespace test_actions_lagrange_poles

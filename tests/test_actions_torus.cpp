@@ -15,6 +15,8 @@
 #include "experiments/io/scene_reader.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_actions_torus {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Vec3;
 
@@ -189,3 +191,5 @@ TEST_CASE("A section curve through the chart's pole is refused, not reported wit
   CHECK(std::isnan(t.action_a));
   CHECK(std::isnan(t.action_b));
 }
+
+}  // namespace test_actions_torus

@@ -5,13 +5,15 @@
 // operator new in this test executable (the verification kit's counter).
 #include <catch2/catch.hpp>
 
-#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "support/allocation_count.hpp"  // heap allocations: the global operator new counts them
 #include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/analysis/scheme_verification_cardan.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/registry/registry.hpp"
 #include "integrators/core/torus_tangent_flow.hpp"
 #include "support/cardan_problems.hpp"
+
+namespace test_allocations {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 using namespace lgi;
 
@@ -21,9 +23,9 @@ long allocations_of_run(const integrators::SchemeInfo& scheme, const system::Any
   system::State x = scene.initial;
   integrators::NullObserver none;
   integrators::RunConfig cfg{0.0, static_cast<double>(steps) * h, h, 1e-8, 1};
-  const long before = experiments::verification::counted_allocations();
+  const long before = lgi::testing::counted_allocations();
   const auto stats = scheme.run(model, x, cfg, none);
-  const long after = experiments::verification::counted_allocations();
+  const long after = lgi::testing::counted_allocations();
   INFO(scheme.name << ": " << stats.status);
   REQUIRE(stats.ok);
   return after - before;
@@ -67,9 +69,9 @@ TEST_CASE("no T^3 scheme allocates per step", "[allocations][cardan]") {
       auto allocations = [&](std::int64_t steps) {
         system::TorusState x = p.scene.cardan_initial;
         integrators::BasicNullObserver<system::TorusState> none;
-        const long before = experiments::verification::counted_allocations();
+        const long before = lgi::testing::counted_allocations();
         const auto stats = kit::run_cardan_span(scheme, p.top, x, 0.0, static_cast<double>(steps) * h, h, tol, none);
-        const long after = experiments::verification::counted_allocations();
+        const long after = lgi::testing::counted_allocations();
         INFO(scheme.name << " on " << name << ": " << stats.status);
         REQUIRE(stats.ok);
         return after - before;
@@ -88,9 +90,9 @@ TEST_CASE("the GALI loop allocates nothing per step", "[allocations][gali]") {
   const auto count = [&](double t_end) {
     experiments::IndicatorSettings s;
     s.t_end = t_end, s.dt = 0.01, s.gali = true, s.gali_sampling = {20, false};
-    const long before = experiments::verification::counted_allocations();
+    const long before = lgi::testing::counted_allocations();
     const auto c = experiments::gali_curves(scene, scene.initial, s, 0);
-    const long after = experiments::verification::counted_allocations();
+    const long after = lgi::testing::counted_allocations();
     REQUIRE(c.t.size() == 20);
     return after - before;
   };
@@ -104,12 +106,14 @@ TEST_CASE("the Cardan tangent step allocates nothing", "[allocations][cardan]") 
   system::Vec6 x = system::stack(testing::cardan_test_initial(top));
   system::Vec6 v = system::Vec6::Ones();
   system::Mat6 V = system::Mat6::Identity();
-  const long before = experiments::verification::counted_allocations();
+  const long before = lgi::testing::counted_allocations();
   for (int k = 0; k < 100; ++k) {
     integrators::torus::torus_tangent_step(top, x, v, 1e-3);
     integrators::torus::torus_tangent_step(top, x, V, 1e-3);
   }
-  const long after = experiments::verification::counted_allocations();
+  const long after = lgi::testing::counted_allocations();
   CHECK(after - before == 0);
   CHECK(v.allFinite());
 }
+
+}  // namespace test_allocations

@@ -14,6 +14,8 @@
 
 #include "support/run_command.hpp"
 
+namespace test_atlas_cli {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using Catch::Matchers::Contains;
 using namespace lgi;
 
@@ -123,3 +125,5 @@ TEST_CASE("a tilted Cardan frame: no p1 error reported, --l only sets the initia
   CHECK_THAT(section.err, Contains("warning: --l: p1 is no integral"));
   CHECK_THAT(section.out, Contains("at initial p1 = 10, h = 204,"));
 }
+
+}  // namespace test_atlas_cli

@@ -19,6 +19,8 @@
 #include "integrators/system/model.hpp"
 #include "integrators/system/terms/callable_torque.hpp"
 
+namespace test_attitude_rows {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -166,3 +168,5 @@ TEST_CASE("RKMK, CF and CG schemes give the same bits with only the declared row
   check(integrators::Cg4a{}, 0.01, "cg4a");
   check(integrators::Cg3{}, 0.01, "cg3");
 }
+
+}  // namespace test_attitude_rows

@@ -22,6 +22,8 @@
 #include "support/baseline_runs.hpp"
 #include "support/convergence.hpp"
 
+namespace test_baselines {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using integrators::RunStats;
 using lie::Mat3;
@@ -323,3 +325,5 @@ TEST_CASE("at tight tolerance every controlled baseline agrees with rkmk4 at a s
       }
   }
 }
+
+}  // namespace test_baselines

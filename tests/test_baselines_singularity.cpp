@@ -23,6 +23,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_baselines_singularity {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using integrators::RunConfig;
 using integrators::RunStats;
@@ -293,3 +295,5 @@ TEST_CASE("the full singularity study: guarded Euler angles stop, everything tha
   }
   CHECK(guarded_failures == 5);
 }
+
+}  // namespace test_baselines_singularity

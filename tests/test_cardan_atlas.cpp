@@ -16,6 +16,8 @@
 #include "integrators/core/torus_tangent_flow.hpp"
 #include "support/cardan_problems.hpp"
 
+namespace test_cardan_atlas {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::CardanEquilibrium;
 
@@ -218,3 +220,5 @@ TEST_CASE("MEGNO of seed 003's Cardan tops over 16 orbits to t = 600", "[cardan]
   CHECK(euler_tilted.second > 50.0);
   CHECK(general_up.second > 50.0);
 }
+
+}  // namespace test_cardan_atlas

@@ -11,6 +11,8 @@
 
 #include "experiments/analysis/cardan_energy_draw.hpp"
 
+namespace test_cardan_energy_draw {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 namespace {
@@ -100,3 +102,5 @@ TEST_CASE("Cardan energy draws follow the microcanonical measure", "[cardan][cha
   yy /= n;
   CHECK((yy - Eigen::Matrix3d::Identity() / 3.0).cwiseAbs().maxCoeff() < 4.0 * 0.3 / std::sqrt(n));
 }
+
+}  // namespace test_cardan_energy_draw

@@ -23,6 +23,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_cardan_heavy_top {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 namespace {
@@ -135,3 +137,5 @@ TEST_CASE("the outer angle's momentum: an integral for a vertical axis, not for 
     else CHECK(drift > 1e-2);
   }
 }
+
+}  // namespace test_cardan_heavy_top

@@ -17,6 +17,8 @@
 #include "lie/charts.hpp"
 #include "support/dual.hpp"
 
+namespace test_cardan_model {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::Dual;
 using testing::Mat3S;
@@ -184,3 +186,5 @@ TEST_CASE("Cardan top: massless rings make M singular at gimbal lock, massive ri
     CHECK(Eigen::SelfAdjointEigenSolver<lie::Mat3>(top.mass_matrix(lie::Vec3(0.2, q2, 0.7))).eigenvalues().minCoeff() >
           0.04);
 }
+
+}  // namespace test_cardan_model

@@ -10,6 +10,8 @@
 #include "support/run_command.hpp"
 #include "support/scene_error.hpp"
 
+namespace test_cardan_scene {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using Catch::Matchers::Contains;
 
@@ -89,3 +91,5 @@ TEST_CASE("lgi simulate on a Cardan scene: H5MD output and the wrong scheme kind
   CHECK(bad.status == 2);
   CHECK(testing::line_count(bad.err) == 1);
 }
+
+}  // namespace test_cardan_scene

@@ -16,6 +16,8 @@
 #include "support/cardan_problems.hpp"
 #include "support/convergence.hpp"
 
+namespace test_cardan_schemes {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using integrators::cardan_scheme_registry;
 using integrators::SchemeInfo;
@@ -162,3 +164,5 @@ TEST_CASE("every T^3 scheme runs events on the one loop: crossings located, the 
     }
   }
 }
+
+}  // namespace test_cardan_schemes

@@ -13,6 +13,8 @@
 #include "integrators/core/torus_tangent_flow.hpp"
 #include "support/cardan_problems.hpp"
 
+namespace test_cardan_tangent {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using system::Dual;
 using system::Vec6;
@@ -89,3 +91,5 @@ TEST_CASE("The exact tangent rate is linear in v and its value part is the field
     for (int k = 0; k < 6; ++k) CHECK(std::abs(f[k].a - value[k]) < 1e-14 * value.norm());
   }
 }
+
+}  // namespace test_cardan_tangent

@@ -26,6 +26,8 @@
 #include "integrators/core/tangent_flow.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_chaos_indicators {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Vec3;
 
@@ -153,3 +155,5 @@ TEST_CASE("converged: the exponents over [T/2, T] and [0, T] agree to rtol", "[i
   CHECK(r.megno == Approx(2.0).margin(0.3));
   CHECK(!r.converged);
 }
+
+}  // namespace test_chaos_indicators

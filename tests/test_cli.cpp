@@ -9,6 +9,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_cli {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::testing;
 namespace fs = std::filesystem;
 
@@ -121,3 +123,5 @@ TEST_CASE("lgi schemes and lgi scenes list the registry and the shipped scenes",
   CHECK(sc.out.find("kovalevskaya.toml") != std::string::npos);
   CHECK(sc.out.find("kovalevskaya_k") != std::string::npos);
 }
+
+}  // namespace test_cli

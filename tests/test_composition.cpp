@@ -29,6 +29,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_composition {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::ConvergencePoint;
 
@@ -150,3 +152,5 @@ TEST_CASE("every processed composition reaches its order on HLW's heavy top", "[
   // split-exact, split-axes, split-symmetric, lgvi.
   CHECK(bases.size() == 4);
 }
+
+}  // namespace test_composition

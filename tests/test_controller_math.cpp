@@ -13,6 +13,8 @@
 
 #include "integrators/core/controller_math.hpp"
 
+namespace test_controller_math {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace cm = lgi::integrators::controller_math;
 
 TEST_CASE("controller_math::log is within 1e-9 of libm's, subnormals included", "[controller]") {
@@ -53,3 +55,5 @@ TEST_CASE("controller_math::exp is within 1e-9 of libm's, to overflow and into t
   CHECK(std::isnan(cm::exp(std::numeric_limits<double>::quiet_NaN())));
   CHECK(cm::pow(1e-10, 1.0 / 8.0) == Approx(std::pow(1e-10, 1.0 / 8.0)).epsilon(1e-9));
 }
+
+}  // namespace test_controller_math

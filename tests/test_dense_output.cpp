@@ -20,6 +20,8 @@
 #include "support/reference_solution.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_dense_output {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::ConvergencePoint;
 
@@ -156,3 +158,5 @@ TEST_CASE("output times inside the steps of a pair with dense output change noth
   }
   CHECK(dense_pairs == 8);  // DOP853 and Verner's 6(5), 8(7) and 9(8), in exponential and Cayley coordinates (rkmk_adaptive.hpp)
 }
+
+}  // namespace test_dense_output

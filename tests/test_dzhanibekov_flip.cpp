@@ -8,6 +8,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_dzhanibekov_flip {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::testing;
 
 namespace {
@@ -78,3 +80,5 @@ TEST_CASE("dzhanibekov_book_axis2 flips, and rkmk4 at dt = 1e-3 matches exact to
   CHECK(e1 < 3e-9);
   CHECK(e8 / e4 == Approx(16.0).margin(3.0));
 }
+
+}  // namespace test_dzhanibekov_flip

@@ -28,6 +28,8 @@
 #include "support/shipped_scene.hpp"
 #include "support/spring_scenes.hpp"
 
+namespace test_energy_momentum {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -310,3 +312,5 @@ TEST_CASE("simo-wong's Newton iterations stay few", "[simo-wong][newton]") {
   CHECK(ht3.first <= 3);
   CHECK(fb3.second + fb1.second + ht3.second == 0);
 }
+
+}  // namespace test_energy_momentum

@@ -16,12 +16,14 @@
 #include <vector>
 
 #include "tests/ensemble_test_support.hpp"
-#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "support/allocation_count.hpp"  // heap allocations: the global operator new counts them
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
 #include "integrators/ensemble/rkmk_kernel.hpp"
 #include "integrators/registry/registry.hpp"
 #include "integrators/schemes/rkmk.hpp"
+
+namespace test_ensemble {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
@@ -247,9 +249,9 @@ TEST_CASE("an ensemble step allocates nothing", "[ensemble][allocations]") {
     auto e = ensemble::EnsembleStepper::make("rkmk4", model, isa);
     REQUIRE(e);
     for (int l = 0; l < e->lanes(); ++l) e->set_lane(l, scene.initial);
-    const long before = experiments::verification::counted_allocations();
+    const long before = lgi::testing::counted_allocations();
     for (int k = 0; k < 1000; ++k) e->step(k * 0.01, 0.01);
-    CHECK(experiments::verification::counted_allocations() == before);
+    CHECK(lgi::testing::counted_allocations() == before);
     // The loop: what a run allocates does not grow with its steps (its observers' samples aside).
     auto loop_allocations = [&](double t_end) {
       std::vector<State> states(static_cast<std::size_t>(e->lanes()), scene.initial);
@@ -260,11 +262,13 @@ TEST_CASE("an ensemble step allocates nothing", "[ensemble][allocations]") {
       integrators::RunConfig cfg{0.0, t_end, 0.01, 0.0, 1};
       cfg.events = &surfaces;
       static ensemble::EnsembleWorkspace ws;
-      const long start = experiments::verification::counted_allocations();
+      const long start = lgi::testing::counted_allocations();
       ensemble::run_ensemble(*e, model, states, cfg, observers, stats, ws);
-      return experiments::verification::counted_allocations() - start;
+      return lgi::testing::counted_allocations() - start;
     };
     loop_allocations(0.1);  // sizes the workspace
     CHECK(loop_allocations(0.1) == loop_allocations(10.0));
   }
 }
+
+}  // namespace test_ensemble

@@ -14,12 +14,14 @@
 #include <vector>
 
 #include "tests/ensemble_test_support.hpp"
-#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "support/allocation_count.hpp"  // heap allocations: the global operator new counts them
 #include "experiments/io/scene_suspension.hpp"
 #include "integrators/ensemble/cardan_tangent_ensemble.hpp"
 #include "integrators/ensemble/cardan_tangent_kernel.hpp"
 #include "integrators/ensemble/lane_sincos.hpp"
 #include "integrators/core/torus_tangent_flow.hpp"
+
+namespace test_ensemble_cardan {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
@@ -238,9 +240,11 @@ TEST_CASE("Cardan tangent lanes allocate nothing", "[ensemble][cardan][allocatio
       one->set_lane(l, x, Vec6(random_matrix(1).col(0)));
     }
     integrators::ChaosIndicators out[ensemble::max_lanes];
-    const long before = experiments::verification::counted_allocations();
+    const long before = lgi::testing::counted_allocations();
     for (int k = 0; k < 50; ++k) six->step(0.005);
     one->chaos_indicators(0.0, 1.0, 0.005, nullptr, {out, static_cast<std::size_t>(one->lanes())});
-    CHECK(experiments::verification::counted_allocations() == before);
+    CHECK(lgi::testing::counted_allocations() == before);
   }
 }
+
+}  // namespace test_ensemble_cardan

@@ -15,11 +15,13 @@
 #include <vector>
 
 #include "tests/ensemble_test_support.hpp"
-#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "support/allocation_count.hpp"  // heap allocations: the global operator new counts them
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/ensemble_loop.hpp"
 #include "integrators/schemes/moser_veselov_preprocessed.hpp"
 #include "integrators/registry/registry.hpp"
+
+namespace test_ensemble_dmv {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
@@ -169,8 +171,10 @@ TEST_CASE("a dmv-pre ensemble step allocates nothing", "[ensemble][dmv][allocati
     REQUIRE(e);
     const std::vector<State> initial = initial_states(scene.initial, e->lanes(), 2);
     for (int l = 0; l < e->lanes(); ++l) e->start_lane(l, initial[static_cast<std::size_t>(l)], 0.0);
-    const long before = experiments::verification::counted_allocations();
+    const long before = lgi::testing::counted_allocations();
     for (int k = 0; k < 1000; ++k) e->step(k * 0.01, k < 500 ? 0.01 : 0.02);  // both kernel and scalar steps
-    CHECK(experiments::verification::counted_allocations() == before);
+    CHECK(lgi::testing::counted_allocations() == before);
   }
 }
+
+}  // namespace test_ensemble_dmv

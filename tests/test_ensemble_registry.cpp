@@ -16,6 +16,8 @@
 #include "integrators/schemes/rkmk.hpp"
 #include "tests/ensemble_test_support.hpp"
 
+namespace test_ensemble_registry {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
 using integrators::LaneKernel;
@@ -123,3 +125,5 @@ TEST_CASE("lgi schemes --json names each scheme's lane kernel") {
   CHECK(lane_kernel("rkmk-cayley4") == Value{});  // RK4 in Cayley coordinates: not the kernel's step
   CHECK(lane_kernel("dmv@yoshida4") == Value{});  // a composition is not its base's step
 }
+
+}  // namespace test_ensemble_registry

@@ -15,13 +15,15 @@
 #include <vector>
 
 #include "tests/ensemble_test_support.hpp"
-#include "experiments/analysis/allocation_counter.hpp"  // replaces the global operator new: counts
+#include "support/allocation_count.hpp"  // heap allocations: the global operator new counts them
 #include "experiments/analysis/chaos_indicators.hpp"
 #include "experiments/analysis/poincare_section.hpp"
 #include "experiments/io/scene_reader.hpp"
 #include "integrators/ensemble/tangent_ensemble.hpp"
 #include "integrators/schemes/rkmk.hpp"
 #include "integrators/core/tangent_flow.hpp"
+
+namespace test_ensemble_tangent {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 using namespace lgi;
 namespace ensemble = lgi::integrators::ensemble;
@@ -231,10 +233,10 @@ TEST_CASE("tangent lanes allocate nothing", "[ensemble][tangent][allocations]") 
       one->set_lane(l, scene.initial, Vec6(random_vectors(1).col(0)));
     }
     integrators::ChaosIndicators out[ensemble::max_lanes];
-    const long before = experiments::verification::counted_allocations();
+    const long before = lgi::testing::counted_allocations();
     for (int k = 0; k < 100; ++k) e->step(k * 0.01, 0.01);
     one->chaos_indicators(0.0, 10.0, 0.01, nullptr, {out, static_cast<std::size_t>(one->lanes())});
-    CHECK(experiments::verification::counted_allocations() == before);
+    CHECK(lgi::testing::counted_allocations() == before);
   }
 }
 
@@ -263,3 +265,5 @@ TEST_CASE("lgi indicators and chaos-map batches in lanes are their states one at
     }
   }
 }
+
+}  // namespace test_ensemble_tangent

@@ -16,6 +16,8 @@
 #include "integrators/system/free_body_exact.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_events {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 namespace {
@@ -195,3 +197,5 @@ TEST_CASE("the pairs with dense output locate crossings on their interpolant", "
     CHECK(3 * extra(dense) <= extra(map));
   }
 }
+
+}  // namespace test_events

@@ -11,6 +11,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_first_use {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::testing;
 namespace fs = std::filesystem;
 
@@ -202,3 +204,5 @@ TEST_CASE("error messages point at the fix", "[cli][bad-input]") {
   CHECK(list.status == 2);
   CHECK(list.err.find("did you mean lgvi") != std::string::npos);
 }
+
+}  // namespace test_first_use

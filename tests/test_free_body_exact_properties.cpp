@@ -18,6 +18,8 @@
 #include "support/free_body_scenes.hpp"
 #include "support/verbose.hpp"
 
+namespace test_free_body_exact_properties {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using lgi::lie::Mat3;
 using lgi::lie::Vec3;
 using lgi::system::FreeBodyExactFlow;
@@ -181,3 +183,5 @@ TEST_CASE("exact free flow: steady rotations and the symmetric body in closed fo
     CHECK((x.Pi - expected).norm() <= 1e-15);
   }
 }
+
+}  // namespace test_free_body_exact_properties

@@ -29,6 +29,8 @@
 #include "support/shipped_scene.hpp"
 #include "support/verbose.hpp"
 
+namespace test_frequencies {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 namespace fq = lgi::experiments::frequency;
 
@@ -227,3 +229,5 @@ TEST_CASE("NAFF's lines on the Kovalevskaya top are combinations of the numerica
     for (std::size_t k = 1; k < 4; ++k) CHECK(combination_distance(n.terms[k].frequency, wa, wb) < 1e-6 * wb);
   }
 }
+
+}  // namespace test_frequencies

@@ -23,6 +23,8 @@
 #include "integrators/core/torus_tangent_flow.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_gali {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using integrators::Mat6;
 
@@ -157,3 +159,5 @@ TEST_CASE("the Cardan tangent flow's six-vector step is six single steps, bit fo
     CHECK(v == system::Vec6(V.col(c)));
   }
 }
+
+}  // namespace test_gali

@@ -26,6 +26,8 @@
 #include "lgi/build_info.hpp"
 #include "support/h5md_trajectory.hpp"
 
+namespace test_h5md_writer {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace fs = std::filesystem;
 using namespace lgi::experiments;
 using namespace lgi::testing;
@@ -256,3 +258,5 @@ TEST_CASE("output time is charged in CPU seconds, so waiting for a core leaves t
   CHECK(diag.cpu_seconds > 0.0);
   CHECK(diag.cpu_seconds + output == Approx(stats.cpu_seconds).epsilon(1e-12));
 }
+
+}  // namespace test_h5md_writer

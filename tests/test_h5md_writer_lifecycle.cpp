@@ -26,6 +26,8 @@
 #include "lgi/build_info.hpp"
 #include "support/h5md_trajectory.hpp"
 
+namespace test_h5md_writer_lifecycle {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace fs = std::filesystem;
 using namespace lgi::experiments;
 using namespace lgi::testing;
@@ -261,3 +263,5 @@ TEST_CASE("trajectory file: cost per append, 1e6 samples", "[h5md][slow]") {
   CHECK(step.back() == n - 1);
   fs::remove(path);
 }
+
+}  // namespace test_h5md_writer_lifecycle

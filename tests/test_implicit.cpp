@@ -35,6 +35,8 @@
 #include "support/registered_run.hpp"
 #include "support/run_command.hpp"
 
+namespace test_implicit {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -495,3 +497,5 @@ TEST_CASE("Newton converges in at most 10 iterations per step, refreshed and ful
     }
   }
 }
+
+}  // namespace test_implicit

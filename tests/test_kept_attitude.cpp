@@ -24,6 +24,8 @@
 #include "lie/so3.hpp"
 #include "tests/ensemble_test_support.hpp"
 
+namespace test_kept_attitude {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using integrators::State;
 using lie::Mat3;
@@ -285,3 +287,5 @@ TEST_CASE("|q| and R(q)'s orthogonality stay at round-off over 1e5 steps", "[var
   CHECK(orthogonality <= 2e-14);
   CHECK(std::abs(x.R.determinant() - 1.0) <= 2e-14);
 }
+
+}  // namespace test_kept_attitude

@@ -20,6 +20,8 @@
 #include "lie/charts.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_kovalevskaya_diagram {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::HeavyTopBody;
 
@@ -162,3 +164,5 @@ TEST_CASE("the critical-point solver realises the known Appelrot arcs at l = 0",
   CHECK(realised[2] == 1);  // k = h^2, the lower edge of the range for -1 < h < 0
   CHECK(realised[3] == 0);  // k = 0 is not reached for h < 0 at l = 0
 }
+
+}  // namespace test_kovalevskaya_diagram

@@ -28,6 +28,8 @@
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_kovalevskaya_periodic {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::FamilyOrbit;
 using experiments::HeavyTopBody;
@@ -170,3 +172,4 @@ TEST_CASE("Kovalevskaya, l = 0, h = 0.9: the hyperbolic critical orbits meet the
   }
   CHECK(strong >= 1);
 }
+}  // namespace test_kovalevskaya_periodic

@@ -12,6 +12,8 @@
 #include "experiments/analysis/kovalevskaya_critical.hpp"
 #include "experiments/analysis/level_set_components.hpp"
 
+namespace test_level_set_components {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::HeavyTopBody;
 using experiments::IntegralValue;
@@ -65,3 +67,5 @@ TEST_CASE("near the least energy of a Kovalevskaya leaf the level set is one tor
   // An empty level set (k far above the range) has no points.
   CHECK(experiments::level_set_components(scaled, 0.0, -0.9, 50.0, experiments::kovalevskaya_integral(scaled), 200).points == 0);
 }
+
+}  // namespace test_level_set_components

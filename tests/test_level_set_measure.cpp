@@ -18,6 +18,8 @@
 #include "experiments/analysis/level_set_draw.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_level_set_measure {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::LevelMeasure;
 using lie::Vec3;
@@ -127,3 +129,5 @@ TEST_CASE("the Wilson interval's ends are the roots of (k - np)^2 = z^2 n p (1 -
   CHECK(std::isnan(experiments::wilson_interval(0, 0).fraction));
   CHECK(experiments::format_fraction(140, 200) == "140/200 = 0.700 [0.633, 0.759]");
 }
+
+}  // namespace test_level_set_measure

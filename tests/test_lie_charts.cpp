@@ -22,6 +22,8 @@
 #include "support/rk4.hpp"
 #include "support/worst_error.hpp"
 
+namespace test_lie_charts {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace {
 
 using lgi::lie::EulerZXZ;
@@ -303,3 +305,5 @@ TEST_CASE("Rotation vector chart: Ψ̇ = rotation_vector_rate(Ψ, Ω(t)) reprodu
     CHECK(w(maxabs(Mat3(matrix_from_rotation_vector(psi) - r)), "") <= 1e-10);
   }
 }
+
+}  // namespace test_lie_charts

@@ -35,6 +35,8 @@
 #include "support/worst_error.hpp"
 #include "support/so3_samples.hpp"
 
+namespace test_lie_so3 {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace {
 
 using lgi::lie::Mat3;
@@ -432,3 +434,5 @@ TEST_CASE("Cayley: cay_inv round trip, quaternion (2, ξ)/√(4+θ²), angle 2 a
     CHECK_FALSE(cay_inv(R, xi));
   }
 }
+
+}  // namespace test_lie_so3

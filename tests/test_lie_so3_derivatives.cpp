@@ -33,6 +33,8 @@
 #include "support/so3_samples.hpp"
 #include "support/rk4.hpp"
 
+namespace test_lie_so3_derivatives {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace {
 
 using lgi::lie::Mat3;
@@ -274,3 +276,5 @@ TEST_CASE("Product state SO(3) × ℝ³: compose, inverse, retract_body", "[lie]
   CHECK(dist(retract_body(a, SO3xR3Tangent{}), a) == 0.0);
   CHECK(dist(exp_product(SO3xR3Tangent{}), id) == 0.0);
 }
+
+}  // namespace test_lie_so3_derivatives

@@ -18,7 +18,9 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
-extern char** environ;
+extern char** environ;  // POSIX's, at global scope (not in this file's namespace)
+
+namespace test_long_time {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
 
 namespace fs = std::filesystem;
 using namespace lgi::testing;
@@ -188,3 +190,5 @@ TEST_CASE("long-time refuses bad input with exit 2 and no file", "[long-time]") 
     CHECK(fs::is_empty(dir));
   }
 }
+
+}  // namespace test_long_time

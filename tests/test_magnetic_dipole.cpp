@@ -17,6 +17,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_magnetic_dipole {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -112,3 +114,5 @@ dipole_moment = [0.0, 0.0, 1.0]
     CHECK(what.find('\n') == std::string::npos);
   }
 }
+
+}  // namespace test_magnetic_dipole

@@ -13,6 +13,8 @@
 #include "integrators/system/model.hpp"
 #include "integrators/system/terms/callable_torque.hpp"
 
+namespace test_model_jacobian {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -190,3 +192,5 @@ TEST_CASE("momentum-field Jacobians of every shipped scene match central differe
     std::visit([&](const auto& model) { check_model(model, name); }, system::make_model(scene));
   }
 }
+
+}  // namespace test_model_jacobian

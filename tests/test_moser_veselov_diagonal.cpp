@@ -18,6 +18,8 @@
 #include "integrators/schemes/moser_veselov_series.hpp"
 #include "support/registered_run.hpp"
 
+namespace test_moser_veselov_diagonal {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -199,3 +201,5 @@ TEST_CASE("the predicted start: one correction to the cold solve's root, and the
   p.reset();
   CHECK_FALSE(p.ready(0.01));
 }
+
+}  // namespace test_moser_veselov_diagonal

@@ -10,6 +10,8 @@
 #include "integrators/tableaus/embedded_pairs.hpp"
 #include "integrators/tableaus/verner65.hpp"
 
+namespace test_order_checks {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace {
 using namespace lgi::tableaus;
 
@@ -62,3 +64,5 @@ TEST_CASE("orders_of_weights gives each weight vector its own order", "[tableaus
   CHECK(alone < 6);
   CHECK(dense_output_order<moved_dense>() == alone);
 }
+
+}  // namespace test_order_checks

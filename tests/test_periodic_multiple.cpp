@@ -18,6 +18,8 @@
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_periodic_multiple {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::body_of;
 using experiments::HeavyTopBody;
@@ -163,3 +165,5 @@ TEST_CASE("A Lyapunov family continued in l from its equilibrium", "[periodic][s
   CHECK(std::abs(match->h - h1) <= 1e-6);
   CHECK(std::abs(match->period - fam[2].orbit.period) <= 1e-6);
 }
+
+}  // namespace test_periodic_multiple

@@ -14,6 +14,8 @@
 #include "experiments/analysis/periodic/orbit_manifolds.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_periodic_section {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::HeavyTopBody;
 using experiments::Vec6;
@@ -169,3 +171,5 @@ TEST_CASE("The unstable manifold of a hyperbolic orbit on Richter's section", "[
     }
   }
 }
+
+}  // namespace test_periodic_section

@@ -24,6 +24,8 @@
 #include "lie/so3.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_poincare {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using experiments::SectionKind;
 using lgi::testing::shipped_scene;
@@ -244,3 +246,5 @@ TEST_CASE("--seeds: a section point (phi, theta, sheet) becomes the state on the
   }
   CHECK(made >= 20);
 }
+
+}  // namespace test_poincare

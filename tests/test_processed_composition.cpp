@@ -15,6 +15,8 @@
 #include "support/registered_run.hpp"
 #include "support/run_command.hpp"
 
+namespace test_processed_composition {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 namespace {
@@ -165,3 +167,5 @@ TEST_CASE("lgi poincare refuses a processed composition with a clear line and ex
   CHECK(r.err.find("--scheme") != std::string::npos);
   CHECK(r.err.find("split-symmetric@bcm-processed8") != std::string::npos);
 }
+
+}  // namespace test_processed_composition

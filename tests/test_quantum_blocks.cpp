@@ -13,6 +13,8 @@
 #include "experiments/io/scene_reader.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_quantum_blocks {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::quantum;
 
@@ -90,3 +92,5 @@ TEST_CASE("quantum: terms that are not potentials of Gamma are refused", "[quant
       "dipole_moment = [0.0, 0.0, 1.0]\nfield = [1.0, 0.0, 0.0]\n";
   CHECK_THROWS_WITH(quantum_top_of(parse_scene(horizontal, "h.toml")), Catch::Contains("[magnetic] field"));
 }
+
+}  // namespace test_quantum_blocks

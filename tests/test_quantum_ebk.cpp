@@ -8,6 +8,8 @@
 
 #include "experiments/analysis/quantum/ebk_lagrange.hpp"
 
+namespace test_quantum_ebk {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::quantum;
 
@@ -75,3 +77,5 @@ TEST_CASE("EBK of the Lagrange top in the free limit: the exact level plus hbar^
         CHECK(*e - exact == Approx(hbar * hbar / (8.0 * A)).margin(1e-5));
       }
 }
+
+}  // namespace test_quantum_ebk

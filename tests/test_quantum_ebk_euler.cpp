@@ -9,6 +9,8 @@
 
 #include "experiments/analysis/quantum/ebk_free_rotor.hpp"
 
+namespace test_quantum_ebk_euler {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments::quantum;
 
 namespace {
@@ -78,3 +80,5 @@ TEST_CASE("EBK of the Euler top: doublets, the separatrix, the symmetric limit",
   CHECK_THROWS_AS(ebk_table(quantum_spectrum(quantum_top(J, Eigen::Vector3d(0.0, 0.0, 1.0)), s), 0.5, 0),
                   std::invalid_argument);
 }
+
+}  // namespace test_quantum_ebk_euler

@@ -12,6 +12,8 @@
 #include "experiments/analysis/quantum/quantum_top.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_quantum_ebk_kovalevskaya {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::quantum;
 
@@ -102,3 +104,5 @@ TEST_CASE("EBK errors of the Kovalevskaya top fall as hbar^2", "[quantum][ebk][s
     }
   }
 }
+
+}  // namespace test_quantum_ebk_kovalevskaya

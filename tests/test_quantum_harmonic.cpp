@@ -15,6 +15,8 @@
 #include "experiments/analysis/relative_equilibria.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_quantum_harmonic {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::quantum;
 
@@ -71,3 +73,5 @@ TEST_CASE("quantum: the harmonic limit down to hbar = 0.005", "[quantum][slow]")
   const lgi::system::Scene richter = lgi::testing::shipped_scene("general_top_richter");
   check_limit(richter.inertia, quantum_top_of(richter).weight, true);
 }
+
+}  // namespace test_quantum_harmonic

@@ -17,6 +17,8 @@
 
 #include "experiments/analysis/quantum/rotor_operators.hpp"
 
+namespace test_quantum_operators {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments::quantum;
 using Dense = Eigen::MatrixXcd;
 
@@ -113,3 +115,5 @@ TEST_CASE("quantum: the rotation by pi about body axis 1 is |j,k> -> (-1)^j |j,-
     CHECK((rotation - expected).cwiseAbs().maxCoeff() < 1e-12);
   }
 }
+
+}  // namespace test_quantum_operators

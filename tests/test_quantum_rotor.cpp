@@ -17,6 +17,8 @@
 
 #include "experiments/analysis/quantum/quantum_spectrum.hpp"
 
+namespace test_quantum_rotor {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments::quantum;
 
 namespace {
@@ -127,3 +129,5 @@ TEST_CASE("quantum: the free symmetric rotor agrees with its closed form", "[qua
     CHECK(worst < 1e-12);
   }
 }
+
+}  // namespace test_quantum_rotor

@@ -10,6 +10,8 @@
 #include "experiments/analysis/quantum/quantum_statistics.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 
+namespace test_quantum_weyl {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::quantum;
 
@@ -101,3 +103,5 @@ TEST_CASE("Weyl's law: the quadrature converges with its nodes", "[quantum][weyl
     CHECK(std::abs(coarse(e) / fine(e) - 1.0) < 1e-5);
   }
 }
+
+}  // namespace test_quantum_weyl

@@ -18,6 +18,8 @@
 #include "support/heavy_top_body.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_relative_equilibria {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::body_of;
 using experiments::EquilibriumStability;
@@ -208,3 +210,5 @@ TEST_CASE("class changes of the general top lie between samples of different cla
   }
   CHECK(changes >= 2);
 }
+
+}  // namespace test_relative_equilibria

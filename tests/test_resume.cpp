@@ -17,6 +17,8 @@
 #include "integrators/registry/registry.hpp"
 #include "support/recorder.hpp"
 
+namespace test_resume {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::Recorder;
 using testing::Sample;
@@ -159,3 +161,5 @@ TEST_CASE("checkpoint slots: round trip, and a torn or damaged slot reads as emp
   CHECK(experiments::newest_checkpoint(record, 2, 100, next)->rows == 10);
   CHECK(next == 4);
 }
+
+}  // namespace test_resume

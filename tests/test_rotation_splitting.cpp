@@ -31,6 +31,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_rotation_splitting {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -207,3 +209,5 @@ TEST_CASE("compositions merge the outer rotations of neighbouring stages", "[rot
   check.template operator()<integrators::SplitAxes>("split-axes");
   check.template operator()<integrators::SplitSymmetric>("split-symmetric");
 }
+
+}  // namespace test_rotation_splitting

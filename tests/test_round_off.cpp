@@ -17,6 +17,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_round_off {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 namespace {
@@ -197,3 +199,5 @@ double solve_bias_z(std::int64_t steps) {
 TEST_CASE("dmv: the implicit solve leaves no bias that would drift the energy (1e7 steps)", "[round-off]") {
   CHECK(std::abs(solve_bias_z(10000000)) < 4.0);
 }
+
+}  // namespace test_round_off

@@ -21,6 +21,8 @@
 #include "support/scene_error.hpp"
 #include "support/valid_scene.hpp"
 
+namespace test_scene_reader {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using lgi::experiments::parse_scene;
 using lgi::experiments::read_scene;
 using lgi::lie::Mat3;
@@ -274,3 +276,5 @@ TEST_CASE("scene: accepted at the limits of the bad-input rules", "[scene]") {
   Rz90 << 0, -1, 0, 1, 0, 0, 0, 0, 1;
   CHECK(r.initial.R == Rz90);
 }
+
+}  // namespace test_scene_reader

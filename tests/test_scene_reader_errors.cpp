@@ -20,6 +20,8 @@
 
 #include "support/scene_error.hpp"
 
+namespace test_scene_reader_errors {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace {
 
 struct BadScene {
@@ -214,3 +216,5 @@ TEST_CASE("bad input: unreadable or missing file", "[scene][bad]") {
   }
   std::filesystem::remove(bad);
 }
+
+}  // namespace test_scene_reader_errors

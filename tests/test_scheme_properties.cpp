@@ -22,6 +22,8 @@
 #include "integrators/system/invariants.hpp"
 #include "integrators/tableaus/composition.hpp"
 
+namespace test_scheme_properties {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 namespace {
@@ -307,3 +309,5 @@ TEST_CASE("T^3 schemes conserve what they claim over 1e4 steps", "[properties][c
 TEST_CASE("T^3 schemes conserve what they claim over 1e5 steps", "[properties][conservation][cardan][slow]") {
   check_cardan_conservation(100000);
 }
+
+}  // namespace test_scheme_properties

@@ -11,6 +11,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_simulate_output_dt {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::testing;
 namespace fs = std::filesystem;
 
@@ -98,3 +100,5 @@ TEST_CASE("bad --output-dt values exit 2 with one line and no file", "[cli][outp
   bad("--scheme rkmk4 --dt 0.01 --output-dt 0.1 --save-every 5");  // both
   bad("--scheme rkmk-verner87 --tol 1e-8 --t-end 10 --output-dt 1e-8");  // 1e9 samples
 }
+
+}  // namespace test_simulate_output_dt

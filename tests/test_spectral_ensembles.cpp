@@ -26,6 +26,8 @@
 #include "experiments/analysis/spectral/reference_curves.hpp"
 #include "experiments/analysis/spectral/spectral_statistics.hpp"
 
+namespace test_spectral_ensembles {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::spectral;
 using std::numbers::pi;
@@ -198,3 +200,5 @@ TEST_CASE("the ML Brody estimate on 1000 Poisson and GOE levels over seeds", "[.
                 mean, std::sqrt((sum2 - seeds * mean * mean) / (seeds - 1)), se / seeds);
   }
 }
+
+}  // namespace test_spectral_ensembles

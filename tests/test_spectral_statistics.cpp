@@ -27,6 +27,8 @@
 #include "experiments/analysis/spectral/unfolding.hpp"
 #include "experiments/errors/input_error.hpp"
 
+namespace test_spectral_statistics {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 using namespace lgi::experiments::spectral;
 using Catch::Matchers::WithinAbs;
@@ -253,3 +255,5 @@ TEST_CASE("reference curves: the GUE", "[spectral]") {
   CHECK(norm == Approx(1.0).epsilon(1e-9));
   CHECK(mean == Approx(1.0).epsilon(1e-9));
 }
+
+}  // namespace test_spectral_statistics

@@ -35,6 +35,8 @@
 #include "support/spring_scenes.hpp"
 #include "support/registered_run.hpp"
 
+namespace test_splitting {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -355,3 +357,5 @@ TEST_CASE("split-exact keeps the Kovalevskaya integral bounded", "[split-exact][
   CHECK(first_half < 1e-3);
   CHECK(second_half < 2.0 * first_half);  // bounded: no growth from the first half to the second
 }
+
+}  // namespace test_splitting

@@ -47,6 +47,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_stated_orders {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::ConvergencePoint;
 
@@ -410,3 +412,5 @@ TEST_CASE("every adaptive Lie-group scheme meets its tolerance in proportion", "
   }
   CHECK(tested >= 3);
 }
+
+}  // namespace test_stated_orders

@@ -12,6 +12,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_stress {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::testing;
 namespace fs = std::filesystem;
 
@@ -241,3 +243,5 @@ TEST_CASE("lgi stress --schemes restricts the suite; bad flags give exit 2 and n
     CHECK(read_results(out).size() < t.size());
   }
 }
+
+}  // namespace test_stress

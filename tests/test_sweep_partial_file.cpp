@@ -13,6 +13,8 @@
 #include "experiments/io/sweep_file.hpp"
 #include "support/run_command.hpp"
 
+namespace test_sweep_partial_file {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi::experiments;
 
 namespace {
@@ -62,3 +64,5 @@ TEST_CASE("a partial sweep that is not HDF5 yet, or is gone, names the way out",
   CHECK(why_gone.find("removed before it could be opened") != std::string::npos);
   CHECK(why_gone.find("without --resume") != std::string::npos);
 }
+
+}  // namespace test_sweep_partial_file

@@ -17,6 +17,8 @@
 #include "support/recorder.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_time_loop {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using testing::Recorder;
 
@@ -245,3 +247,5 @@ TEST_CASE("time loop: the baselines honour the same output times and stop flag",
     }
   }
 }
+
+}  // namespace test_time_loop

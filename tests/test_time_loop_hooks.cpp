@@ -19,6 +19,8 @@
 #include "integrators/core/stepper_loop.hpp"
 #include "integrators/system/model.hpp"
 
+namespace test_time_loop_hooks {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using integrators::AdaptiveStatus;
 using integrators::RunConfig;
@@ -173,3 +175,5 @@ TEST_CASE("time loop: dense output observes output times inside steps", "[time-l
     CHECK(rec.samples[i].pi1 == Approx(times[i]).margin(1e-15));
   }
 }
+
+}  // namespace test_time_loop_hooks

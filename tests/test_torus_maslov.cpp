@@ -9,6 +9,8 @@
 #include "integrators/system/terms/gravity.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_torus_maslov {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 
 TEST_CASE("The Maslov indices of a Lagrange torus are 0 (spin) and 2 (nutation)", "[actions][maslov]") {
@@ -33,3 +35,5 @@ TEST_CASE("The Maslov indices of a Lagrange torus are 0 (spin) and 2 (nutation)"
   CHECK(mu.mu_b == 2);
   CHECK(std::abs(mu.mu_b_measured - 2.0) < 0.01);
 }
+
+}  // namespace test_torus_maslov

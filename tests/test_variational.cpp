@@ -30,6 +30,8 @@
 #include "support/shipped_scene.hpp"
 #include "support/run_command.hpp"
 
+namespace test_variational {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 using lie::Mat3;
 using lie::Vec3;
@@ -482,3 +484,5 @@ TEST_CASE("cost per step of dmv, lgvi and dmv-pre* against rkmk4", "[variational
     std::cout << '\n';
   }
 }
+
+}  // namespace test_variational

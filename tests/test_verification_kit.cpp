@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/analysis/allocation_counter.hpp"
+#include "support/allocation_count.hpp"  // heap allocations: the global operator new counts them
 #include "experiments/analysis/scheme_verification.hpp"
 #include "experiments/analysis/scheme_verification_cardan.hpp"
 #include "integrators/registry/register_scheme.hpp"
@@ -23,6 +23,8 @@
 #include "support/registered_run.hpp"
 #include "support/shipped_scene.hpp"
 
+namespace test_verification_kit {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 using namespace lgi;
 namespace verification = experiments::verification;
 
@@ -31,7 +33,7 @@ namespace {
 verification::Options options() {
   verification::Options o;
   o.scenes_dir = LGI_SCENES_DIR;
-  o.allocation_count = &verification::counted_allocations;
+  o.allocation_count = &lgi::testing::counted_allocations;
   o.conservation_steps = 5000;
   return o;
 }
@@ -182,3 +184,5 @@ TEST_CASE("the verification kit fails false claims of T^3 schemes, naming them",
   const verification::Report r_dg = verified(dg);
   CHECK(failed(r_dg, "conserves p1"));
 }
+
+}  // namespace test_verification_kit

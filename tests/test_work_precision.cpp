@@ -11,6 +11,8 @@
 #include "support/h5_read.hpp"
 #include "support/run_command.hpp"
 
+namespace test_work_precision {  // this file's names, apart in the unity batches of lgi_tests (tests/CMakeLists.txt)
+
 namespace fs = std::filesystem;
 using namespace lgi::testing;
 
@@ -202,3 +204,5 @@ TEST_CASE("work-precision refuses bad input with exit 2 and no file", "[work-pre
   CHECK(missing.status == 2);
   CHECK(fs::is_empty(dir));
 }
+
+}  // namespace test_work_precision
