@@ -48,7 +48,7 @@ Check cardan_check(std::string name, const std::string& problem, bool passed, st
   return {std::move(name), problem, passed, std::move(detail), true};
 }
 
-void order_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
+void cardan_order_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
   if (s.order == 0) return;
   const double t_end = cardan_order_t_end;
   for (const char* name : order_scenes) {
@@ -79,7 +79,7 @@ void order_checks(const integrators::SchemeInfo& s, const Options& o, Report& re
   require_order_shown(s, report);
 }
 
-void symmetry_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
+void cardan_symmetry_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
   const auto& p = s.properties;
   for (const char* name : order_scenes) {
     const CardanProblem pr = load_cardan_problem(o.scenes_dir, name);
@@ -102,7 +102,7 @@ void symmetry_checks(const integrators::SchemeInfo& s, const Options& o, Report&
   }
 }
 
-void conservation_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
+void cardan_conservation_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
   const auto& p = s.properties;
   const double h = 0.01;
   for (const char* name : {"cardan_general_horizontal", "cardan_general_asymmetric_up"}) {
@@ -126,7 +126,7 @@ void conservation_checks(const integrators::SchemeInfo& s, const Options& o, Rep
   }
 }
 
-void allocation_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
+void cardan_allocation_checks(const integrators::SchemeInfo& s, const Options& o, Report& report) {
   if (!o.allocation_count) return;
   for (const char* name : order_scenes) {
     const CardanProblem pr = load_cardan_problem(o.scenes_dir, name);
@@ -226,10 +226,10 @@ void CardanDrift::observe(std::int64_t, double, const system::TorusState& x) {
 }
 
 void cardan_checks(const integrators::SchemeInfo& scheme, const Options& options, Report& report) {
-  order_checks(scheme, options, report);
-  symmetry_checks(scheme, options, report);
-  conservation_checks(scheme, options, report);
-  allocation_checks(scheme, options, report);
+  cardan_order_checks(scheme, options, report);
+  cardan_symmetry_checks(scheme, options, report);
+  cardan_conservation_checks(scheme, options, report);
+  cardan_allocation_checks(scheme, options, report);
 }
 
 }  // namespace lgi::experiments::verification
