@@ -2,6 +2,7 @@
 // surface (accessible_region.hpp; docs/atlas.md §8).
 #include "experiments/analysis/accessible_region.hpp"
 
+#include <optional>
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -359,9 +360,10 @@ std::string energy_surface_topology(std::vector<std::string> names) {
   return out;
 }
 
-Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, double h) {
-  const Triangulation t = triangulate(grid);
-  ComponentSweep sweep(t, entry_order(t));
+namespace {
+Region region_polled(const SphereGrid& grid, const CriticalSet& critical, double h, const Poll& poll) {
+  const Triangulation t = triangulate(grid, poll);
+  ComponentSweep sweep(t, entry_order(t, poll), poll);
   sweep.advance_to(h);
   Region r;
   std::map<int, MorseCount> morse;
@@ -384,14 +386,30 @@ Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, do
   }
   r.topology = energy_surface_topology(names);
   r.label.assign(grid.U.size(), -1);
-  for (int i = 0; i <= grid.n; ++i)
+  for (int i = 0; i <= grid.n; ++i) {
+    check(poll);
     for (int j = 0; j < grid.meridians(); ++j) {
       const int v = t.vertex(i, j);
       if (sweep.present(v))
         r.label[static_cast<std::size_t>(i) * static_cast<std::size_t>(grid.meridians()) + static_cast<std::size_t>(j)] =
             id_of[sweep.find(v)];
     }
+  }
   return r;
+}
+}  // namespace
+
+Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, double h) {
+  return region_polled(grid, critical, h, {});
+}
+
+std::optional<Region> accessible_region(const SphereGrid& grid, const CriticalSet& critical, double h,
+                                        const std::function<bool()>& keep_going) {
+  try {
+    return region_polled(grid, critical, h, keep_going);
+  } catch (const Stopped&) {
+    return std::nullopt;
+  }
 }
 
 std::vector<RegionSummary> region_summaries(const SphereGrid& grid, const CriticalSet& critical,

@@ -24,6 +24,7 @@
 // holds a degenerate critical point (at a bifurcation of relative equilibria,
 // e.g. the Kovalevskaya top's Γ = e1 at ℓ̃ = 2, docs/atlas.md §8): U_ℓ is not
 // a Morse function there, the count does not apply, and the grid alone decides.
+#include <optional>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -102,6 +103,9 @@ struct Region {
   bool degenerate = false;  // a degenerate critical point below h: that component's topology is the grid's alone
 };
 Region accessible_region(const SphereGrid& grid, const CriticalSet& critical, double h);
+/// The same, polling `keep_going` every 2^20 simplices and once per ring; false stops: nullopt.
+std::optional<Region> accessible_region(const SphereGrid& grid, const CriticalSet& critical, double h,
+                                        const std::function<bool()>& keep_going);
 
 /// The energy surface at each of `energies` (any order) at one ℓ: the
 /// sub-complexes built incrementally (one sort of the triangulation).

@@ -79,7 +79,14 @@ void check_flags(const RegionOptions& o) {
 int run_single(const RegionOptions& o, const system::Scene& scene, const HeavyTopBody& body) {
   const double l = *o.l, h = *o.h;
   check_level_not_empty(body, l, h, scene.file);
-  const SingleRegion single = single_region(body, l, h, o.grid);
+  const InterruptGuard interrupt_guard;  // kept until the file is written
+  const std::optional<SingleRegion> computed =
+      single_region(body, l, h, o.grid, [] { return !interrupt_requested.load(); });
+  if (!computed) {
+    std::cerr << "lgi: region: interrupted by signal before the region was complete; nothing written\n";
+    return interrupted_exit_status();
+  }
+  const SingleRegion& single = *computed;
   const CriticalSet& critical = single.critical;
   const Region& region = single.region;
   auto parameters = provenance(o, scene);

@@ -111,3 +111,16 @@ def test_bifurcation_sigint_inside_one_branch(tmp_path):
     assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
     assert err == "lgi: bifurcation: interrupted by signal; nothing written\n", err
     assert not os.listdir(tmp_path), os.listdir(tmp_path)
+
+
+def test_region_single_level_sigint(tmp_path):
+    """Single-level `lgi region --l --h` at --grid 2000: the grid (8 million points), its
+    triangulation, sort and sweep take far longer than the wait. The grid is polled per ring, the
+    sweep every 2^20 simplices; nothing is written."""
+    out = str(tmp_path / "r.h5")
+    code, err, waited = signal_and_time(["region", "--scene", os.path.join(SCENES, "lagrange_top_oblate.toml"),
+                                         "--l", "1", "--h", "1", "--grid", "2000", "--out", out])
+    assert code == 130, err
+    assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
+    assert err == "lgi: region: interrupted by signal before the region was complete; nothing written\n", err
+    assert not os.path.exists(out) and not os.path.exists(out + ".partial")

@@ -3,6 +3,7 @@
 // experiments/REGION.md).
 #include "experiments/commands/atlas/atlas_tables.hpp"
 
+#include <optional>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -130,11 +131,16 @@ void check_level_not_empty(const HeavyTopBody& body, double l, double h, const s
                      " = min H at l = " + format_exact(l) + " for " + scene_file + " (the level set is empty)");
 }
 
-SingleRegion single_region(const HeavyTopBody& body, double l, double h, int grid) {
+std::optional<SingleRegion> single_region(const HeavyTopBody& body, double l, double h, int grid,
+                                          const std::function<bool()>& keep_going) {
   SingleRegion r;
   r.critical = critical_points(body, l);
-  r.grid = potential_grid(body, l, grid);
-  r.region = accessible_region(r.grid, r.critical, h);
+  r.grid = potential_grid(body, l, grid, keep_going);
+  if (keep_going && !keep_going()) return std::nullopt;  // also when the grid was cut short
+  std::optional<Region> region = keep_going ? accessible_region(r.grid, r.critical, h, keep_going)
+                                            : std::optional<Region>(accessible_region(r.grid, r.critical, h));
+  if (!region) return std::nullopt;
+  r.region = std::move(*region);
   return r;
 }
 

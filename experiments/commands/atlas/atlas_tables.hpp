@@ -5,6 +5,7 @@
 // lgi.equilibria, lgi.bifurcation, lgi.region and lgi.region_cells
 // (python/src/bind_atlas.cpp) return them, so both have the same columns
 // and the same numbers.
+#include <optional>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -63,7 +64,9 @@ struct SingleRegion {
   SphereGrid grid;
   Region region;
 };
-SingleRegion single_region(const HeavyTopBody& body, double l, double h, int grid);
+/// `keep_going` (polled per ring of the grid and every 2^20 simplices) false: nullopt.
+std::optional<SingleRegion> single_region(const HeavyTopBody& body, double l, double h, int grid,
+                                          const std::function<bool()>& keep_going = {});
 
 /// Its groups /potential, /critical_points and /components.
 std::vector<TableGroup> single_region_groups(const SingleRegion& r, double h);
