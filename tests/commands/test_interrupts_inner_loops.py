@@ -7,6 +7,7 @@ input whose loop lasts far longer than the wait (tens of seconds here), signals 
 and checks that it ends within about a second and a half with 130 (143 after
 SIGTERM), says so in one line and publishes nothing as complete."""
 import os
+import re
 import signal
 import subprocess
 import time
@@ -59,12 +60,16 @@ def test_singularity_sigint_inside_one_run(tmp_path):
                                          "--out", out])
     assert code == 130, err
     assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
-    assert err == f"lgi: singularity interrupted by signal after 7 runs; they are kept in {out}.partial\n", err
+    # Normally the seven quick baselines are done when the signal comes; on a loaded machine the
+    # signal may cut one of them (or the reference) instead: K runs kept, K <= 7, never rkmk4's.
+    m = re.fullmatch(r"lgi: singularity interrupted by signal after (\d+) runs?; they are kept in (.*)\.partial\n", err)
+    assert m and m.group(2) == out and int(m.group(1)) <= 7, err
+    kept = int(m.group(1))
     assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "s.csv"))
     with h5py.File(out + ".partial", "r") as f:
         assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
-        methods = [text(m) for m in f["results/method"][()]]
-        assert len(methods) == 7 and "rkmk4" not in methods, methods
+        methods = [text(m) for m in f["results/method"][()]] if "results/method" in f else []
+        assert len(methods) == kept and "rkmk4" not in methods, methods
         assert "trindade_4" not in f["scenes"]
 
 
