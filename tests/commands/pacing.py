@@ -49,3 +49,15 @@ chunk = 20
 h = 2.0
 l = 1.0
 """
+
+
+def signal_and_time(lgi, args, sig, after):
+    """Starts lgi with `args`, sends `sig` `after` s (scaled to the build's speed) into the run and
+    returns (exit status, stderr, seconds from the signal to the exit)."""
+    p = subprocess.Popen([lgi, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(after * slowdown(lgi))
+    assert p.poll() is None, "the command ended before it could be interrupted"
+    p.send_signal(sig)
+    sent = time.monotonic()
+    _, err = p.communicate(timeout=60)
+    return p.returncode, err, time.monotonic() - sent

@@ -12,6 +12,7 @@ import time
 import h5py
 import numpy as np
 import pytest
+import pacing
 from pacing import slowdown
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
@@ -197,14 +198,9 @@ def test_cardan_chaos_map_progress(tmp_path):
 def signal_within_a_second(args, sig=signal.SIGINT, after=1.5):
     """Sends `sig` `after` s into a run far longer than that and returns (exit status, stderr); fails unless
     the run ends within a few seconds of the signal (every loop reads the flag at least once a second)."""
-    p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    time.sleep(after * slowdown(LGI))
-    assert p.poll() is None, "the command ended before it could be interrupted"
-    p.send_signal(sig)
-    sent = time.monotonic()
-    _, err = p.communicate(timeout=60)
-    assert time.monotonic() - sent < 3.0 * slowdown(LGI), "the signal was not read within the work"
-    return p.returncode, err
+    code, err, waited = pacing.signal_and_time(LGI, args, sig, after)
+    assert waited < 3.0 * slowdown(LGI), "the signal was not read within the work"
+    return code, err
 
 
 def test_periodic_sigint_inside_a_long_start_keeps_the_finished_ones(tmp_path):

@@ -13,6 +13,7 @@ import subprocess
 import time
 
 import h5py
+import pacing
 from pacing import slowdown
 
 LGI = os.environ.get("LGI_EXECUTABLE", "build/release/lgi")
@@ -25,15 +26,8 @@ def text(v):
 
 
 def signal_and_time(args, sig=signal.SIGINT, after=1.0):
-    """Sends `sig` `after` s (scaled to the build's speed) into the command and returns (exit status,
-    stderr, seconds from the signal to the exit)."""
-    p = subprocess.Popen([LGI, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    time.sleep(after * slowdown(LGI))
-    assert p.poll() is None, "the command ended before it could be interrupted"
-    p.send_signal(sig)
-    sent = time.monotonic()
-    _, err = p.communicate(timeout=60)
-    return p.returncode, err, time.monotonic() - sent
+    """(exit status, stderr, seconds from the signal to the exit) of lgi with `args`, signalled `after` s in."""
+    return pacing.signal_and_time(LGI, args, sig, after)
 
 
 def test_region_cells_sigint_within_a_row(tmp_path):
