@@ -163,4 +163,17 @@ TEST_CASE("Lagrange actions are continuous across l = +-L3 and the grid holds th
   }
 }
 
+TEST_CASE("Lagrange actions on a separatrix (u2 = u3) are refused, not an elliptic-integral error", "[actions]") {
+  // ℓ = L3 = 0 at h = w: the planar pendulum's homoclinic orbit to the upright position, where
+  // f(u) = (2w/A)(1 − u)²(1 + u) has the double root u2 = u3 = 1 (`lgi actions --h 1` on
+  // experiments/scenes/lagrange_top_oblate.toml stopped with a Boost domain error there).
+  for (const LagrangeBody& b : {LagrangeBody{0.9, 1.0, 1.0}, LagrangeBody{1.0, 0.5, 1.0}, LagrangeBody{0.6, 1.0, 2.0}}) {
+    INFO("A=" << b.A << " C=" << b.C << " w=" << b.w);
+    CHECK(!lgi::experiments::lagrange_actions(b, 0.0, 0.0, b.w));
+    const auto surface = lgi::experiments::lagrange_surface(b, b.w, 61);
+    CHECK(surface.size() > 100);
+    for (const auto& a : surface) CHECK(std::isfinite(a.actions[2]));
+  }
+}
+
 }  // namespace test_actions_lagrange_poles

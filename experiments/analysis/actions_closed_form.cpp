@@ -107,6 +107,9 @@ std::optional<LagrangeActions> lagrange_actions(const LagrangeBody& body, double
   // Carlson's forms with k² = (u2 − u1)/(u3 − u1) and k'² = (u3 − u2)/(u3 − u1) taken apart
   // (DLMF 19.25.1): K = R_F(0, k'², 1), K − E = (k²/3) R_D(0, k'², 1).
   const double k2 = (u2 - u1) / (u3 - u1), kc2 = (u3 - u2) / (u3 - u1);
+  // u3 = u2: the orbit approaches u2 asymptotically (a separatrix, e.g. ℓ = L3 = 0 at h = w, the
+  // pendulum's homoclinic orbit to the upright position); K and the period diverge, no torus.
+  if (!(kc2 > 0.0)) return std::nullopt;
   const double K = boost::math::ellint_rf(0.0, kc2, 1.0), K_minus_E = k2 / 3.0 * boost::math::ellint_rd(0.0, kc2, 1.0);
   const double scale = 2.0 / std::sqrt(c3 * (u3 - u1));
   // J0 = ∫du/√f, J1 = ∫u du/√f, Jm = ∫du/((1−u)√f), Jp = ∫du/((1+u)√f) over [u1, u2].

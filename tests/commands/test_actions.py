@@ -59,6 +59,17 @@ def test_lagrange_energy_surface_and_plot(tmp_path):
     assert os.path.getsize(str(tmp_path / "figs" / "actions.png")) > 1000
 
 
+def test_lagrange_energy_surface_through_the_separatrix(tmp_path):
+    # h = w on a Lagrange top: the grid's apex l = L3 = 0 is the pendulum's homoclinic orbit
+    # (u2 = u3), no torus; the surface is written without it (was exit 1, a Boost domain error).
+    out = str(tmp_path / "sep.h5")
+    lgi("actions", "--scene", os.path.join(SCENES, "lagrange_top_oblate.toml"), "--h", "1", "--out", out, "--quiet")
+    t = columns(out, "tori")
+    a = t["actions"]
+    assert len(a) > 100 and np.all(np.isfinite(a[:, 2]))
+    assert not np.any((a[:, 0] == 0.0) & (a[:, 1] == 0.0))
+
+
 def test_failed_torus_has_reason_and_nan_actions(tmp_path):
     out = str(tmp_path / "k.h5")
     # The first torus of l = 0 at h = 2 is a periodic orbit: its section is one point.
