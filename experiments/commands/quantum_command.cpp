@@ -160,7 +160,8 @@ struct Solved {
 };
 
 /// The spectrum and the --ebk / --statistics groups; false once a signal came: the solves
-/// and the EBK tori read interrupt_requested and end with SolveInterrupted (quantum_spectrum.hpp).
+/// the EBK tori and the --statistics unfolding and Weyl counts read interrupt_requested and end with
+/// SolveInterrupted (quantum_spectrum.hpp).
 bool solve(const QuantumOptions& o, const system::Scene& scene, const quantum::QuantumTop& top, bool kovalevskaya,
            Solved& out) {
   quantum::QuantumSettings s;
@@ -186,8 +187,9 @@ bool solve(const QuantumOptions& o, const system::Scene& scene, const quantum::Q
     if (o.ebk)
       out.extra.push_back(
           ebk_group(out.q, o.hbar, o.m, kovalevskaya ? &scene : nullptr, &out.notes, &interrupt_requested));
-    if (o.statistics) out.extra.push_back(statistics_group(out.q, o.hbar, o.m, o.energy_low, o.energy_high));
-    if (o.statistics) out.extra.push_back(weyl_group(out.q, o.hbar, o.m));
+    if (o.statistics)
+      out.extra.push_back(statistics_group(out.q, o.hbar, o.m, o.energy_low, o.energy_high, &interrupt_requested));
+    if (o.statistics) out.extra.push_back(weyl_group(out.q, o.hbar, o.m, &interrupt_requested));
   } catch (const quantum::SolveInterrupted&) {
     if (progress) progress->finish();
     return false;

@@ -6,6 +6,7 @@
 
 #include "experiments/analysis/quantum/ebk_free_rotor.hpp"
 #include "experiments/analysis/quantum/ebk_kovalevskaya.hpp"
+#include "experiments/analysis/quantum/lowest_levels.hpp"  // SolveInterrupted
 #include "experiments/analysis/quantum/quantum_statistics.hpp"
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
@@ -72,14 +73,22 @@ TableGroup ebk_group(const quantum::QuantumSpectrum& q, double hbar, int m, cons
           {{"rule", rule}}};
 }
 
-TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
+TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m, const std::atomic<bool>* stop) {
   std::vector<double> count;
+  const auto poll = [stop] {
+    if (stop != nullptr && stop->load(std::memory_order_relaxed)) throw quantum::SolveInterrupted();
+  };
   if (q.top.is_free()) {
-    for (const quantum::QuantumLevel& l : q.levels)
+    for (const quantum::QuantumLevel& l : q.levels) {
+      poll();
       count.push_back(quantum::free_rotor_weyl_count(q.top.moments, hbar, l.j, l.energy));
+    }
   } else {
     const quantum::WeylCounting weyl(q.top, hbar, m);
-    for (const quantum::QuantumLevel& l : q.levels) count.push_back(weyl(l.energy));
+    for (const quantum::QuantumLevel& l : q.levels) {
+      poll();
+      count.push_back(weyl(l.energy));
+    }
   }
   return {"weyl",
           {real_column("weyl_count", count)},
@@ -88,9 +97,9 @@ TableGroup weyl_group(const quantum::QuantumSpectrum& q, double hbar, int m) {
 }
 
 TableGroup statistics_group(const quantum::QuantumSpectrum& q, double hbar, int m, double energy_low,
-                            double energy_high) {
+                            double energy_high, const std::atomic<bool>* stop) {
   const spectral::StatisticsOptions options;
-  const auto classes = quantum::quantum_statistics(q, hbar, m, options, energy_low, energy_high);
+  const auto classes = quantum::quantum_statistics(q, hbar, m, options, energy_low, energy_high, stop);
   const quantum::PooledBrody pooled = quantum::pooled_brody(classes);
   const std::size_t bins = static_cast<std::size_t>(std::lround(options.s_max / options.bin_width));
   const std::size_t nl = options.lengths.size();

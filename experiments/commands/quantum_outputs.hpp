@@ -22,14 +22,17 @@ TableGroup ebk_group(const quantum::QuantumSpectrum& spectrum, double hbar, int 
 
 /// /weyl: weyl_count, Weyl's smooth count N̄(E) at each /spectrum row's energy
 /// (a free body: N̄_j(E) of the row's j).
-TableGroup weyl_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m);
+/// `stop` (Ctrl-C), read before each row: once set, SolveInterrupted.
+TableGroup weyl_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m,
+                      const std::atomic<bool>* stop = nullptr);
 
 /// /statistics: per class (j, parity, levels, Brody β ± error, ...), the
 /// spacing histograms (classes × bins), Σ²(L) and Δ₃(L) (classes × lengths)
 /// and the Poisson and GOE references.
 /// Only converged levels with energy_low ≤ E ≤ energy_high enter; the attributes state the window and
 /// the Brody fit of all classes' spacings pooled.
+/// `stop` (Ctrl-C): read at every Weyl count (quantum_statistics.hpp); once set, SolveInterrupted.
 TableGroup statistics_group(const quantum::QuantumSpectrum& spectrum, double hbar, int m, double energy_low,
-                            double energy_high);
+                            double energy_high, const std::atomic<bool>* stop = nullptr);
 
 }  // namespace lgi::experiments

@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 
+#include "experiments/analysis/quantum/lowest_levels.hpp"  // SolveInterrupted
 #include "experiments/analysis/quantum/weyl_law.hpp"
 #include "experiments/analysis/spectral/brody_fit.hpp"
 
@@ -12,7 +13,7 @@ namespace lgi::experiments::quantum {
 
 std::vector<QuantumClassStatistics> quantum_statistics(const QuantumSpectrum& q, double hbar, int m,
                                                        const spectral::StatisticsOptions& options, double energy_low,
-                                                       double energy_high) {
+                                                       double energy_high, const std::atomic<bool>* stop) {
   const QuantumTop& top = q.top;
   // Labels: 4j + parity for a free body (parity ∈ 0..3, or 0 where −1), the parity otherwise.
   std::vector<double> energies;
@@ -30,13 +31,19 @@ std::vector<QuantumClassStatistics> quantum_statistics(const QuantumSpectrum& q,
   if (top.is_free()) {
     const double share = top.symmetry == TopSymmetry::free_asymmetric ? 0.25 : 1.0;
     const Eigen::Vector3d J = top.moments;
-    counting = [J, hbar, share](int label, double e) { return share * free_rotor_weyl_count(J, hbar, label / 4, e); };
+    counting = [J, hbar, share, stop](int label, double e) {
+      if (stop != nullptr && stop->load(std::memory_order_relaxed)) throw SolveInterrupted();
+      return share * free_rotor_weyl_count(J, hbar, label / 4, e);
+    };
   } else {
     const auto weyl = std::make_shared<WeylCounting>(top, hbar, m);
     const double share = top.symmetry == TopSymmetry::symmetric_heavy
                              ? (m == 0 ? 0.5 : 1.0)
                              : 1.0 / static_cast<double>(std::max<std::size_t>(classes.size(), 1));
-    counting = [weyl, share](int, double e) { return share * (*weyl)(e); };
+    counting = [weyl, share, stop](int, double e) {
+      if (stop != nullptr && stop->load(std::memory_order_relaxed)) throw SolveInterrupted();
+      return share * (*weyl)(e);
+    };
   }
   std::vector<QuantumClassStatistics> out;
   for (spectral::ClassStatistics& c : spectral::statistics_by_class(energies, labels, counting, options)) {

@@ -12,6 +12,9 @@
 // Only converged levels enter (a heavy top's unconverged levels are its highest),
 // and only those with energy_low ≤ E ≤ energy_high (an energy window, to
 // compare with the classical chaotic fraction at the same (ℓ, h)).
+// `stop` (Ctrl-C in lgi quantum) is read at every Weyl count of the unfolding, so at least once
+// per class: once set, SolveInterrupted (lowest_levels.hpp).
+#include <atomic>
 #include <limits>
 #include <vector>
 
@@ -29,7 +32,8 @@ struct QuantumClassStatistics {
 std::vector<QuantumClassStatistics> quantum_statistics(const QuantumSpectrum& spectrum, double hbar, int m,
                                                        const spectral::StatisticsOptions& options = {},
                                                        double energy_low = -std::numeric_limits<double>::infinity(),
-                                                       double energy_high = std::numeric_limits<double>::infinity());
+                                                       double energy_high = std::numeric_limits<double>::infinity(),
+                                                       const std::atomic<bool>* stop = nullptr);
 
 /// The Brody fit of the spacings of every class with enough levels taken
 /// together (each class unfolded and spaced on its own, then pooled; Haake ch. 4).
