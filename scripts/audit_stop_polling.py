@@ -72,7 +72,7 @@ CASES = {
     "chaos-map-cardan": (["chaos-map", "--scene", CARDAN, "--vary", "suspension.tilt=0:0.5:2", "--h-range", "1:1:1",
                           "--ics", "4", "--dt", "0.01", "--threads", "1", "--t-end", "1e7"], "Cardan, t_end 1e7"),
     "actions-torus": (["actions", "--scene", f"{SC}/lagrange_top_cigar.toml", "--dt", "1e-5"], "torus at dt 1e-5"),
-    "actions-surface": (["actions", "--scene", OBLATE, "--h", "1", "--grid", "2000", "--quiet"],
+    "actions-surface": (["actions", "--scene", OBLATE, "--h", "2", "--grid", "2000", "--quiet"],
                         "Lagrange closed form, --grid 2000"),
     "actions-tori": (["actions", "--scene", OBLATE, "--h", "1", "--l", "0.5,0.8", "--tori", "40", "--dt", "1e-4",
                       "--quiet"], "numerical tori on H = 1, dt 1e-4"),
