@@ -168,7 +168,7 @@ def test_indicators_gali_sigint_inside_one_long_orbit(tmp_path):
     grid (seconds); that walk reads the flag too, so a signal in the orbit is not followed by it."""
     out = str(tmp_path / "g.h5")
     code, err, cpu = signal_after_cpu(["indicators", "--scene", os.path.join(SCENES, "general_top_richter.toml"),
-                                       "--t-end", "1e7", "--gali", "--out", out])
+                                       "--t-end", "1e7", "--gali", "--quiet", "--out", out])
     assert code == 130, err
     assert cpu < 1.0 * pacing.cpu_slowdown(LGI), f"the signal was read after {cpu:.2f} CPU seconds"
     assert "interrupted by signal" in err and out + ".partial" in err and err.strip().count("\n") == 0, err
