@@ -23,6 +23,7 @@
 //   curve, the mean return time by a weighted Birkhoff average, the section curve's
 //   action from a Fourier fit in the conjugating angle, the other action from
 //   the time average of p_θ θ̇ + p_φ φ̇ = 2T − ℓψ̇.
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -81,9 +82,12 @@ std::optional<EulerActions> euler_actions_at(const Vec3& moments, double l, doub
 /// n × n values of (ℓ, L3) (Lagrange: |ℓ|, |L3| ≤ √(2 max(A, C)(h + |w|)); an even n is raised
 /// to n + 1 so that the grid holds ℓ = L3 = 0 and both lines ℓ = ±L3) or
 /// of (G, ℓ) (Euler: G between √(2h J_min) and √(2h J_max), |ℓ| ≤ G); points
-/// without a torus are left out.
-std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h, int n);
-std::vector<EulerActions> euler_surface(const Vec3& moments, double h, int n);
+/// without a torus are left out. `keep_going`, if given, is called before each row of the
+/// grid (--grid 2000: seconds in all); false stops: the rows so far.
+std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h, int n,
+                                              const std::function<bool()>& keep_going = {});
+std::vector<EulerActions> euler_surface(const Vec3& moments, double h, int n,
+                                        const std::function<bool()>& keep_going = {});
 
 /// n initial states on {H = h, Π·Γ = ℓ}: Γ on a Fibonacci lattice of the
 /// accessible directions (U_ℓ(Γ) < h), Π = ℓJΓ/(Γ·JΓ) + u with u ⊥ Γ at a

@@ -209,14 +209,15 @@ std::optional<EulerActions> euler_actions(const Vec3& moments, const Vec3& Pi, d
 
 namespace lgi::experiments {
 
-std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h, int n) {
+std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h, int n,
+                                              const std::function<bool()>& keep_going) {
   std::vector<LagrangeActions> rows;
   const double L = std::sqrt(2.0 * std::max(body.A, body.C) * (h + std::abs(body.w)));
   // An odd number of nodes, symmetric in sign bit for bit (node N−1−i is −node i): the lines
   // ℓ = ±L3, the tori through the hanging and the upright position, are hit exactly and not at a
   // round-off distance, and ℓ = L3 = 0 (the apex of the surface, where both lines meet) is a node.
   const int N = std::max(3, n % 2 == 0 ? n + 1 : n);
-  for (int i = 0; i < N; ++i)
+  for (int i = 0; i < N && (!keep_going || keep_going()); ++i)
     for (int j = 0; j < N; ++j) {
       const double l = L * (2 * i - (N - 1)) / (N - 1), L3 = L * (2 * j - (N - 1)) / (N - 1);
       if (const auto a = lagrange_actions(body, l, L3, h)) rows.push_back(*a);
@@ -224,10 +225,11 @@ std::vector<LagrangeActions> lagrange_surface(const LagrangeBody& body, double h
   return rows;
 }
 
-std::vector<EulerActions> euler_surface(const Vec3& moments, double h, int n) {
+std::vector<EulerActions> euler_surface(const Vec3& moments, double h, int n,
+                                        const std::function<bool()>& keep_going) {
   std::vector<EulerActions> rows;
   const double G_min = std::sqrt(2.0 * h * moments.minCoeff()), G_max = std::sqrt(2.0 * h * moments.maxCoeff());
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n && (!keep_going || keep_going()); ++i)
     for (int j = 0; j < n; ++j) {
       // Open intervals: the steady rotations (G at either end) have no 1-torus in Π.
       const double G = G_min + (G_max - G_min) * (i + 0.5) / n;

@@ -33,7 +33,7 @@ StateIndicators from_loop(const integrators::ChaosIndicators& r, const Indicator
 bool finite_curves(const GaliCurves& g) { return g.log10_gali.empty() || !std::isnan(g.log10_gali.back()[0]); }
 
 std::vector<double> sample_times(const IndicatorSettings& s) {
-  return gali_times(gali_targets(s.t_end, s.dt, s.gali_sampling), s.t_end, s.dt);
+  return gali_times(gali_targets(s.t_end, s.dt, s.gali_sampling), s.t_end, s.dt, &interrupt_requested);
 }
 
 /// The loop's indicators with the spectrum and the GALI curves that `s` asks for

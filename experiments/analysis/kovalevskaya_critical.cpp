@@ -127,11 +127,13 @@ int appelrot_piece(int family, double s, double h, double G) {
 }
 
 std::vector<std::vector<CriticalValue>> kovalevskaya_critical_values(const HeavyTopBody& scaled, double l_scaled,
-                                                                      const std::vector<double>& hs, int seeds) {
+                                                                      const std::vector<double>& hs, int seeds,
+                                                                      const std::function<bool()>& keep_going) {
   const double G = 0.5 * l_scaled * l_scaled;
   std::vector<std::vector<CriticalValue>> out;
   std::vector<Vec6> previous;  // the critical states at the previous h: continuation along the arcs
   for (const double h : hs) {
+    if (keep_going && !keep_going()) break;
     std::vector<Vec6> starts = energy_surface_lattice(scaled, l_scaled, h, seeds);
     starts.insert(starts.end(), previous.begin(), previous.end());
     std::vector<CriticalValue> found;

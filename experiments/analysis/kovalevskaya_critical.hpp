@@ -14,6 +14,7 @@
 // Chaotic Dyn. 10 (2005) 381; A. V. Bolsinov, P. H. Richter and A. T. Fomenko,
 // Sb. Math. 191 (2000) 151); only arcs of the families are met.
 // All in the scaled top J = diag(2, 2, 1), m g χ = (±1, 0, 0) (kovalevskaya_diagram.hpp).
+#include <functional>
 #include <vector>
 
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
@@ -47,8 +48,10 @@ int appelrot_piece(int family, double s, double h, double G);
 
 /// The distinct critical values at scaled ℓ̃ for each scaled h̃ of `hs` (ascending),
 /// from `seeds` lattice states per h̃ (h̃ below the least energy gives none).
+/// `keep_going`, if given, is called before each h̃; false stops: the energies done so far.
 std::vector<std::vector<CriticalValue>> kovalevskaya_critical_values(const HeavyTopBody& scaled, double l_scaled,
-                                                                      const std::vector<double>& hs, int seeds);
+                                                                      const std::vector<double>& hs, int seeds,
+                                                                      const std::function<bool()>& keep_going = {});
 
 /// Per point of `curve` (families at l_scaled): 1 if the critical values found at the
 /// grid energies hs bracketing its h̃ (or at its h̃) both lie on its family and arc, else 0.

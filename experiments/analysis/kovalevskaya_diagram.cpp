@@ -245,6 +245,28 @@ std::vector<KRange> kovalevskaya_k_range(const HeavyTopBody& body, const Kovalev
   return out;
 }
 
+namespace {
+
+/// The attributes of the five /appelrot* groups: the scaling and what the derived columns mean.
+std::vector<TableGroup> described_groups(std::vector<TableGroup> groups, const KovalevskayaScale& scale) {
+  const std::string scaling = "h_scaled = H/(J3 c), l_scaled = l/(J3 sqrt(c)), k = K/c^2 (docs/atlas.md section 9)";
+  groups[4].attributes["tori_definition"] =
+      "the number of connected components of the level set {H = h, K = k, C = l, |Gamma| = 1} (Liouville tori), counted "
+      "from lattice states moved onto it; -1 where the linking radii r and 2r disagree "
+      "(experiments/analysis/level_set_components.hpp)";
+  groups[0].attributes["realised_definition"] =
+      "1 where the critical values of (H, K) on the leaf found at the grid energies h_scaled bracketing the point lie on "
+      "its family and arc (experiments/analysis/kovalevskaya_critical.hpp; docs/atlas.md section 9)";
+  for (TableGroup& g : groups) {
+    g.attributes["scaling"] = scaling;
+    g.attributes["J3"] = format_general(scale.J3, 17);
+    g.attributes["c"] = format_general(scale.c, 17);
+  }
+  return groups;
+}
+
+}  // namespace
+
 std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const KovalevskayaScale& scale,
                                         const std::vector<double>& ls, const std::vector<double>& hs,
                                         const std::function<bool(std::size_t)>& l_done) {
@@ -263,9 +285,18 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
   const HeavyTopBody scaled = scaled_kovalevskaya(body);
   std::vector<double> hs_scaled;
   for (const double h : hs) hs_scaled.push_back(scale.h(h));
+  // The poll inside one l (issue 50, item 1: one l takes seconds, more with many energies):
+  // l_done with the count so far, before each energy and each level set.
+  bool stopped = false;
+  std::size_t done = 0;
+  const std::function<bool()> keep_going = [&] {
+    stopped = stopped || (l_done && !l_done(done));
+    return !stopped;
+  };
   for (const double l : ls) {
     const double l_scaled = scale.l(l);
-    const auto critical = kovalevskaya_critical_values(scaled, l_scaled, hs_scaled, 48);
+    const auto critical = kovalevskaya_critical_values(scaled, l_scaled, hs_scaled, 48, keep_going);
+    if (stopped) break;
     const auto curve = appelrot_curves(l_scaled, hs_scaled.front(), hs_scaled.back(), 400);
     const std::vector<int> realised = appelrot_realised(curve, l_scaled, hs_scaled, critical);
     for (std::size_t i = 0; i < curve.size(); ++i) {
@@ -295,34 +326,25 @@ std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const Kovalevs
     std::vector<RangeAtEnergy> ranges;
     for (const double h : hs) {
       if (!(h > lowest)) continue;
+      if (!keep_going()) break;
       ranges.push_back({scale.h(h), kovalevskaya_k_range(body, scale, l, h)});
       for (const auto& k : ranges.back().components) {
         r[0].real.push_back(l), r[1].real.push_back(l_scaled), r[2].real.push_back(h), r[3].real.push_back(scale.h(h));
         r[4].whole.push_back(k.component), r[5].real.push_back(k.k_min), r[6].real.push_back(k.k_max);
       }
     }
-    for (const RegionSample& q : kovalevskaya_region_samples(scaled, l_scaled, ranges, 3, 500)) {
+    if (stopped) break;
+    for (const RegionSample& q : kovalevskaya_region_samples(scaled, l_scaled, ranges, 3, 500, keep_going)) {
       t[0].real.push_back(l), t[1].real.push_back(l_scaled), t[2].real.push_back(q.h), t[3].real.push_back(q.k);
       t[4].whole.push_back(q.tori), t[5].whole.push_back(q.points);
     }
-    if (l_done && !l_done(static_cast<std::size_t>(&l - ls.data()) + 1)) break;
+    if (stopped) break;
+    done = static_cast<std::size_t>(&l - ls.data()) + 1;
+    if (l_done && !l_done(done)) break;
   }
-  const std::string scaling = "h_scaled = H/(J3 c), l_scaled = l/(J3 sqrt(c)), k = K/c^2 (docs/atlas.md section 9)";
   curves.columns = c, equilibria.columns = e, range.columns = r, criticals.columns = v;
   regions.columns = t;
-  regions.attributes["tori_definition"] =
-      "the number of connected components of the level set {H = h, K = k, C = l, |Gamma| = 1} (Liouville tori), counted "
-      "from lattice states moved onto it; -1 where the linking radii r and 2r disagree "
-      "(experiments/analysis/level_set_components.hpp)";
-  curves.attributes["realised_definition"] =
-      "1 where the critical values of (H, K) on the leaf found at the grid energies h_scaled bracketing the point lie on "
-      "its family and arc (experiments/analysis/kovalevskaya_critical.hpp; docs/atlas.md section 9)";
-  for (TableGroup* g : {&curves, &equilibria, &range, &criticals, &regions}) {
-    g->attributes["scaling"] = scaling;
-    g->attributes["J3"] = format_general(scale.J3, 17);
-    g->attributes["c"] = format_general(scale.c, 17);
-  }
-  return {curves, equilibria, range, criticals, regions};
+  return described_groups({curves, equilibria, range, criticals, regions}, scale);
 }
 
 }  // namespace lgi::experiments

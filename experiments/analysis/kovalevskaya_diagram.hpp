@@ -70,8 +70,9 @@ std::vector<KRange> kovalevskaya_k_range(const HeavyTopBody& body, const Kovalev
 /// The /appelrot, /appelrot_equilibria and /appelrot_range groups of
 /// `lgi bifurcation --appelrot` at each ℓ of `ls` (unscaled), with the
 /// range of k at each h of `hs` (unscaled) above the minimum energy.
-/// `l_done`, if given, is called after each ℓ with the count done; false stops
-/// there (a signal: the groups then hold only the values of ℓ done).
+/// `l_done`, if given, is called after each ℓ with the count done, and inside
+/// one ℓ (with the count so far) before each energy and each level set; false
+/// stops there (a signal: the groups are then incomplete, not to be published).
 std::vector<TableGroup> appelrot_groups(const HeavyTopBody& body, const KovalevskayaScale& scale,
                                         const std::vector<double>& ls, const std::vector<double>& hs,
                                         const std::function<bool(std::size_t)>& l_done = {});

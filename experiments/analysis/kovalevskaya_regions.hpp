@@ -3,6 +3,7 @@
 // number of Liouville tori: level sets sampled inside the attained range, away
 // from the Appelrot families, and their components counted
 // (level_set_components.hpp; experiments/EQUILIBRIA.md, "Region labels").
+#include <functional>
 #include <vector>
 
 #include "experiments/analysis/kovalevskaya_diagram.hpp"
@@ -24,7 +25,9 @@ struct RangeAtEnergy {
 
 /// Samples at 8 fractions of each component's k range, at every `stride`-th energy of
 /// `ranges`, skipping values within 3 % of the range of an Appelrot family.
+/// `keep_going`, if given, is called before each level set; false stops: the samples so far.
 std::vector<RegionSample> kovalevskaya_region_samples(const HeavyTopBody& scaled, double l_scaled,
-                                                      const std::vector<RangeAtEnergy>& ranges, int stride, int seeds);
+                                                      const std::vector<RangeAtEnergy>& ranges, int stride, int seeds,
+                                                      const std::function<bool()>& keep_going = {});
 
 }  // namespace lgi::experiments

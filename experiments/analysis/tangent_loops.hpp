@@ -78,12 +78,16 @@ inline bool normalise_columns(integrators::Mat6& V) {
 
 /// The times at which gali_loop records: the end of the first step at or
 /// after each target (to 1e-7 dt) (gali_targets: increasing, the last = t_end), a step
-/// recorded once; the same doubles as the loop's t.
-inline std::vector<double> gali_times(const std::vector<double>& targets, double t_end, double dt) {
+/// recorded once; the same doubles as the loop's t. It walks the whole step grid (10^9
+/// steps are seconds), so it reads `stop` every 2^20 steps: once set, the times so far.
+inline std::vector<double> gali_times(const std::vector<double>& targets, double t_end, double dt,
+                                      const std::atomic<bool>* stop = nullptr) {
   std::vector<double> times;
   double t = 0.0;
   std::size_t next = 0;
+  std::int64_t steps = 0;
   while (t < t_end && next < targets.size()) {
+    if (++steps % (std::int64_t{1} << 20) == 0 && stop != nullptr && stop->load(std::memory_order_relaxed)) break;
     t = grid_next(t, t_end, dt, grid_step(t, t_end, dt));
     const double slack = 1e-7 * dt;  // t sums steps: 2.9999999 is the step at 3
     if (t >= targets[next] - slack) times.push_back(t);

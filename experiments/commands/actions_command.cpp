@@ -170,12 +170,14 @@ std::vector<Row> energy_surface(const system::Scene& scene, const HeavyTopBody& 
   const double h = *o.h;
   if (o.k) return level_torus(scene, body, o);
   if (o.l.empty()) {
+    // Ctrl-C: the closed-form grid reads the flag every row; the rows so far go to <out>.partial.
+    const auto keep_going = [] { return !interrupt_requested.load(); };
     if (const auto lb = lagrange_body(body)) {
-      for (const auto& a : lagrange_surface(*lb, h, o.grid)) rows.push_back(lagrange_row(a, h));
+      for (const auto& a : lagrange_surface(*lb, h, o.grid, keep_going)) rows.push_back(lagrange_row(a, h));
       return rows;
     }
     if (const auto moments = euler_moments(scene)) {
-      for (const auto& a : euler_surface(*moments, h, o.grid)) rows.push_back(euler_row(a, h));
+      for (const auto& a : euler_surface(*moments, h, o.grid, keep_going)) rows.push_back(euler_row(a, h));
       return rows;
     }
     throw UsageError("--l: " + scene.file + " has no closed form; give the momenta l of the numerical tori");

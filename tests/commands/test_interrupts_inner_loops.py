@@ -1,11 +1,13 @@
 """Issue 50, item 1: every loop reads the stop flag at least once a second, also the
 loops inside one row, run or analysis that can take many seconds: the rows of
 `lgi region --cells` (a row's triangulation, sort and sweep), each run of `lgi
-singularity`, the NAFF of `lgi frequencies`, the reference of `lgi work-precision` and
-one branch of `lgi bifurcation` on a heavy top. Each test starts the command on an
+singularity`, the NAFF of `lgi frequencies`, the reference of `lgi work-precision`,
+one branch of `lgi bifurcation` on a heavy top, one l of `lgi bifurcation --appelrot`
+and the closed-form surface of `lgi actions --h`. Each test starts the command on an
 input whose loop lasts far longer than the wait (tens of seconds here), signals it
 and checks that it ends within about a second and a half with 130 (143 after
-SIGTERM), says so in one line and publishes nothing as complete."""
+SIGTERM), says so in one line and publishes nothing as complete. The last two wait
+and measure in CPU time, robust to a loaded machine (pacing.signal_after_cpu)."""
 import os
 import re
 import signal
@@ -123,3 +125,53 @@ def test_region_single_level_sigint(tmp_path):
     assert waited < 1.5 * slowdown(LGI), f"the signal was read {waited:.2f} s late"
     assert err == "lgi: region: interrupted by signal before the region was complete; nothing written\n", err
     assert not os.path.exists(out) and not os.path.exists(out + ".partial")
+
+
+def signal_after_cpu(args, sig=signal.SIGINT, after=1.0):
+    """(exit status, stderr, CPU seconds from the signal to the exit) of lgi with `args`, signalled once it
+    has used `after` s of CPU time: robust to a loaded machine (scripts/audit_stop_polling.py)."""
+    return pacing.signal_after_cpu(LGI, args, sig, after)
+
+
+def test_bifurcation_appelrot_sigint_inside_one_l(tmp_path):
+    """The Kovalevskaya (h, k) diagram at one l over 3000 energies (critical values, ranges of k, level
+    sets' tori) takes tens of CPU seconds; it reads the flag before each energy and each level set."""
+    out = str(tmp_path / "a.h5")
+    code, err, cpu = signal_after_cpu(["bifurcation", "--scene", os.path.join(SCENES, "kovalevskaya.toml"),
+                                       "--appelrot", "1", "--appelrot-h", "-1.1:5:3000", "--quiet", "--out", out])
+    assert code == 130, err
+    assert cpu < 1.0 * pacing.cpu_slowdown(LGI), f"the signal was read after {cpu:.2f} CPU seconds"
+    assert err == "lgi: bifurcation: interrupted by signal; nothing written\n", err
+    assert not os.listdir(tmp_path), os.listdir(tmp_path)
+
+
+def test_actions_closed_form_surface_sigterm(tmp_path):
+    """The Lagrange closed form on a 2001 x 2001 grid of (l, L3) takes seconds; it reads the flag every row of
+    the grid: exit 143, the rows so far in <out>.partial (a whole number of rows of l), no <out>, no CSV."""
+    out = str(tmp_path / "s.h5")
+    code, err, cpu = signal_after_cpu(["actions", "--scene", os.path.join(SCENES, "lagrange_top_oblate.toml"),
+                                       "--h", "2", "--grid", "2000", "--quiet", "--out", out], sig=signal.SIGTERM)
+    assert code == 143, err
+    assert cpu < 1.0 * pacing.cpu_slowdown(LGI), f"the signal was read after {cpu:.2f} CPU seconds"
+    m = re.fullmatch(r"lgi: actions interrupted by signal; the (\d+) rows finished are in (.*)\.partial\n", err)
+    assert m and m.group(2) == out, err
+    assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "s.csv"))
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]) == f"interrupted by signal: {m.group(1)} rows"
+        l = f["tori/actions"][:, 0]
+        assert len(l) == int(m.group(1)) < 2001 * 2001
+        assert (l[1:] >= l[:-1]).all()  # whole rows of the grid, in its order of l
+
+
+def test_indicators_gali_sigint_inside_one_long_orbit(tmp_path):
+    """--gali at t_end 1e7: after the orbit's indicators the GALI curves' sample times walk the whole step
+    grid (seconds); that walk reads the flag too, so a signal in the orbit is not followed by it."""
+    out = str(tmp_path / "g.h5")
+    code, err, cpu = signal_after_cpu(["indicators", "--scene", os.path.join(SCENES, "general_top_richter.toml"),
+                                       "--t-end", "1e7", "--gali", "--quiet", "--out", out])
+    assert code == 130, err
+    assert cpu < 1.0 * pacing.cpu_slowdown(LGI), f"the signal was read after {cpu:.2f} CPU seconds"
+    assert "interrupted by signal" in err and out + ".partial" in err and err.strip().count("\n") == 0, err
+    assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "g.csv"))
+    with h5py.File(out + ".partial", "r") as f:
+        assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
