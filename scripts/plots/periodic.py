@@ -179,10 +179,11 @@ def trace_figure(path, t, stem, out):
         return
     fig, ax = c.plt.subplots(figsize=(5.6, 3.6))
     tr = t["reduced_trace"]
-    colours = c.plt.get_cmap("tab10").colors
-    for i, (fam, rows) in enumerate(families(t)):
+    fams = families(t)  # more than ten families: twenty colours, so that none repeats
+    colours = c.plt.get_cmap("tab10" if len(fams) <= 10 else "tab20").colors
+    for i, (fam, rows) in enumerate(fams):
         ls = "--" if t["parent"][rows[0]] >= 0 else "-"
-        ax.plot(t["h"][rows], tr[rows], ls=ls, marker=".", ms=2.5, color=colours[i % 10], lw=1.1, zorder=3,
+        ax.plot(t["h"][rows], tr[rows], ls=ls, marker=".", ms=2.5, color=colours[i % len(colours)], lw=1.1, zorder=3,
                 label=family_name(t, fam, rows))
     draw_events(ax, t["h"], tr, t)
     for v in (2, -2):
