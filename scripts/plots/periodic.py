@@ -256,6 +256,8 @@ def plane_figure(tables, branches, args, stem):
     nfam = max(len(np.unique(t["family"])) for t in tables)
     dl = (0.006 if branches is not None else 0.03) * (window[1] - window[0])  # apart, yet near their l
     plane_segments(ax, tables, dl, names=branches is None)
+    if branches is None:  # the last family of the largest l shifted right by (nfam - 1) dl: keep it in view
+        window = (window[0], max(window[1], max(t["l"].max() for t in tables) + nfam * dl)) + tuple(window[2:])
     ax.set_xlim(window[0], window[1])
     ax.set_ylim(window[2], window[3])
     last = ax
