@@ -113,7 +113,7 @@ run periodic --scene "$scene" --seeds-from-poincare "$p/section_l3.h5" --poincar
 "$PY" "$plots/poincare.py" --out "$figs" --periodic "$p/orbits_l3.h5" --periodic-h-tol 1e-9 --zoom "$zoom" \
   --dot-size 2 "$p/section_l3.h5" \
   || die "poincare.py failed"
-"$PY" - "$plots" "$gen" "$commands" "$p/l22.h5" "$p/l3.h5" "$p/orbits_l3.h5" "$p/fold_pair.txt" <<'PYEOF' \
+"$PY" - "$plots" "$gen" "$commands" "$p/l22.h5" "$p/l3.h5" "$p/orbits_l3.h5" "$p/fold_pair.txt" "$mode" <<'PYEOF' \
   || die "the periodic numbers failed"
 # periodic_numbers.tex (macros for the text), periodic_families.tex (the rows of the families' table)
 # and periodic_commands.tex (the runs, verbatim).
@@ -121,7 +121,7 @@ import sys
 import h5py
 import numpy as np
 
-plots, gen, commands, l22, l3, orbits, fold_pair = sys.argv[1:8]
+plots, gen, commands, l22, l3, orbits, fold_pair, mode = sys.argv[1:9]
 CLASS = {"elliptic": "ell.", "hyperbolic": "hyp.", "inverse_hyperbolic": "inv.\\ hyp.", "complex": "compl."}
 
 
@@ -155,7 +155,10 @@ def text(a):
     return np.array([s.decode() if isinstance(s, bytes) else s for s in a])
 
 
-macros, rows = {}, []
+# The prose after the table describes the full build's families; a quick build says so.
+macros, rows = {"PerQuickNote": "" if mode == "full" else
+                " \\textit{(Quick build: short families without their doubled families; the text describes the "
+                "full build's.)}"}, []
 for name, path in (("A", l22), ("B", l3)):
     t = table(path)
     rows += family_rows(t, f"{t['l'][0]:g}") + (["\\hline"] if name == "A" else [])
