@@ -11,8 +11,8 @@
 # Writes DIR(data)/periodic/*.h5, figures periodic_period_l22, periodic_period_l3 and
 # poincare_section_l3 in --figs, and --gen/periodic_numbers.tex, --gen/periodic_families.tex
 # (the rows of the families' table), --gen/periodic_commands.tex.
-# Time (2026-12-07, nice 19 on the project's shared 2-core machine, load 5-7): full mode about
-# 4 min CPU, 10 min wall (the families at l = 3 are 3/4 of it); quick mode well under a minute CPU.
+# Time (2026-12-07, nice 19 on the project's shared 2-core machine): full mode 227 s CPU (the families
+# at l = 3 are 3/4 of it), 9-10 min wall at load 5-7 and 34 min at load 10-15; quick mode 22 s CPU.
 set -euo pipefail
 
 section=periodic help_lines='2,12p'
