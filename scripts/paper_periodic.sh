@@ -9,7 +9,10 @@
 #
 # Usage: scripts/paper_periodic.sh --lgi PATH --data DIR --figs DIR --gen DIR --mode quick|full
 # Writes DIR(data)/periodic/*.h5, figures periodic_period_l22, periodic_period_l3 and
-# poincare_section_l3 in --figs, and --gen/periodic_numbers.tex, --gen/periodic_commands.tex.
+# poincare_section_l3 in --figs, and --gen/periodic_numbers.tex, --gen/periodic_families.tex
+# (the rows of the families' table), --gen/periodic_commands.tex.
+# Time (2026-12-07, nice 19 on the project's shared 2-core machine): full mode 227 s CPU (the families
+# at l = 3 are 3/4 of it), 9-10 min wall at load 5-7 and 34 min at load 10-15; quick mode 22 s CPU.
 set -euo pipefail
 
 section=periodic help_lines='2,12p'
@@ -32,10 +35,13 @@ run periodic --scene "$scene" --l 2.2 --from-equilibria "${f22[@]}" --out "$p/l2
 run periodic --scene "$scene" --l 3 --from-equilibria "${f3[@]}" --out "$p/l3.h5"
 
 # ── the section through a fold pair at l = 3 ────────────────────────────────
-# The family with a fold: its hyperbolic orbit past the fold nearest tr P = 2.5 gives h*; the
-# elliptic orbit at h* before the fold is interpolated between its two neighbours; their first
-# crossings of Richter's section are the seeds (phi,theta,sheet) of lgi periodic at h*. The
-# section's orbits start on rings about the elliptic orbit's crossing and beside the hyperbolic one's.
+# The fold pair: of every fold with elliptic orbits before it on its family, the hyperbolic orbit
+# past it (up to the family's next fold) with 2 < tr P <= 3 nearest tr P = 2.5 gives h* (full mode
+# also finds folds near the saddle-centre at h = 2.50, among orbits far more unstable, whose
+# elliptic partners are small islands); the elliptic orbit at h* before the fold is interpolated
+# between its two neighbours; their first crossings of Richter's section are the seeds
+# (phi,theta,sheet) of lgi periodic at h*. The section's orbits start on rings about the elliptic
+# orbit's crossing and beside the hyperbolic one's.
 pick=$("$PY" - "$plots" "$p/l3.h5" "$p/section_seeds.csv" <<'PYEOF'
 import sys
 import h5py
@@ -46,24 +52,34 @@ with h5py.File(sys.argv[2], "r") as f:
     t = {k: f["periodic"][k][()] for k in f["periodic"]}
     J, w = pc.body_of(f["parameters"].attrs["scene_toml"])
 text = lambda a: np.array([s.decode() if isinstance(s, bytes) else s for s in a])
-event, stab = text(t["event"]), text(t["stability"])
-folds = np.flatnonzero(event == "fold")
-if not len(folds):
-    sys.exit("paper_periodic: no fold at l = 3")
-fam, k = t["family"][folds[0]], folds[0]
-rows = np.flatnonzero((t["family"] == fam) & (event == "none"))
-hyp = [r for r in rows if r > k and stab[r] == "hyperbolic"]
-ell = [r for r in rows if r < k and stab[r] == "elliptic"]
-if not hyp or len(ell) < 2:
-    sys.exit("paper_periodic: no hyperbolic orbit past the fold, or no elliptic orbits before it")
-r = min(hyp, key=lambda r: abs(t["reduced_trace"][r] - 2.5))
+event, stab, tr = text(t["event"]), text(t["stability"]), t["reduced_trace"]
+best = None
+for k in np.flatnonzero(event == "fold"):
+    fam = t["family"][k]
+    rows = np.flatnonzero(t["family"] == fam)
+    later = [q for q in rows if q > k and event[q] == "fold"]
+    ell = [q for q in rows if q < k and event[q] == "none" and stab[q] == "elliptic"]
+    hyp = [q for q in rows if k < q < (later[0] if later else len(tr)) and event[q] == "none"
+           and stab[q] == "hyperbolic" and 2 < tr[q] <= 3]
+    if hyp and len(ell) >= 2:
+        q = min(hyp, key=lambda q: abs(tr[q] - 2.5))
+        if best is None or abs(tr[q] - 2.5) < abs(tr[best[0]] - 2.5):
+            best = (q, ell)
+if best is None:
+    sys.exit("paper_periodic: no fold at l = 3 with elliptic orbits before it and a hyperbolic one (2 < tr P <= 3) past it")
+r, ell = best
 h = float(t["h"][r])
 x = lambda r: np.concatenate([t["angular_momentum"][r], t["gamma"][r]])
 e = w / np.linalg.norm(w)
 a, b = next(((a, b) for a, b in zip(ell[:-1], ell[1:]) if (t["h"][a] - h) * (t["h"][b] - h) <= 0), (ell[-2], ell[-1]))
 u = (h - t["h"][a]) / (t["h"][b] - t["h"][a])
 xe, Te = (1 - u) * x(a) + u * x(b), (1 - u) * t["period"][a] + u * t["period"][b]
-seeds = [pc.crossings(x(r), float(t["period"][r]), J, w, e, True)[0], pc.crossings(xe, Te, J, w, e, True)[0]]
+# Each seed with its own number of returns: the orbit's crossings a period in the first one's direction.
+seeds, returns = [], []
+for x0, T in ((x(r), float(t["period"][r])), (xe, Te)):
+    cs, ds = pc.crossings(x0, T, J, w, e, True, directions=True)
+    seeds.append(cs[0])
+    returns.append(sum(d == ds[0] for d in ds))
 with open(sys.argv[3], "w") as f:
     f.write("phi,theta,sheet\n")
     (ph, th, sh), (pe, te, se) = seeds
@@ -76,7 +92,10 @@ y = lambda ph, th, sh: th if sh > 0 else 2 * np.pi - th
 ys = [y(*seeds[0]), y(*seeds[1])] if seeds[1][2] == seeds[0][2] else [y(*seeds[0])]
 xs = [seeds[0][0], seeds[1][0]] if seeds[1][2] == seeds[0][2] else [seeds[0][0]]
 zoom = "%.3f:%.3f:%.3f:%.3f" % (min(xs) - 0.9, max(xs) + 0.9, min(ys) - 0.6, max(ys) + 0.6)
-print(repr(h), *("%r,%r,%d" % s for s in seeds), zoom)
+fold = next(k for k in np.flatnonzero(event == "fold") if t["family"][k] == t["family"][r] and k < r)
+with open(sys.argv[3].replace("section_seeds.csv", "fold_pair.txt"), "w") as f:  # for the numbers below
+    f.write("%d %d\n" % (t["family"][r], fold))
+print(repr(h), *("%r,%r,%d,%d" % (*s, n) for s, n in zip(seeds, returns)), zoom)
 PYEOF
 ) || die "picking the fold pair failed"
 read -r hstar seed_hyp seed_ell zoom <<< "$pick"
@@ -85,19 +104,46 @@ run poincare --scene "$scene" --l 3 --h "$hstar" --seeds "$p/section_seeds.csv" 
 run periodic --scene "$scene" --seeds-from-poincare "$p/section_l3.h5" --poincare-point "$seed_hyp" \
   --poincare-point "$seed_ell" --steps 0 --dt 0.01 --manifolds "$points" --manifold-periods "$periods" \
   --manifold-epsilon 1e-3 --out "$p/orbits_l3.h5"
+"$PY" -c 'import h5py, sys; s = list(h5py.File(sys.argv[1])["periodic"]["stability"][()]); sys.exit(
+    len(s) != 2 or s.count(b"elliptic") != 1)' "$p/orbits_l3.h5" \
+  || die "the fold pair at h = $hstar was not found again from its section points (need one elliptic, one hyperbolic orbit)"
 
 # ── figures and numbers ─────────────────────────────────────────────────────
 "$PY" "$plots/periodic.py" --out "$figs" "$p/l22.h5" "$p/l3.h5" || die "periodic.py failed"
 "$PY" "$plots/poincare.py" --out "$figs" --periodic "$p/orbits_l3.h5" --periodic-h-tol 1e-9 --zoom "$zoom" \
   --dot-size 2 "$p/section_l3.h5" \
   || die "poincare.py failed"
-"$PY" - "$plots" "$gen" "$commands" "$p/l22.h5" "$p/l3.h5" "$p/orbits_l3.h5" <<'PYEOF' || die "the periodic numbers failed"
-# periodic_numbers.tex (macros for the text) and periodic_commands.tex (the runs, verbatim).
+"$PY" - "$plots" "$gen" "$commands" "$p/l22.h5" "$p/l3.h5" "$p/orbits_l3.h5" "$p/fold_pair.txt" "$mode" <<'PYEOF' \
+  || die "the periodic numbers failed"
+# periodic_numbers.tex (macros for the text), periodic_families.tex (the rows of the families' table)
+# and periodic_commands.tex (the runs, verbatim).
 import sys
 import h5py
 import numpy as np
 
-plots, gen, commands, l22, l3, orbits = sys.argv[1:7]
+plots, gen, commands, l22, l3, orbits, fold_pair, mode = sys.argv[1:9]
+CLASS = {"elliptic": "ell.", "hyperbolic": "hyp.", "inverse_hyperbolic": "inv.\\ hyp.", "complex": "compl."}
+
+
+def family_rows(t, ell):
+    """One table row per family: where it starts, its h and T ranges, the classes along it in order
+    (runs of one class; event rows sit on a border), its folds and period doublings, and how many
+    sign changes of a bifurcation it saw but did not locate."""
+    ev, st, end = text(t["event"]), text(t["stability"]), text(t["family_end"])
+    out = []
+    for fam in np.unique(t["family"]):
+        r = np.flatnonzero(t["family"] == fam)
+        start = ("eq.\\ at $h=%.3f$, $\\omega=%.3f$" % (t["h"][r[0]], t["omega"][r[0]]) if t["parent"][r[0]] < 0
+                 else f"doubling of {t['parent'][r[0]]} at $h={t['h'][r[0]]:.3f}$")
+        runs = [st[q] for q in r if ev[q] == "none"]
+        runs = [c for k, c in enumerate(runs) if k == 0 or c != runs[k - 1]]
+        missed = end[r[-1]].count("not located")
+        classes = " $\\to$ ".join(CLASS[c] for c in runs)
+        out.append(f"{ell} & {fam} & {start} & {t['h'][r].min():.3f}--{t['h'][r].max():.3f} & "
+                   f"{t['period'][r].min():.2f}--{t['period'][r].max():.2f} & {classes} & "
+                   f"{int(np.sum(ev[r] == 'fold'))} & {int(np.sum(ev[r] == 'period_doubling'))} & {missed} "
+                   + "\\\\")
+    return out
 
 
 def table(path, group="periodic"):
@@ -109,9 +155,13 @@ def text(a):
     return np.array([s.decode() if isinstance(s, bytes) else s for s in a])
 
 
-macros = {}
+# The prose after the table describes the full build's families; a quick build says so.
+macros, rows = {"PerQuickNote": "" if mode == "full" else
+                " \\textit{(Quick build: short families without their doubled families; the text describes the "
+                "full build's.)}"}, []
 for name, path in (("A", l22), ("B", l3)):
     t = table(path)
+    rows += family_rows(t, f"{t['l'][0]:g}") + (["\\hline"] if name == "A" else [])
     first = t["index"] == 0
     ev = text(t["event"])
     mu = t["multipliers"].reshape(-1, 6, 2)
@@ -123,6 +173,16 @@ for name, path in (("A", l22), ("B", l3)):
     macros[f"Per{name}FirstPeriod"] = f"{np.max(np.abs(t['period'][first] - 2 * np.pi / t['omega'][first])):.1e}"
     macros[f"Per{name}Residual"] = f"{np.max(t['residual']):.1e}"
     macros[f"Per{name}Product"] = f"{np.max(np.abs(np.prod(z, axis=1) - 1)):.1e}"
+    macros[f"Per{name}Missed"] = str(sum(e.count("not located") for e in text(t["family_end"])))
+ev = text(t["event"])  # t: l = 3; the family with the most located events:
+busy = max(np.unique(t["family"]), key=lambda f: np.sum((t["family"] == f) & (ev != "none")))
+macros["PerBBusyFamily"] = str(busy)
+macros["PerBBusyEqH"] = f"{t['h'][np.flatnonzero(t['family'] == busy)[0]]:.3f}"
+fam, fold = (int(v) for v in open(fold_pair).read().split())
+first = np.flatnonzero(t["family"] == fam)[0]
+macros["PerSecFamily"] = str(fam)
+macros["PerSecEqH"] = f"{t['h'][first]:.3f}"
+macros["PerSecFoldH"] = f"{t['h'][fold]:.4f}"
 o, m = table(orbits), table(orbits, "manifolds")
 hyp = int(np.flatnonzero(text(o["stability"]) != "elliptic")[0])
 macros["PerSecH"] = f"{o['h'][hyp]:.6f}"
@@ -131,6 +191,8 @@ macros["PerSecEllT"] = f"{o['period'][1 - hyp]:.5f}"
 macros["PerSecLambda"] = f"{m['multiplier'][0]:.4f}"
 macros["PerSecReturns"] = str(int(m["returns"][0]))
 macros["PerSecPoints"] = str(len(m["s"]))
+with open(f"{gen}/periodic_families.tex", "w") as f:
+    f.write("\n".join(rows) + "\n")
 with open(f"{gen}/periodic_numbers.tex", "w") as f:
     for k, v in macros.items():
         f.write(f"\\newcommand{{\\{k}}}{{{v}}}\n")

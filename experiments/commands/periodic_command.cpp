@@ -255,7 +255,7 @@ Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--seeds-from-poincare", o->poincare,
                   "A file of lgi poincare: seeds on its section at its (l, h) (--poincare-rows, --poincare-point)");
   sub->add_option("--poincare-rows", o->poincare_rows, "Rows of its /events (from 0), comma-separated");
-  sub->add_option("--poincare-point", o->poincare_points, "phi,theta,sheet: a point of its Richter section (repeatable)");
+  sub->add_option("--poincare-point", o->poincare_points, "phi,theta,sheet[,N]: a point of its Richter section, N its own --returns (repeatable)");
   sub->add_option("--returns", o->returns, "The period guess of a section seed: the time of its N-th return")
       ->capture_default_str();
   sub->add_option("--continue-in", o->continue_in, "h (at fixed l) or l (at fixed h; seeds only)")->capture_default_str();

@@ -8,8 +8,10 @@ Usage: periodic.py --out DIR [--branches BIFURCATION.h5] [--l-range A:B] [--h-ra
 Writes, for each file, DIR/periodic_period_<stem>.{pdf,png}: the period T
 against h along every family, coloured by the stability class of the orbits
 (elliptic, hyperbolic, inverse hyperbolic), the events of the file (rows with
-event fold, period_doubling, class_change) marked by symbols, the families
-started at a period doubling dashed and named with their parent; and
+event fold, period_doubling, class_change) marked by open symbols, the families
+started at a period doubling dashed and named with their parent (with more
+than six families each is labelled by its number, named in the legend; T on
+a log axis where it spans more than a factor 4); and
 DIR/periodic_trace_<stem>.{pdf,png}: tr P (`reduced_trace`, the trace of the
 reduced 2x2 monodromy) against h with the lines tr P = +-2 where the class
 changes (|tr P| < 2 elliptic; the axis is linear within +-4 and logarithmic
@@ -43,7 +45,8 @@ import bifurcation as bif  # noqa: E402
 # Colours and marks apart from those of the equilibria (bifurcation.py), since both share a figure.
 STABILITY = {"elliptic": ("elliptic", "tab:green"), "hyperbolic": ("hyperbolic", "tab:brown"),
              "inverse_hyperbolic": ("inverse hyperbolic", "deeppink"), "complex": ("complex", "tab:olive")}
-EVENTS = {"fold": ("fold", "v", "k", "k"), "period_doubling": ("period doubling", "s", "white", "k"),
+# Open symbols: the curve through an event stays visible under its mark.
+EVENTS = {"fold": ("fold", "v", "none", "k"), "period_doubling": ("period doubling", "s", "none", "k"),
           "class_change": ("class change", "P", "gold", "k")}
 REQUIRED = ("family", "l", "h", "period", "stability")
 
@@ -125,11 +128,12 @@ def family_name(t, fam, rows):
     return f"{fam} (eq. {eq})" if eq >= 0 else f"{fam}"
 
 
-def label_family(ax, x, y, t, fam, rows):
-    """The family's name at its last orbit."""
+def label_family(ax, x, y, t, fam, rows, short=False):
+    """The family's name (or, short, its number) at its last orbit."""
     r = rows[-1]
-    ax.annotate(family_name(t, fam, rows), (x[r], y[r]), fontsize=6, xytext=(3, 2), textcoords="offset points",
-                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8), zorder=6)
+    ax.annotate(str(fam) if short else family_name(t, fam, rows), (x[r], y[r]), fontsize=6, xytext=(3, 2),
+                textcoords="offset points", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8),
+                zorder=6)
 
 
 def title(path, t):
@@ -139,14 +143,19 @@ def title(path, t):
 
 def period_figure(path, t, stem, out):
     fig, ax = c.plt.subplots(figsize=(5.6, 3.6))
+    many = len(families(t)) > 6  # long names of many families overlap: numbers, and a list in the legend
     for fam, rows in families(t):
         draw_coloured(ax, t["h"], t["period"], t, rows, t["parent"][rows[0]] >= 0)
-        label_family(ax, t["h"], t["period"], t, fam, rows)
+        label_family(ax, t["h"], t["period"], t, fam, rows, short=many)
     draw_events(ax, t["h"], t["period"], t)
     ax.set_xlabel("$h$")
     ax.set_ylabel("period $T$")
-    ax.set_title(title(path, t) + "; labels: family (its equilibrium, or its parent)", fontsize=8)
-    handles, labels = legend_handles(t)
+    if np.max(t["period"]) > 4 * np.min(t["period"]):  # doubled families far above the rest: T on a log axis
+        ax.set_yscale("log")  # (its ticks: lgi_plot_common.fix_log_ticks)
+    ax.set_title(title(path, t) + "; labels: family" + ("" if many else " (its equilibrium, or its parent)"),
+                 fontsize=8)
+    extra = [(c.plt.Line2D([], [], ls="none"), family_name(t, fam, rows)) for fam, rows in families(t)] if many else []
+    handles, labels = legend_handles(t, extra)
     ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=6.5, borderaxespad=0)
     c.save(fig, out, f"periodic_period_{stem}")
 
@@ -170,10 +179,11 @@ def trace_figure(path, t, stem, out):
         return
     fig, ax = c.plt.subplots(figsize=(5.6, 3.6))
     tr = t["reduced_trace"]
-    colours = c.plt.get_cmap("tab10").colors
-    for i, (fam, rows) in enumerate(families(t)):
+    fams = families(t)  # more than ten families: twenty colours, so that none repeats
+    colours = c.plt.get_cmap("tab10" if len(fams) <= 10 else "tab20").colors
+    for i, (fam, rows) in enumerate(fams):
         ls = "--" if t["parent"][rows[0]] >= 0 else "-"
-        ax.plot(t["h"][rows], tr[rows], ls=ls, marker=".", ms=2.5, color=colours[i % 10], lw=1.1, zorder=3,
+        ax.plot(t["h"][rows], tr[rows], ls=ls, marker=".", ms=2.5, color=colours[i % len(colours)], lw=1.1, zorder=3,
                 label=family_name(t, fam, rows))
     draw_events(ax, t["h"], tr, t)
     for v in (2, -2):
@@ -246,6 +256,8 @@ def plane_figure(tables, branches, args, stem):
     nfam = max(len(np.unique(t["family"])) for t in tables)
     dl = (0.006 if branches is not None else 0.03) * (window[1] - window[0])  # apart, yet near their l
     plane_segments(ax, tables, dl, names=branches is None)
+    if branches is None:  # the last family of the largest l shifted right by (nfam - 1) dl: keep it in view
+        window = (window[0], max(window[1], max(t["l"].max() for t in tables) + nfam * dl)) + tuple(window[2:])
     ax.set_xlim(window[0], window[1])
     ax.set_ylim(window[2], window[3])
     last = ax

@@ -53,8 +53,9 @@ def coordinates(x, J_inv, e, richter):
     return phi, theta, sheet
 
 
-def crossings(x0, T, J, w, e, richter):
-    """[(phi, theta, sheet)] of the orbit through x0 of period T, one per crossing in (0, T] (the one at T is the one at 0)."""
+def crossings(x0, T, J, w, e, richter, directions=False):
+    """[(phi, theta, sheet)] of the orbit through x0 of period T, one per crossing in (0, T] (the one at T is the one at 0);
+    with directions, (that list, [the sign of dS/dt at each])."""
     from scipy.integrate import solve_ivp
     J_inv = np.linalg.inv(J)
 
@@ -72,7 +73,11 @@ def crossings(x0, T, J, w, e, richter):
                     dense_output=False)
     ts, xs = sol.t_events[0], sol.y_events[0]
     keep = (ts > T * 1e-6) & (ts <= T * (1 + 1e-6))
-    return [coordinates(x, J_inv, e, richter) for x in xs[keep]]
+    points = [coordinates(x, J_inv, e, richter) for x in xs[keep]]
+    if not directions:
+        return points
+    step = 1e-7  # dS/dt by a central difference along the field
+    return points, [1 if s(0, x + step * f(0, x)) > s(0, x - step * f(0, x)) else -1 for x in xs[keep]]
 
 
 def orbits_at(table, l, h, h_tol):

@@ -153,8 +153,8 @@ MANIFOLD_COLOURS = {"unstable": ("tab:red", "unstable manifold"), "stable": ("ta
 def draw_manifolds(ax, path, table, rows, richter):
     """The /manifolds points of the orbits in `rows` (positions in /periodic), if the file has them."""
     with c.h5py.File(path, "r") as f:
-        if "manifolds" not in f:
-            return
+        if "manifolds" not in f or not f["manifolds"]["phi"].shape or not f["manifolds"]["phi"].shape[0]:
+            return  # none, or an empty table (no hyperbolic orbit among the seeds')
         m = {k: f["manifolds"][k][()] for k in ("family", "index", "branch", "phi", "theta", "sheet")}
     branch = np.array([b.decode() if isinstance(b, bytes) else b for b in m["branch"]])
     keep = np.zeros(len(branch), dtype=bool)

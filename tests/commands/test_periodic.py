@@ -207,6 +207,16 @@ def test_manifolds_of_a_hyperbolic_orbit(tmp_path):
     with h5py.File(r, "r") as f:
         assert abs(f["periodic"]["period"][0] - p["period"][0]) <= 1e-9
         assert f["parameters"].attrs["shooting_points"] == "3"
+    # A point's own number of returns (PHI,THETA,SHEET,N) overrides --returns: with --returns 2 the point
+    # alone would be guessed at about 2T; its own 1 finds the orbit of period T.
+    own = str(tmp_path / "own.h5")
+    lgi("periodic", "--scene", GENERAL, "--seeds-from-poincare", s, "--returns", "2", "--poincare-point",
+        point + ",1", "--steps", "0", "--out", own, "--quiet")
+    with h5py.File(own, "r") as f:
+        assert abs(f["periodic"]["period"][0] - p["period"][0]) <= 1e-9
+    for bad in (",0", ",1.5", ",1,2"):
+        assert "--poincare-point" in refused("periodic", "--scene", GENERAL, "--seeds-from-poincare", s,
+                                             "--poincare-point", point + bad, "--out", own + ".x")
 
 
 def test_bad_input(tmp_path):

@@ -101,8 +101,12 @@ std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const Poincare
   for (const std::string& p : points) {
     if (sec.kind != SectionKind::richter)
       throw UsageError("--poincare-point: only on Richter's section (the file's section is " + f.section + ")");
-    const std::vector<double> v = numbers(p, "--poincare-point", 3);
+    const std::vector<double> v = numbers(p, "--poincare-point", 0);
+    if (v.size() != 3 && v.size() != 4)
+      throw UsageError("--poincare-point: '" + p + "': expected phi,theta,sheet or phi,theta,sheet,returns");
     if (v[2] != 1.0 && v[2] != -1.0) throw UsageError("--poincare-point: '" + p + "': the sheet must be 1 or -1");
+    if (v.size() == 4 && (v[3] != std::floor(v[3]) || v[3] < 1.0 || v[3] > 1000.0))
+      throw UsageError("--poincare-point: '" + p + "': the returns must be a whole number in [1, 1000]");
     Vec3 f1, f2;
     section_frame(sec.axis, f1, f2);
     const Vec3 gamma = std::sin(v[1]) * (std::cos(v[0]) * f1 + std::sin(v[0]) * f2) + std::cos(v[1]) * sec.axis;
@@ -113,13 +117,15 @@ std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const Poincare
     s.h = f.h;
     s.x << Pi, gamma;
     s.label = "poincare point (" + p + ")";
+    s.returns = v.size() == 4 ? static_cast<int>(v[3]) : 0;
     seeds.push_back(s);
   }
-  for (SectionSeed& s : seeds) {
-    s.period = return_time(body, sec, s.x, returns, dt, t_max);
+  for (SectionSeed& s : seeds) {  // a point's own N (an orbit crossing N times a period) over --returns
+    const int n = s.returns ? s.returns : returns;
+    s.period = return_time(body, sec, s.x, n, dt, t_max * n / returns);
     if (s.period == 0.0)
-      s.failure = s.label + ": no " + std::to_string(returns) + "-th return to the section before t = " +
-                  std::to_string(t_max);
+      s.failure = s.label + ": no " + std::to_string(n) + "-th return to the section before t = " +
+                  std::to_string(t_max * n / returns);
   }
   return seeds;
 }

@@ -23,15 +23,16 @@ struct SectionSeed {
   std::string label;    // "row 12", "point (phi, theta, sheet)"
   std::string failure;
   double h = NAN;       // the level of the orbit sought (NaN: H at x)
+  int returns = 0;      // its own --poincare-point ...,N; 0: --returns
 };
 
 /// The section of a poincare file (kind and axis).
 PhaseSection section_of(const PoincareFile& f);
 
 /// --poincare-rows "3,17,40" (rows of /events, from 0) and --poincare-point
-/// "phi,theta,sheet" (each a point of Richter's section at the file's level),
-/// each with its period guess after `returns` returns in its direction
-/// (integrated with step dt for at most t_max). UsageError naming the flag on
+/// "phi,theta,sheet[,N]" (each a point of Richter's section at the file's level),
+/// each with its period guess after `returns` returns in its direction (N of
+/// its own if given; integrated with step dt for at most t_max per `returns`). UsageError naming the flag on
 /// a bad value.
 std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const PoincareFile& f, const std::string& rows,
                                         const std::vector<std::string>& points, int returns, double dt, double t_max);
