@@ -2,11 +2,12 @@
 loops inside one row, run or analysis that can take many seconds: the rows of
 `lgi region --cells` (a row's triangulation, sort and sweep), each run of `lgi
 singularity`, the NAFF of `lgi frequencies`, the reference of `lgi work-precision`,
-one branch of `lgi bifurcation` on a heavy top, one l of `lgi bifurcation --appelrot`
-and the closed-form surface of `lgi actions --h`. Each test starts the command on an
+one branch of `lgi bifurcation` on a heavy top, one l of `lgi bifurcation --appelrot`,
+the closed-form surface of `lgi actions --h`, the GALI times of `lgi indicators`
+and the --statistics of `lgi quantum`. Each test starts the command on an
 input whose loop lasts far longer than the wait (tens of seconds here), signals it
 and checks that it ends within about a second and a half with 130 (143 after
-SIGTERM), says so in one line and publishes nothing as complete. The last two wait
+SIGTERM), says so in one line and publishes nothing as complete. The last four wait
 and measure in CPU time, robust to a loaded machine (pacing.signal_after_cpu)."""
 import os
 import re
@@ -175,3 +176,16 @@ def test_indicators_gali_sigint_inside_one_long_orbit(tmp_path):
     assert not os.path.exists(out) and not os.path.exists(str(tmp_path / "g.csv"))
     with h5py.File(out + ".partial", "r") as f:
         assert text(f["parameters"].attrs["status"]) == "interrupted by signal"
+
+
+def test_quantum_statistics_sigint_in_the_unfolding(tmp_path):
+    """A free body's spectrum at hbar 0.02 (j to 150) is exact and fast; the --statistics that follow
+    (each of some 600 classes unfolded by Weyl's law, then /weyl per level) take seconds. They read the
+    flag at every Weyl count: exit 130, nothing written."""
+    out = str(tmp_path / "q.h5")
+    code, err, cpu = signal_after_cpu(["quantum", "--scene", os.path.join(SCENES, "free_body_hlw.toml"), "--hbar",
+                                       "0.02", "--jmax", "150", "--statistics", "--quiet", "--out", out])
+    assert code == 130, err
+    assert cpu < 1.0 * pacing.cpu_slowdown(LGI), f"the signal was read after {cpu:.2f} CPU seconds"
+    assert err == "lgi: quantum: interrupted by signal; nothing written\n", err
+    assert not os.listdir(tmp_path), os.listdir(tmp_path)
