@@ -19,27 +19,15 @@ using system::TorusState;
 using std::numbers::pi;
 constexpr std::uint64_t draw_stream = 0x5ec7104ULL, tangent_stream = 0x7a1e5cULL;
 
-/// The two factors of S = −sin q2 · q̇2 (header): 0 is q̇2, 1 is sin q2.
 double factor(const system::CardanTop& top, const TorusState& x, int which) {
-  return which == 0 ? top.velocity(x)(1) : std::sin(x.q(1));
+  return cardan_section_factor(top, x, which);
 }
 double section_value(const system::CardanTop& top, const TorusState& x) {
   return -std::sin(x.q(1)) * top.velocity(x)(1);
 }
 
 CardanCrossing crossing_at(const system::CardanTop& top, const TorusState& x, double t, int which, int direction) {
-  CardanCrossing c;
-  c.t = t, c.x = x, c.direction = direction;
-  const Vec3 v = top.velocity(x);
-  c.x_coord = wrap_angle_positive(x.q(2));
-  if (which == 0) {
-    c.piece = v(2) >= 0.0 ? 1 : -1;
-    c.y_coord = wrap_angle_positive(x.q(1));
-  } else {
-    c.piece = std::cos(x.q(1)) > 0.0 ? 2 : 3;
-    c.y_coord = std::atan2(v(2), v(1));
-  }
-  return c;
+  return cardan_crossing_at(top, x, t, which, direction);
 }
 
 /// The section's two factors as the loop's event functions (integrators/core/events.hpp):
@@ -145,7 +133,54 @@ void integrate_orbit(const system::CardanTop& top, const CardanOrbitRequest& r, 
   o.final = observer.last();
 }
 
+/// S, the Schur complement of M₁₁ in M at q: the shape's kinetic energy at fixed p1 is ½ uᵀ S u.
+Eigen::Matrix2d shape_inertia(const Mat3& M) {
+  return M.block<2, 2>(1, 1) - M.block<2, 1>(1, 0) * M.block<1, 2>(0, 1) / M(0, 0);
+}
+
+/// The state at shape q (q1 = 0) with shape velocity u and p1 = l.
+TorusState with_shape_velocity(const system::CardanTop& top, const Vec3& q, const Mat3& M, const Eigen::Vector2d& u,
+                               double l) {
+  const Vec3 qdot((l - M(0, 1) * u(0) - M(0, 2) * u(1)) / M(0, 0), u(0), u(1));
+  TorusState x = top.from_rates(q, qdot);
+  x.p(0) = l;  // = M₁· q̇ up to round-off; the level's value exactly
+  return x;
+}
+
 }  // namespace
+
+double cardan_section_factor(const system::CardanTop& top, const TorusState& x, int which) {
+  return which == 0 ? top.velocity(x)(1) : std::sin(x.q(1));
+}
+
+CardanCrossing cardan_crossing_at(const system::CardanTop& top, const TorusState& x, double t, int which,
+                                  int direction) {
+  CardanCrossing c;
+  c.t = t, c.x = x, c.direction = direction;
+  const Vec3 v = top.velocity(x);
+  c.x_coord = wrap_angle_positive(x.q(2));
+  if (which == 0) {
+    c.piece = v(2) >= 0.0 ? 1 : -1;
+    c.y_coord = wrap_angle_positive(x.q(1));
+  } else {
+    c.piece = std::cos(x.q(1)) > 0.0 ? 2 : 3;
+    c.y_coord = std::atan2(v(2), v(1));
+  }
+  return c;
+}
+
+bool cardan_section_state(const system::CardanTop& top, double l, double h, double x, double y, int piece,
+                          TorusState& state) {
+  const bool torus = piece == 1 || piece == -1;
+  const Vec3 q(0.0, torus ? y : (piece == 2 ? 0.0 : pi), x);
+  const Mat3 M = top.mass_matrix(q);
+  const Eigen::Matrix2d S = shape_inertia(M);
+  const Eigen::Vector2d dir = torus ? Eigen::Vector2d(0.0, piece) : Eigen::Vector2d(std::cos(y), std::sin(y));
+  const double surplus = h - cardan_amended_potential(top, l, q(1), q(2)), quad = dir.dot(S * dir);
+  if (!(surplus >= 0.0) || !(quad > 0.0)) return false;
+  state = with_shape_velocity(top, q, M, std::sqrt(2.0 * surplus / quad) * dir, l);
+  return state.p.allFinite();
+}
 
 void check_cardan_section_scheme(const std::string& name) {
   if (name != "cardan-rk4" && name != "cardan-midpoint" && name != "cardan-dg")
@@ -162,14 +197,11 @@ bool draw_cardan_level_point(const system::CardanTop& top, double l, double h, s
     if (!(surplus >= 0.0)) continue;
     const Vec3 q(0.0, q2, q3);
     const Mat3 M = top.mass_matrix(q);
-    const Eigen::Matrix2d S = M.block<2, 2>(1, 1) - M.block<2, 1>(1, 0) * M.block<1, 2>(0, 1) / M(0, 0);
-    const Eigen::LLT<Eigen::Matrix2d> llt(S);
+    const Eigen::LLT<Eigen::Matrix2d> llt(shape_inertia(M));
     if (llt.info() != Eigen::Success) continue;  // M singular here (gimbal lock without ring inertia)
     const Eigen::Vector2d u =
         std::sqrt(2.0 * surplus) * llt.matrixU().solve(Eigen::Vector2d(std::cos(phi), std::sin(phi)));
-    const Vec3 qdot((l - M(0, 1) * u(0) - M(0, 2) * u(1)) / M(0, 0), u(0), u(1));
-    x = top.from_rates(q, qdot);
-    x.p(0) = l;  // = M₁· q̇ up to round-off; the level's value exactly
+    x = with_shape_velocity(top, q, M, u, l);
     return true;
   }
   return false;

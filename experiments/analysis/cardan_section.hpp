@@ -69,6 +69,20 @@ struct CardanOrbit {
   double lyapunov = 0.0, megno = 0.0;
 };
 
+/// The two factors of S = −sin q2 · q̇2 (top of this file): 0 is q̇2, 1 is sin q2.
+double cardan_section_factor(const system::CardanTop& top, const system::TorusState& x, int which);
+
+/// The crossing at x of the factor `which` (its piece and coordinates as lgi poincare writes them).
+CardanCrossing cardan_crossing_at(const system::CardanTop& top, const system::TorusState& x, double t, int which,
+                                  int direction);
+
+/// The state over a point (x, y, piece) of the section at (ℓ, h), q1 = 0, p1 = ℓ (the inverse of
+/// cardan_crossing_at): pieces ±1, q = (0, y, x) with q̇2 = 0 and the sign of q̇3 the piece; pieces 2, 3,
+/// q = (0, 0 or π, x) with the shape velocity along ψ = y; its length from ½ uᵀ S u = h − U_ℓ (S the
+/// Schur complement of M₁₁). False where U_ℓ > h (no state) or M is singular there.
+bool cardan_section_state(const system::CardanTop& top, double l, double h, double x, double y, int piece,
+                          system::TorusState& state);
+
 /// Throws UsageError naming --scheme unless `name` is a fixed-step T³ scheme.
 void check_cardan_section_scheme(const std::string& name);
 

@@ -126,6 +126,9 @@ std::map<std::string, std::string> periodic_parameters(const PeriodicOptions& o,
           {"events", o.no_events ? "not located" : "fold, period_doubling, class_change (tr P = +-2)"},
           {"branch_switching", o.no_branch_switching || o.no_events ? "no" : "at period doublings"},
           {"failures", failures_text(failures)}};
+  if (scene.suspension && !o.poincare.empty())
+    p["phase_condition"] = "on the poincare file's section S = -sin(q2) dq2/dt = 0: the factor of each seed's piece "
+                           "(dq2/dt = 0 on the pieces +-1, sin q2 = 0 on 2 and 3)";
   if (scene.suspension) {
     p["integrator"] = std::string("classical RK4 with its exact (dual-number) tangent flow on T^3 x R^3, ") +
                       (o.shooting_points == 1 ? "ceil(T/dt) equal steps" : "ceil(T/(M dt)) equal steps a segment");
@@ -166,7 +169,6 @@ int write_interrupted(const PeriodicOptions& o, const system::Scene& scene, cons
 system::CardanTop cardan_top_for_periodic(const PeriodicOptions& o, const system::Scene& scene) {
   system::CardanTop top = cardan_top(scene);
   if (const std::string why = cardan_tilt_refusal(top, scene.file); !why.empty()) throw UsageError("--scene: " + why);
-  if (!o.poincare.empty()) throw UsageError("--seeds-from-poincare: not for a Cardan top (" + scene.file + ")");
   if (!o.critical.empty()) throw UsageError("--from-critical: a Kovalevskaya top only, not the Cardan top " + scene.file);
   return top;
 }
@@ -211,7 +213,7 @@ int run_periodic(const PeriodicOptions& o) {
   const std::vector<RowManifolds>& manifolds = result.manifolds;
   const double l = result.l;
   std::vector<TableGroup> extra;
-  if (o.manifolds > 0) extra.push_back(manifold_group(manifolds));
+  if (o.manifolds > 0) extra.push_back(manifold_group(body, manifolds));
   write_table_file(o.out, o.force, "periodic", periodic_columns(body, rows, result.section),
                    periodic_parameters(o, scene, l, failures), extra);
   // Starts that failed are said even with --quiet: they are missing families.
@@ -255,7 +257,9 @@ Subcommand add_periodic_subcommand(CLI::App& app, const CommandContext& context)
   sub->add_option("--seeds-from-poincare", o->poincare,
                   "A file of lgi poincare: seeds on its section at its (l, h) (--poincare-rows, --poincare-point)");
   sub->add_option("--poincare-rows", o->poincare_rows, "Rows of its /events (from 0), comma-separated");
-  sub->add_option("--poincare-point", o->poincare_points, "phi,theta,sheet[,N]: a point of its Richter section, N its own --returns (repeatable)");
+  sub->add_option("--poincare-point", o->poincare_points,
+                  "phi,theta,sheet[,N]: a point of its Richter section (a Cardan top: x,y,piece of its section), N its "
+                  "own --returns (repeatable)");
   sub->add_option("--returns", o->returns, "The period guess of a section seed: the time of its N-th return")
       ->capture_default_str();
   sub->add_option("--continue-in", o->continue_in, "h (at fixed l) or l (at fixed h; seeds only)")->capture_default_str();

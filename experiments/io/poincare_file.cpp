@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/hdf5_support.hpp"
@@ -35,6 +36,14 @@ std::vector<T> read_column(hid_t events, const std::string& path, const char* na
 double number(hid_t parameters, const std::string& path, const char* name) {
   const std::string where = path + ": /parameters " + name;
   if (H5Aexists(parameters, name) <= 0) throw InputError(where + ": missing (not a file of lgi poincare?)");
+  // A Cardan top's file writes its parameters as text (format_general, 17 digits: the double exactly).
+  if (const auto text = hdf5::read_string_attribute(parameters, name)) {
+    char* end = nullptr;
+    const double v = std::strtod(text->c_str(), &end);
+    if (text->empty() || end != text->c_str() + text->size() || !std::isfinite(v))
+      throw InputError(where + ": expected one finite number, got '" + *text + "'");
+    return v;
+  }
   Handle a(H5Aopen(parameters, name, H5P_DEFAULT), H5Aclose);
   Handle space(a.valid() ? H5Aget_space(a.get()) : -1, H5Sclose);
   double v = NAN;
@@ -69,6 +78,20 @@ PoincareFile read_poincare_file(const std::string& path) {
   PoincareFile f;
   f.l = number(par.get(), path, "l");
   f.h = number(par.get(), path, "h");
+  f.scene_toml = hdf5::read_string_attribute(par.get(), "scene_toml").value_or("");
+  f.cardan = hdf5::read_string_attribute(par.get(), "system").value_or("") == "cardan (T^3)";
+  if (f.cardan) {
+    f.section = "cardan";
+    f.cardan_angles = vectors(read_column<double>(events.get(), path, "cardan_angles", 3, H5T_NATIVE_DOUBLE));
+    f.cardan_momenta = vectors(read_column<double>(events.get(), path, "cardan_momenta", 3, H5T_NATIVE_DOUBLE));
+    f.piece = read_column<std::int64_t>(events.get(), path, "piece", 1, H5T_NATIVE_INT64);
+    f.direction = read_column<std::int64_t>(events.get(), path, "direction", 1, H5T_NATIVE_INT64);
+    f.orbit = read_column<std::int64_t>(events.get(), path, "index", 1, H5T_NATIVE_INT64);
+    const std::size_t n = f.piece.size();
+    if (f.cardan_angles.size() != n || f.cardan_momenta.size() != n || f.direction.size() != n || f.orbit.size() != n)
+      throw InputError(path + ": the /events columns have different numbers of rows");
+    return f;
+  }
   f.axis = lie::Vec3(number(par.get(), path, "axis_1"), number(par.get(), path, "axis_2"),
                      number(par.get(), path, "axis_3"));
   f.section = hdf5::read_string_attribute(par.get(), "section").value_or("");

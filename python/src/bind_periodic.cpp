@@ -128,8 +128,9 @@ void add_appelrot_columns(py::dict& d, const ex::HeavyTopBody& body, const std::
 
 /// The columns of `rows`: a heavy top's (with the Kovalevskaya ones), or on a Cardan top
 /// those of periodic_columns, the CLI's (angular_momentum, gamma the body's; cardan_*).
-py::dict rows_columns(const SceneFlow& f, const std::vector<ex::FamilyOrbit>& rows) {
-  if (f.top) return table_columns(ex::periodic_columns(*f.flow, rows, std::nullopt));
+py::dict rows_columns(const SceneFlow& f, const std::vector<ex::FamilyOrbit>& rows,
+                      const std::optional<ex::PhaseSection>& section = std::nullopt) {
+  if (f.top) return table_columns(ex::periodic_columns(*f.flow, rows, section));
   py::dict d = family_columns(rows);
   add_appelrot_columns(d, f.flow->body, rows);
   return d;
@@ -168,8 +169,8 @@ py::dict periodic_orbit(const py::object& scene_arg, const py::object& angular_m
 }
 
 /// /manifolds as a dict of columns (text columns as lists of str).
-py::dict manifold_columns(const std::vector<ex::RowManifolds>& manifolds) {
-  return table_columns(ex::manifold_group(manifolds).columns);
+py::dict manifold_columns(const SceneFlow& f, const std::vector<ex::RowManifolds>& manifolds) {
+  return table_columns(ex::manifold_group(*f.flow, manifolds).columns);
 }
 
 /// The starts of continue_family: a seed (angular_momentum, gamma, period), or a poincare file's rows and points.
@@ -257,17 +258,16 @@ py::dict continue_family(const py::object& scene_arg, const py::object& l, const
   r.manifolds.points = o.manifolds, r.manifolds.periods = o.manifold_periods;
   r.manifolds.epsilon = o.manifold_epsilon, r.manifolds.dt = o.dt;
   if (o.manifolds > 0 && poincare.is_none()) throw py::value_error("manifolds: only with seeds_from_poincare");
-  if (f.top && !poincare.is_none()) throw py::value_error("seeds_from_poincare: not for a Cardan top (" + scene->file + ")");
   starts_of(r, f.top.has_value(), seed, poincare, poincare_rows, poincare_points);
   ex::PeriodicResult result;
   {
     const py::gil_scoped_release release;
     result = ex::periodic_families(*f.flow, r);
   }
-  py::dict d = rows_columns(f, result.rows);
+  py::dict d = rows_columns(f, result.rows, result.section);
   d["failures"] = result.failures;
   d["l_file"] = result.l;
-  if (o.manifolds > 0) d["manifolds"] = manifold_columns(result.manifolds);
+  if (o.manifolds > 0) d["manifolds"] = manifold_columns(f, result.manifolds);
   return d;
 }
 
@@ -313,7 +313,8 @@ void bind_periodic(py::module_& m) {
       "may be left out), with manifolds=N the stable and unstable manifolds of its hyperbolic orbits "
       "(d['manifolds']); shooting_points=M > 1 corrects by multiple shooting. The columns of `lgi periodic`'s "
       "/periodic, failures and l_file (the l used). On a Cardan scene with a vertical outer axis: its equilibria's "
-      "families or seed=(q, p, period), the CLI's Cardan columns (experiments/PERIODIC.md).");
+      "families, seed=(q, p, period), or the seeds of a Cardan poincare file (poincare_points (x, y, piece)), the "
+      "CLI's Cardan columns (experiments/PERIODIC.md).");
 }
 
 }  // namespace lgi::python

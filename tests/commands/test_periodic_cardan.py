@@ -15,7 +15,9 @@
    and the missing cyclic angle), a seed whose p1 is not --l, --from-critical."""
 import math
 import os
+import shutil
 
+import h5py
 import numpy as np
 from lgi_cli import SCENES, columns, lgi, refused
 from scipy.integrate import solve_ivp
@@ -142,3 +144,120 @@ def test_tilted_cardan_top_refused(tmp_path):
     line = refused("periodic", "--scene", HORIZONTAL, "--l", "1", "--from-equilibria", "--out", str(tmp_path / "t.h5"))
     assert "suspension.tilt" in line and "cyclic" in line
     assert not os.path.exists(tmp_path / "t.h5")
+
+
+def shape_velocity(q, p):
+    return np.linalg.solve(mass_matrix(q), p)
+
+
+def first_crossing(q0, p0, T):
+    """The first crossing of dq2/dt = 0 after t = 0 of the orbit from (q0, p0), by DOP853 (its event
+    located on the dense output): the state and its section point (x, y, piece) as lgi poincare writes it."""
+    event = lambda _, x: shape_velocity(x[:3], x[3:])[1]
+    s = solve_ivp(field, (1e-6, T), np.concatenate([q0, p0]), method="DOP853", rtol=1e-13, atol=1e-13, events=event)
+    x = s.y_events[0][0]
+    v = shape_velocity(x[:3], x[3:])
+    return x, (x[2] % (2 * math.pi), x[1] % (2 * math.pi), 1 if v[2] >= 0 else -1)
+
+
+def assert_orbits_meet_the_bar(p):
+    """Residuals, the four trivial multipliers and the product, and the return under DOP853."""
+    assert (p["residual"] <= 1e-10).all()
+    mu = p["multipliers"].reshape(-1, 6, 2)
+    assert np.abs(mu[:, :4, 0] - 1).max() <= 1e-8 and np.abs(mu[:, :4, 1]).max() <= 1e-8
+    assert (p["trivial_deviation"] <= 1e-8).all() and (p["product_deviation"] <= 1e-8).all()
+    for i in range(len(p["h"])):
+        q0, p0 = p["cardan_angles"][i], p["cardan_momenta"][i]
+        assert abs(q0[0]) < 1e-12 and abs(p0[0] - p["l"][i]) < 1e-12 and abs(energy(q0, p0) - p["h"][i]) < 1e-10
+        s = solve_ivp(field, (0, p["period"][i]), np.concatenate([q0, p0]), method="DOP853", rtol=1e-13,
+                      atol=1e-13)
+        end = s.y[:, -1]
+        dq = (end[1:3] - q0[1:3] + math.pi) % (2 * math.pi) - math.pi
+        assert np.abs(dq).max() < 1e-8 and np.abs(end[3:] - p0).max() < 1e-8, (i, dq, end[3:] - p0)
+        assert abs(end[0] - q0[0] - p["cardan_drift"][i]) < 1e-8
+
+
+# A point of the l = 1 family of period ~5.745 at h = -0.6467 (lgi periodic --l 1 --from-equilibria
+# --steps 1 --h-step 0.02, row 3).
+ORBIT_Q = [0.0, -2.1105776366446233, 1.0512403313064836]
+ORBIT_P = [1.0, 0.12341348, -0.34719336]
+
+
+def test_seeds_from_a_cardan_section(tmp_path):
+    """--seeds-from-poincare on a file of lgi poincare on the same Cardan top: the orbit through a
+    point (x, y, piece) of its section is found again (its crossing computed here by DOP853), its
+    section columns are that point, and each orbit meets the bar; files that do not fit are refused."""
+    base = str(tmp_path / "b.h5")
+    lgi("periodic", "--scene", UP, "--l", "1", "--from-equilibria", "--steps", "1", "--h-step", "0.02",
+        "--out", base, "--quiet")
+    b = columns(base, "periodic")
+    i = 3
+    x, pt = first_crossing(b["cardan_angles"][i], b["cardan_momenta"][i], b["period"][i])
+    h = repr(float(b["h"][i]))
+    sec = str(tmp_path / "s.h5")
+    lgi("poincare", "--scene", UP, "--l", "1", "--h", h, "--ics", "2", "--t-end", "5", "--out", sec, "--quiet")
+    point = "%r,%r,%d" % (float(pt[0]), float(pt[1]), pt[2])
+    out = str(tmp_path / "o.h5")
+    lgi("periodic", "--scene", UP, "--seeds-from-poincare", sec, "--poincare-point", point, "--steps", "1",
+        "--out", out, "--quiet")
+    s = columns(out, "periodic")
+    assert len(s["h"]) == 2 and s["h"][0] == b["h"][i]
+    assert abs(s["period"][0] - b["period"][i]) < 1e-8
+    assert abs(s["section_phi"][0] - pt[0]) < 1e-7 and abs(s["section_theta"][0] - pt[1]) < 1e-7
+    assert (s["section_sheet"] == pt[2]).all()
+    for q, p in zip(s["cardan_angles"], s["cardan_momenta"]):  # on the sheet dq2/dt = 0
+        assert abs(shape_velocity(q, p)[1]) < 1e-10
+    assert_orbits_meet_the_bar(s)
+
+    # A row of /events near the orbit's crossing (row 0 replaced here by it, q3 moved by 1e-6) finds it too.
+    rows = str(tmp_path / "r.h5")
+    shutil.copy(sec, rows)
+    with h5py.File(rows, "r+") as f:
+        f["events"]["cardan_angles"][0] = [0.0, x[1], x[2] + 1e-6]
+        f["events"]["cardan_momenta"][0] = x[3:]
+        f["events"]["piece"][0] = pt[2]
+    lgi("periodic", "--scene", UP, "--seeds-from-poincare", rows, "--poincare-rows", "0", "--steps", "0",
+        "--out", str(tmp_path / "ro.h5"), "--quiet")
+    r = columns(str(tmp_path / "ro.h5"), "periodic")
+    assert abs(r["period"][0] - s["period"][0]) < 1e-8 and abs(r["section_phi"][0] - s["section_phi"][0]) < 1e-7
+
+    # Refusals: --l not the file's, a piece not of the section, a point off the level, a row off the
+    # file's h, another top's file, a heavy top's file.
+    o = str(tmp_path / "x.h5")
+    assert "--l" in refused("periodic", "--scene", UP, "--l", "1.5", "--seeds-from-poincare", sec,
+                            "--poincare-point", point, "--out", o)
+    assert "--poincare-point" in refused("periodic", "--scene", UP, "--seeds-from-poincare", sec,
+                                         "--poincare-point", "1,1,5", "--out", o)
+    assert "--poincare-point" in refused("periodic", "--scene", UP, "--seeds-from-poincare", sec,
+                                         "--poincare-point", "0,0.1,1", "--out", o)
+    with h5py.File(rows, "r+") as f:
+        f["events"]["cardan_momenta"][0] = x[3:] * 1.1
+    assert "--poincare-rows" in refused("periodic", "--scene", UP, "--seeds-from-poincare", rows,
+                                        "--poincare-rows", "0", "--out", o)
+    other = tmp_path / "other.toml"
+    other.write_text(open(UP).read().replace("outer_inertia = 0.3", "outer_inertia = 0.31"))
+    lgi("poincare", "--scene", str(other), "--l", "1", "--h", h, "--ics", "1", "--t-end", "1", "--out",
+        str(tmp_path / "os.h5"), "--quiet")
+    line = refused("periodic", "--scene", UP, "--seeds-from-poincare", str(tmp_path / "os.h5"),
+                   "--poincare-point", point, "--out", o)
+    assert "--seeds-from-poincare" in line and "another top" in line
+    lgi("poincare", "--scene", os.path.join(SCENES, "general_top_richter.toml"), "--l", "1", "--h", "2",
+        "--ics", "1", "--t-end", "1", "--out", str(tmp_path / "hs.h5"), "--quiet")
+    line = refused("periodic", "--scene", UP, "--seeds-from-poincare", str(tmp_path / "hs.h5"),
+                   "--poincare-rows", "0", "--out", o)
+    assert "--seeds-from-poincare" in line and "heavy top" in line
+    assert not os.path.exists(o)
+
+
+def test_cardan_continuation_in_l(tmp_path):
+    """--continue-in l on a Cardan top: p1 = l varies along each family at fixed h, every orbit meets
+    the bar (residual, multipliers, return under DOP853)."""
+    out = str(tmp_path / "l.h5")
+    seed = tmp_path / "seed.txt"
+    seed.write_text(" ".join(repr(float(v)) for v in [*ORBIT_Q, *ORBIT_P, 5.745]) + "\n")
+    lgi("periodic", "--scene", UP, "--l", "1", "--seed-file", str(seed), "--continue-in", "l", "--l-step", "0.02",
+        "--steps", "2", "--out", out, "--quiet")
+    p = columns(out, "periodic")
+    assert len(p["h"]) == 3 and np.ptp(p["h"]) == 0.0
+    assert p["l"][0] == 1.0 and (np.diff(p["l"]) > 0.005).all()
+    assert_orbits_meet_the_bar(p)

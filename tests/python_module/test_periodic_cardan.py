@@ -74,3 +74,19 @@ def test_refusals():
         lgi.periodic_orbit(UP, [0, 1, 0], [1, 0, 0], 5.0, l=2.0)
     with pytest.raises(ValueError, match="p1"):
         lgi.continue_family(UP, 2.0, seed=([0, 1, 0], [1, 0, 0], 5.0))
+
+
+def test_seeds_from_a_cardan_section_as_the_cli(lgi_exe, tmp_path):
+    """continue_family(seeds_from_poincare=...) on a Cardan file runs the CLI's code: the same rows,
+    bit for bit, section columns included."""
+    h = repr(-0.6467150009301119)  # the h of the family of period ~5.745 (SEED_Q, SEED_P's family)
+    sec = str(tmp_path / "s.h5")
+    subprocess.run([lgi_exe, "poincare", "--scene", UP, "--l", "1", "--h", h, "--ics", "1", "--t-end", "1",
+                    "--out", sec, "--quiet"], check=True, capture_output=True)
+    point = (1.0334887134167072, 4.4302691254879685, -1)  # that orbit's crossing of dq2/dt = 0
+    cli = cli_rows(lgi_exe, tmp_path, "sec", "--seeds-from-poincare", sec, "--poincare-point",
+                   "%r,%r,%d" % point, "--steps", "1")
+    fam = lgi.continue_family(UP, seeds_from_poincare=sec, poincare_points=[point], steps=1)
+    assert len(cli["h"]) == 2 and fam["failures"] == [] and fam["l_file"] == 1.0
+    assert (cli["section_sheet"] == -1).all()
+    same_columns(fam, cli)

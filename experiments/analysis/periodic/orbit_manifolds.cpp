@@ -17,13 +17,13 @@ Vec6 eigenvector_near(const Mat6& M, double mu) {
 }
 
 /// v moved along the flow into the tangent plane of the section at x0, unit length.
-Vec6 into_section(const HeavyTopBody& body, const PhaseSection& sec, const Vec6& x0, const Vec6& v) {
-  const Vec6 f = euler_poisson_field(body, x0), g = section_gradient(body, sec, x0);
+Vec6 into_section(const PeriodicFlow& body, const PhaseSection& sec, const Vec6& x0, const Vec6& v) {
+  const Vec6 f = flow_field(body, x0), g = section_gradient(body, sec, x0);
   return (v - (g.dot(v) / g.dot(f)) * f).normalized();
 }
 
 /// The crossings of one branch (sign = +1 forwards, −1 backwards) from the fundamental domain.
-bool grow(const HeavyTopBody& body, const PhaseSection& sec, const PeriodicOrbit& o, const ManifoldSettings& s,
+bool grow(const PeriodicFlow& body, const PhaseSection& sec, const PeriodicOrbit& o, const ManifoldSettings& s,
           int branch, const Vec6& v, double span, double k, OrbitManifolds& out) {
   const double lam = std::abs(out.lambda), eps = s.epsilon * o.x0.norm();
   for (const int side : {1, -1})
@@ -51,7 +51,7 @@ bool grow(const HeavyTopBody& body, const PhaseSection& sec, const PeriodicOrbit
 
 }  // namespace
 
-std::vector<SectionCrossing> orbit_crossings(const HeavyTopBody& body, const PhaseSection& section,
+std::vector<SectionCrossing> orbit_crossings(const PeriodicFlow& body, const PhaseSection& section,
                                              const PeriodicOrbit& o, double dt, bool& ok) {
   // Half a step past T, so the crossing at T (x0 again) is among them.
   auto cs = section_crossings(body, section, o.x0, o.period + 0.5 * dt, dt, 1000000, 0, ok);
@@ -59,8 +59,10 @@ std::vector<SectionCrossing> orbit_crossings(const HeavyTopBody& body, const Pha
   return cs;
 }
 
-OrbitManifolds orbit_manifolds(const HeavyTopBody& body, const PhaseSection& section, const PeriodicOrbit& o,
+OrbitManifolds orbit_manifolds(const PeriodicFlow& body, const PhaseSection& file_section, const PeriodicOrbit& o,
                                const ManifoldSettings& s) {
+  // A Cardan top: the phase condition and the domain's points on the factor of S that vanishes at x0.
+  const PhaseSection section = section_at(body, file_section, o.x0);
   OrbitManifolds out;
   if (o.stability != "hyperbolic" && o.stability != "inverse_hyperbolic") {
     out.why_not = "the orbit is " + o.stability + ", not hyperbolic";

@@ -2,7 +2,9 @@
 // The stable and unstable manifolds of a hyperbolic periodic orbit on a
 // Poincaré section (experiments/PERIODIC.md "Manifolds").
 //
-// The orbit's point x0 lies on the section S = 0 (section_crossings.hpp) and
+// The orbit's point x0 lies on the section S = 0 (section_crossings.hpp; on a
+// Cardan top, on the factor of S that vanishes there, which the domain's
+// points are put on too) and
 // returns to it after m crossings (both directions), i.e. one period T: the
 // m-th return map F has the fixed point x0 and, in the section's plane of the
 // level set, the eigenvalues λ and 1/λ of the monodromy's nontrivial pair.
@@ -56,10 +58,10 @@ struct OrbitManifolds {
 };
 
 /// The crossings of the orbit from x0 over one period (the last at T is x0 again).
-std::vector<SectionCrossing> orbit_crossings(const HeavyTopBody& body, const PhaseSection& section,
+std::vector<SectionCrossing> orbit_crossings(const PeriodicFlow& body, const PhaseSection& section,
                                              const PeriodicOrbit& o, double dt, bool& ok);
 
-OrbitManifolds orbit_manifolds(const HeavyTopBody& body, const PhaseSection& section, const PeriodicOrbit& o,
+OrbitManifolds orbit_manifolds(const PeriodicFlow& body, const PhaseSection& section, const PeriodicOrbit& o,
                                const ManifoldSettings& s);
 
 }  // namespace lgi::experiments

@@ -45,13 +45,13 @@ CondensedSystem condensed_system(const PeriodicFlow& body, const FamilyPoint& z,
   const Vec6 x0 = z.head<6>();
   const Invariants inv = flow_invariants(body, x0);
   L.r.head<6>() = flow_difference(body, end, x0);
-  L.r(6) = s.section ? section_value(body.body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
+  L.r(6) = s.section ? section_value(body, *s.section, x0) : f_ref.dot(x0 - z_p.head<6>());
   L.r.segment<3>(7) = inv.value - (s.in_l ? invariant_levels(body, fixed, z(7)) : invariant_levels(body, z(7), fixed));
   L.r(10) = t.dot(z - z_p);
   L.A.setZero();
   L.A.topLeftCorner<6, 6>() = monodromy - Mat6::Identity();
   L.A.block<6, 1>(0, 6) = flow_field(body, end);
-  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body.body, *s.section, x0) : f_ref).transpose();
+  L.A.block<1, 6>(6, 0) = (s.section ? section_gradient(body, *s.section, x0) : f_ref).transpose();
   L.A.block<3, 6>(7, 0) = inv.gradients;
   L.A(s.in_l ? 8 : 7, 7) = -1.0;
   L.A.row(10) = t.transpose();

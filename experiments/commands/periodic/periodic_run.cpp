@@ -8,6 +8,8 @@
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/number_format.hpp"
+#include "experiments/io/scene_reader.hpp"
+#include "experiments/io/scene_suspension.hpp"
 
 namespace lgi::experiments {
 
@@ -28,7 +30,9 @@ std::vector<FamilyOrbit> seed_families(const PeriodicFlow& body, const std::vect
       failures.push_back(seed.failure);
     } else {
       const double h = std::isnan(seed.h) ? flow_invariants(body, seed.x).value(0) : seed.h;
-      f = continue_family(body, seed.x, seed.period, h, l, direction, family, s, failures);
+      FamilySettings own = s;  // a seed's own phase condition (a Cardan top's factor of its piece)
+      if (seed.section) own.shooting.section = seed.section;
+      f = continue_family(body, seed.x, seed.period, h, l, direction, family, own, failures);
     }
     if (seed_done && !seed_done(k + 1, seeds.size())) {  // the signal may have cut this seed short: dropped
       failures.resize(failures_before);
@@ -42,7 +46,7 @@ std::vector<FamilyOrbit> seed_families(const PeriodicFlow& body, const std::vect
 }
 
 /// The manifolds of each family's first orbit that is hyperbolic.
-std::vector<RowManifolds> manifolds_of(const HeavyTopBody& body, const PhaseSection& section,
+std::vector<RowManifolds> manifolds_of(const PeriodicFlow& body, const PhaseSection& section,
                                        const std::vector<FamilyOrbit>& rows, const ManifoldSettings& ms,
                                        std::vector<std::string>& failures) {
   std::vector<RowManifolds> out;
@@ -71,16 +75,82 @@ std::vector<SectionSeed> cardan_seeds(const std::vector<std::pair<Vec6, double>>
   return out;
 }
 
-/// A Cardan top's families: its relative equilibria's Lyapunov families, or seeds.
+/// The families of the seeds of a poincare file on its section, and their manifolds.
+void section_families(const PeriodicFlow& flow, const PeriodicRequest& r, PeriodicResult& out);
+
+/// A Cardan top's families: its relative equilibria's Lyapunov families, seeds, or a section's seeds.
 void cardan_families(const PeriodicFlow& flow, const PeriodicRequest& r, PeriodicResult& out) {
   if (!r.critical.empty()) throw UsageError("--from-critical: a Kovalevskaya top only, not a Cardan top");
-  if (!r.poincare.empty()) throw UsageError("--seeds-from-poincare: not for a Cardan top (its section is not Richter's)");
+  if (!r.poincare.empty()) return section_families(flow, r, out);
   out.l = r.l.value_or(0.0);
   if (r.from_equilibria)
     out.rows = cardan_lyapunov_families(*flow.cardan, out.l, r.settings, out.failures, r.direction, r.start_done);
   else
     out.rows = seed_families(flow, cardan_seeds(r.seeds, out.l), out.l, r.direction, r.settings, out.failures,
                              r.start_done, out.stopped);
+}
+
+/// Refuses (UsageError naming --seeds-from-poincare) a Cardan file of another top than `top`: its
+/// /parameters scene_toml must give the same mechanism, parameter for parameter.
+void check_same_cardan_top(const system::CardanTop& top, const PoincareFile& f, const PeriodicRequest& r) {
+  std::optional<system::CardanTop> other;
+  try {
+    const system::Scene scene = parse_scene(f.scene_toml, r.poincare + " /parameters scene_toml");
+    if (scene.suspension) other.emplace(cardan_top(scene));
+  } catch (const InputError& e) {
+    throw UsageError(std::string("--seeds-from-poincare: ") + e.what());
+  }
+  const auto& a = top.suspension;
+  const bool same = other && other->J == top.J && other->mass == top.mass && other->chi == top.chi &&
+                    other->g == top.g && other->suspension.tilt == a.tilt &&
+                    other->suspension.outer_inertia == a.outer_inertia &&
+                    other->suspension.inner_inertia == a.inner_inertia && other->suspension.outer_mass == a.outer_mass &&
+                    other->suspension.outer_center == a.outer_center && other->suspension.inner_mass == a.inner_mass &&
+                    other->suspension.inner_center == a.inner_center;
+  if (!same)
+    throw UsageError("--seeds-from-poincare: " + r.poincare + " was written for another top than --scene " +
+                     r.scene_file + " (its /parameters scene_toml gives a different mechanism)");
+}
+
+/// The poincare file of --seeds-from-poincare, refused (UsageError naming the flag) unless it is of
+/// `flow`'s kind of top at --l; a Cardan top's file must hold the same top (its scene_toml's).
+PoincareFile section_file(const PeriodicFlow& flow, const PeriodicRequest& r) {
+  const PoincareFile f = [&] {
+    try {
+      return read_poincare_file(r.poincare);
+    } catch (const InputError& e) {
+      throw UsageError(std::string("--seeds-from-poincare: ") + e.what());
+    }
+  }();
+  if (f.cardan != (flow.cardan != nullptr))
+    throw UsageError("--seeds-from-poincare: " + r.poincare + " is the section of " +
+                     (f.cardan ? "a Cardan top" : "a heavy top") + ", and --scene " + r.scene_file + " is " +
+                     (flow.cardan ? "a Cardan top" : "a heavy top"));
+  if (flow.cardan) check_same_cardan_top(*flow.cardan, f, r);
+  if (r.l && std::abs(*r.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
+    throw UsageError("--l: " + format_general(*r.l, 17) + " differs from the l of --seeds-from-poincare " + r.poincare +
+                     " (" + format_general(f.l, 17) + "); leave --l out");
+  return f;
+}
+
+void section_families(const PeriodicFlow& flow, const PeriodicRequest& r, PeriodicResult& out) {
+  const PoincareFile f = section_file(flow, r);
+  const FamilySettings& s = r.settings;
+  out.l = f.l;
+  FamilySettings on_section = s;
+  on_section.shooting.section = section_of(f);
+  out.section = on_section.shooting.section;
+  // Every seed is put at the file's level; its family starts at the file's h.
+  std::vector<SectionSeed> seeds = poincare_seeds(flow, f, r.poincare_rows, r.poincare_points, r.returns,
+                                                  s.shooting.dt, 500.0 * r.returns);
+  for (SectionSeed& seed : seeds) {
+    const PhaseSection phase = seed.section.value_or(*out.section);
+    if (seed.failure.empty() && !project_to_level(flow, seed.x, f.h, f.l, &phase))
+      seed.failure = seed.label + ": cannot be put on the level and the section";
+  }
+  out.rows = seed_families(flow, seeds, out.l, r.direction, on_section, out.failures, r.start_done, out.stopped);
+  if (r.manifolds.points > 0 && !out.stopped)
+    out.manifolds = manifolds_of(flow, *out.section, out.rows, r.manifolds, out.failures);
 }
 
 }  // namespace
@@ -120,28 +190,7 @@ PeriodicResult periodic_families(const PeriodicFlow& flow, const PeriodicRequest
     out.rows = seed_families(body, seeds, out.l, r.direction, s, out.failures, r.start_done, stopped);
     return out;
   }
-  const PoincareFile f = [&] {
-    try {
-      return read_poincare_file(r.poincare);
-    } catch (const InputError& e) {
-      throw UsageError(std::string("--seeds-from-poincare: ") + e.what());
-    }
-  }();
-  if (r.l && std::abs(*r.l - f.l) > 1e-12 * std::max(1.0, std::abs(f.l)))
-    throw UsageError("--l: " + format_general(*r.l, 17) + " differs from the l of --seeds-from-poincare " + r.poincare +
-                     " (" + format_general(f.l, 17) + "); leave --l out");
-  out.l = f.l;
-  FamilySettings on_section = s;
-  on_section.shooting.section = section_of(f);
-  out.section = on_section.shooting.section;
-  // Every seed is put at the file's level; its family starts at the file's h.
-  std::vector<SectionSeed> seeds = poincare_seeds(body, f, r.poincare_rows, r.poincare_points, r.returns,
-                                                  s.shooting.dt, 500.0 * r.returns);
-  for (SectionSeed& seed : seeds)
-    if (seed.failure.empty() && !project_to_level(body, seed.x, f.h, f.l, &*out.section))
-      seed.failure = seed.label + ": cannot be put on the level and the section";
-  out.rows = seed_families(body, seeds, out.l, r.direction, on_section, out.failures, r.start_done, stopped);
-  if (r.manifolds.points > 0 && !stopped) out.manifolds = manifolds_of(body, *out.section, out.rows, r.manifolds, out.failures);
+  section_families(flow, r, out);
   return out;
 }
 

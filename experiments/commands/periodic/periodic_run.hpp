@@ -51,8 +51,10 @@ struct PeriodicResult {
 
 /// The families of exactly one kind of start of `r` (UsageError naming the
 /// flag on a poincare file that does not fit). A Cardan top (flow.cardan)
-/// takes --from-equilibria and seeds (x = (q, p); q1 is set to 0, p1 must
-/// equal ℓ: UsageError naming --seed-file), not the section or the critical orbits.
+/// takes --from-equilibria, seeds (x = (q, p); q1 is set to 0, p1 must
+/// equal ℓ: UsageError naming --seed-file) and the seeds of a Cardan poincare
+/// file of the same top (its section S = −sin q2 q̇2, each seed's phase
+/// condition the factor of its piece: section_crossings.hpp), not the critical orbits.
 PeriodicResult periodic_families(const PeriodicFlow& flow, const PeriodicRequest& r);
 
 }  // namespace lgi::experiments

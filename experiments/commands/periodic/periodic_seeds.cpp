@@ -3,10 +3,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "experiments/analysis/cardan_section.hpp"
 #include "experiments/analysis/section_seeds.hpp"
 #include "experiments/errors/exit_status.hpp"
 #include "experiments/errors/input_error.hpp"
 #include "experiments/io/input_file.hpp"
+#include "experiments/io/number_format.hpp"
 
 namespace lgi::experiments {
 
@@ -42,6 +44,10 @@ std::vector<std::pair<Vec6, double>> read_seeds(const std::string& path) {
 
 PhaseSection section_of(const PoincareFile& f) {
   PhaseSection s;
+  if (f.cardan) {
+    s.cardan_factor = 0;
+    return s;
+  }
   s.kind = f.section == "richter" ? SectionKind::richter : SectionKind::gamma;
   s.axis = f.axis.normalized();
   return s;
@@ -72,32 +78,75 @@ std::vector<double> numbers(const std::string& text, const std::string& flag, st
 }
 
 /// The time of the returns-th crossing in x's own direction, 0 if none before t_max.
-double return_time(const HeavyTopBody& body, const PhaseSection& sec, const Vec6& x, int returns, double dt,
+double return_time(const PeriodicFlow& flow, const PhaseSection& sec, const Vec6& x, int returns, double dt,
                    double t_max) {
-  const int direction = section_gradient(body, sec, x).dot(euler_poisson_field(body, x)) >= 0.0 ? 1 : -1;
+  const int direction = section_rate(flow, sec, x) >= 0.0 ? 1 : -1;
   bool ok = true;
-  const auto cs = section_crossings(body, sec, x, t_max, dt, static_cast<std::size_t>(returns), direction, ok);
+  const auto cs = section_crossings(flow, sec, x, t_max, dt, static_cast<std::size_t>(returns), direction, ok);
   return cs.size() == static_cast<std::size_t>(returns) ? cs.back().t : 0.0;
 }
 
-}  // namespace
+/// A Cardan seed's phase condition: the factor of S of its piece (±1: q̇2; 2, 3: sin q2).
+PhaseSection cardan_phase(std::int64_t piece) {
+  PhaseSection s;
+  s.cardan_factor = piece == 1 || piece == -1 ? 0 : 1;
+  return s;
+}
 
-std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const PoincareFile& f, const std::string& rows,
-                                        const std::vector<std::string>& points, int returns, double dt, double t_max) {
+/// A Cardan top's seeds: rows of /events (q, p; q1 set to 0, p1 and H checked against the file's
+/// level) and points (x, y, piece) of its section.
+std::vector<SectionSeed> cardan_poincare_seeds(const PeriodicFlow& flow, const PoincareFile& f,
+                                               const std::vector<double>& rows, const std::vector<std::string>& points) {
+  std::vector<SectionSeed> seeds;
+  for (const double r : rows) {
+    const auto k = static_cast<std::size_t>(r);
+    SectionSeed s;
+    s.h = f.h;
+    s.x << 0.0, f.cardan_angles[k].tail<2>(), f.cardan_momenta[k];
+    const double H = flow_invariants(flow, s.x).value(0);
+    if (std::abs(s.x(3) - f.l) > 1e-9 * std::max(1.0, std::abs(f.l)) ||
+        !(std::abs(H - f.h) <= 1e-4 * std::max(1.0, std::abs(f.h))))
+      throw UsageError("--poincare-rows: row " + std::to_string(k) + " has p1 = " + format_general(s.x(3), 17) +
+                       ", H = " + format_general(H, 17) + " on the --scene top, not the file's l = " +
+                       format_general(f.l, 17) + ", h = " + format_general(f.h, 17));
+    s.label = "poincare row " + std::to_string(k);
+    s.section = cardan_phase(f.piece[k]);
+    // On the level and the sheet before the period guess: a row off the sheet by δ would cross it
+    // again at once (t ~ δ) in its own direction.
+    if (!project_to_level(flow, s.x, f.h, f.l, &*s.section))
+      s.failure = s.label + ": cannot be put on the level and the section";
+    seeds.push_back(s);
+  }
+  for (const std::string& p : points) {
+    const std::vector<double> v = numbers(p, "--poincare-point", 3);
+    if (v[2] != 1.0 && v[2] != -1.0 && v[2] != 2.0 && v[2] != 3.0)
+      throw UsageError("--poincare-point: '" + p + "': on a Cardan top's section the piece must be 1, -1, 2 or 3");
+    system::TorusState state;
+    if (!cardan_section_state(*flow.cardan, f.l, f.h, v[0], v[1], static_cast<int>(v[2]), state))
+      throw UsageError("--poincare-point: '" + p + "' has no state on the section at the file's (l, h)");
+    SectionSeed s;
+    s.h = f.h;
+    s.x = system::stack(state);
+    s.label = "poincare point (" + p + ")";
+    s.section = cardan_phase(static_cast<std::int64_t>(v[2]));
+    seeds.push_back(s);
+  }
+  return seeds;
+}
+
+/// A heavy top's seeds: rows of /events (Π, Γ) and points (φ, ϑ, sheet) of Richter's section.
+std::vector<SectionSeed> heavy_poincare_seeds(const HeavyTopBody& body, const PoincareFile& f,
+                                              const std::vector<double>& rows, const std::vector<std::string>& points) {
   const PhaseSection sec = section_of(f);
   std::vector<SectionSeed> seeds;
-  if (!rows.empty())
-    for (const double r : numbers(rows, "--poincare-rows", 0)) {
-      if (r != std::floor(r) || r < 0.0 || r >= static_cast<double>(f.gamma.size()))
-        throw UsageError("--poincare-rows: " + std::to_string(r) + " is not a row of /events (0 to " +
-                         std::to_string(f.gamma.size()) + " - 1)");
-      const auto k = static_cast<std::size_t>(r);
-      SectionSeed s;
-      s.h = f.h;
-      s.x << f.angular_momentum[k], f.gamma[k];
-      s.label = "poincare row " + std::to_string(k);
-      seeds.push_back(s);
-    }
+  for (const double r : rows) {
+    const auto k = static_cast<std::size_t>(r);
+    SectionSeed s;
+    s.h = f.h;
+    s.x << f.angular_momentum[k], f.gamma[k];
+    s.label = "poincare row " + std::to_string(k);
+    seeds.push_back(s);
+  }
   for (const std::string& p : points) {
     if (sec.kind != SectionKind::richter)
       throw UsageError("--poincare-point: only on Richter's section (the file's section is " + f.section + ")");
@@ -120,9 +169,36 @@ std::vector<SectionSeed> poincare_seeds(const HeavyTopBody& body, const Poincare
     s.returns = v.size() == 4 ? static_cast<int>(v[3]) : 0;
     seeds.push_back(s);
   }
+  return seeds;
+}
+
+/// The rows of --poincare-rows, each a row of /events.
+std::vector<double> event_rows(const std::string& rows, std::size_t count) {
+  std::vector<double> out;
+  if (rows.empty()) return out;
+  for (const double r : numbers(rows, "--poincare-rows", 0)) {
+    if (r != std::floor(r) || r < 0.0 || r >= static_cast<double>(count))
+      throw UsageError("--poincare-rows: " + std::to_string(r) + " is not a row of /events (0 to " +
+                       std::to_string(count) + " - 1)");
+    out.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SectionSeed> poincare_seeds(const PeriodicFlow& flow, const PoincareFile& f, const std::string& rows,
+                                        const std::vector<std::string>& points, int returns, double dt, double t_max) {
+  const PhaseSection sec = section_of(f);
+  std::vector<SectionSeed> seeds;
+  if (flow.cardan)
+    seeds = cardan_poincare_seeds(flow, f, event_rows(rows, f.piece.size()), points);
+  else
+    seeds = heavy_poincare_seeds(flow.body, f, event_rows(rows, f.gamma.size()), points);
   for (SectionSeed& s : seeds) {  // a point's own N (an orbit crossing N times a period) over --returns
+    if (!s.failure.empty()) continue;
     const int n = s.returns ? s.returns : returns;
-    s.period = return_time(body, sec, s.x, n, dt, t_max * n / returns);
+    s.period = return_time(flow, s.section.value_or(sec), s.x, n, dt, t_max * n / returns);
     if (s.period == 0.0)
       s.failure = s.label + ": no " + std::to_string(n) + "-th return to the section before t = " +
                   std::to_string(t_max * n / returns);

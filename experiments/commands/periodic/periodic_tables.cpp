@@ -55,7 +55,7 @@ std::vector<TableColumn> periodic_columns(const PeriodicFlow& flow, const std::v
     c[13].real.push_back(r.omega), c[14].real.push_back(o.trivial_deviation), c[15].real.push_back(o.product_deviation);
     c[16].whole.push_back(r.parent), c[17].real.push_back(o.reduced_trace), c[18].real.push_back(o.invariance_defect);
     c[19].text.push_back(r.family_end);
-    const SectionPoint p = section ? section_coordinates(flow.body, *section, o.x0) : SectionPoint{NAN, NAN, 0};
+    const SectionPoint p = section ? section_coordinates(flow, *section, o.x0) : SectionPoint{NAN, NAN, 0};
     c[20].real.push_back(p.phi), c[21].real.push_back(p.theta), c[22].whole.push_back(p.sheet);
   }
   if (flow.cardan)
@@ -69,7 +69,7 @@ std::vector<TableColumn> periodic_columns(const PeriodicFlow& flow, const std::v
   return c;
 }
 
-TableGroup manifold_group(const std::vector<RowManifolds>& all) {
+TableGroup manifold_group(const PeriodicFlow& flow, const std::vector<RowManifolds>& all) {
   TableGroup g{"manifolds", {{"family", 1, true}, {"index", 1, true}, {"branch", 1, false, {}, {}, {}, true},
                              {"side", 1, true}, {"point", 1, true}, {"s"}, {"crossing", 1, true}, {"t"},
                              {"phi"}, {"theta"}, {"sheet", 1, true}, {"angular_momentum", 3}, {"gamma", 3},
@@ -82,9 +82,17 @@ TableGroup manifold_group(const std::vector<RowManifolds>& all) {
       c[3].whole.push_back(p.side), c[4].whole.push_back(p.point), c[5].real.push_back(p.s);
       c[6].whole.push_back(p.crossing), c[7].real.push_back(p.t);
       c[8].real.push_back(p.at.phi), c[9].real.push_back(p.at.theta), c[10].whole.push_back(p.at.sheet);
-      for (int k = 0; k < 3; ++k) c[11].real.push_back(p.x(k)), c[12].real.push_back(p.x(k + 3));
+      const Vec6 x = body_point(flow, p.x);
+      for (int k = 0; k < 3; ++k) c[11].real.push_back(x(k)), c[12].real.push_back(x(k + 3));
       c[13].real.push_back(r.m.lambda), c[14].whole.push_back(r.m.returns);
     }
+  if (flow.cardan) {
+    TableColumn q{"cardan_angles", 3}, p{"cardan_momenta", 3};
+    for (const RowManifolds& r : all)
+      for (const ManifoldPoint& m : r.m.points)
+        for (int k = 0; k < 3; ++k) q.real.push_back(m.x(k)), p.real.push_back(m.x(k + 3));
+    c.push_back(std::move(q)), c.push_back(std::move(p));
+  }
   return g;
 }
 

@@ -25,6 +25,8 @@ struct RowManifolds {
   int family = 0, index = 0;
   OrbitManifolds m;
 };
-TableGroup manifold_group(const std::vector<RowManifolds>& all);
+/// On a Cardan top (flow.cardan) angular_momentum and gamma are the body's Π, Γ, and cardan_angles and
+/// cardan_momenta follow (the state q, p), as in /periodic.
+TableGroup manifold_group(const PeriodicFlow& flow, const std::vector<RowManifolds>& all);
 
 }  // namespace lgi::experiments
