@@ -70,6 +70,17 @@ def field(_, x):
     return np.concatenate([qdot, -np.array(dH)])
 
 
+def assert_returns_after_one_period(p, i):
+    """Row i's point, integrated for one period by SciPy's DOP853 on the field above, returns to itself:
+    (q2, q3) mod 2 pi and p to 1e-8, and q1 turned by cardan_drift."""
+    q0, p0 = p["cardan_angles"][i], p["cardan_momenta"][i]
+    s = solve_ivp(field, (0, p["period"][i]), np.concatenate([q0, p0]), method="DOP853", rtol=1e-13, atol=1e-13)
+    end = s.y[:, -1]
+    dq = (end[1:3] - q0[1:3] + math.pi) % (2 * math.pi) - math.pi
+    assert np.abs(dq).max() < 1e-8 and np.abs(end[3:] - p0).max() < 1e-8, (i, dq, end[3:] - p0)
+    assert abs(end[0] - q0[0] - p["cardan_drift"][i]) < 1e-8
+
+
 def frequencies(g1, g2):
     disc = math.sqrt(g1 * g1 - 4 * g2)
     return sorted(math.sqrt(-mu) for mu in (0.5 * (-g1 - disc), 0.5 * (-g1 + disc)) if mu < 0)
@@ -103,12 +114,7 @@ def test_lyapunov_families_of_a_cardan_top(tmp_path):
         q0, p0 = p["cardan_angles"][i], p["cardan_momenta"][i]
         assert abs(q0[0]) < 1e-12 and abs(p0[0] - 1.0) < 1e-12
         assert abs(energy(q0, p0) - p["h"][i]) < 1e-10
-        s = solve_ivp(field, (0, p["period"][i]), np.concatenate([q0, p0]), method="DOP853", rtol=1e-13,
-                      atol=1e-13)
-        end = s.y[:, -1]
-        dq = (end[1:3] - q0[1:3] + math.pi) % (2 * math.pi) - math.pi
-        assert np.abs(dq).max() < 1e-8 and np.abs(end[3:] - p0).max() < 1e-8, (i, dq, end[3:] - p0)
-        assert abs(end[0] - q0[0] - p["cardan_drift"][i]) < 1e-8
+        assert_returns_after_one_period(p, i)
         R = rz(q0[0]) @ rx(q0[1]) @ rz(q0[2])
         qdot = np.linalg.solve(mass_matrix(q0), p0)
         assert np.allclose(p["gamma"][i], R.T @ [0, 0, 1], atol=1e-14)
@@ -169,12 +175,7 @@ def assert_orbits_meet_the_bar(p):
     for i in range(len(p["h"])):
         q0, p0 = p["cardan_angles"][i], p["cardan_momenta"][i]
         assert abs(q0[0]) < 1e-12 and abs(p0[0] - p["l"][i]) < 1e-12 and abs(energy(q0, p0) - p["h"][i]) < 1e-10
-        s = solve_ivp(field, (0, p["period"][i]), np.concatenate([q0, p0]), method="DOP853", rtol=1e-13,
-                      atol=1e-13)
-        end = s.y[:, -1]
-        dq = (end[1:3] - q0[1:3] + math.pi) % (2 * math.pi) - math.pi
-        assert np.abs(dq).max() < 1e-8 and np.abs(end[3:] - p0).max() < 1e-8, (i, dq, end[3:] - p0)
-        assert abs(end[0] - q0[0] - p["cardan_drift"][i]) < 1e-8
+        assert_returns_after_one_period(p, i)
 
 
 # A point of the l = 1 family of period ~5.745 at h = -0.6467 (lgi periodic --l 1 --from-equilibria
