@@ -1,7 +1,12 @@
-// SweepRanks (sweep_ranks.hpp), compiled twice: with LGI_WITH_MPI=1 into an
-// MPI build of lgi (and the lgi-mpi test executable), with LGI_WITH_MPI=0
-// (one rank, no MPI) into the default lgi. Not part of lgi_experiments.
+// SweepRanks (sweep_ranks.hpp), compiled twice: with LGI_WITH_MPI=0 (one rank,
+// no MPI) into lgi_experiments, and with LGI_WITH_MPI=1 into an MPI build of lgi
+// (and the lgi-mpi test executable), where it takes the place of the library's
+// (experiments/CMakeLists.txt). Both variants define the same symbols.
 #include "experiments/commands/sweep/sweep_ranks.hpp"
+
+#ifndef LGI_WITH_MPI
+#define LGI_WITH_MPI 0  // the library's build
+#endif
 
 #include <omp.h>
 
