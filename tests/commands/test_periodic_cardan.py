@@ -12,7 +12,10 @@
  - --seed-file (q1 q2 q3 p1 p2 p3 T) finds a family's orbit again, by single
    shooting and by multiple shooting on 3 segments (period to 1e-9, same drift);
  - refusals with exit 2 and one line: a tilted frame (naming suspension.tilt
-   and the missing cyclic angle), a seed whose p1 is not --l, --from-critical."""
+   and the missing cyclic angle), a seed whose p1 is not --l, --from-critical;
+ - --seeds-from-poincare (a point of lgi poincare's section, its rows) and --continue-in l;
+ - --manifolds on an inverse hyperbolic orbit (lambda = -3.63), against the return map computed
+   here by DOP853 from the section's points (test_manifolds_of_an_inverse_hyperbolic_cardan_orbit)."""
 import math
 import os
 import shutil
@@ -262,3 +265,99 @@ def test_cardan_continuation_in_l(tmp_path):
     assert len(p["h"]) == 3 and np.ptp(p["h"]) == 0.0
     assert p["l"][0] == 1.0 and (np.diff(p["l"]) > 0.005).all()
     assert_orbits_meet_the_bar(p)
+
+
+def section_state(x, y, piece, l, h):
+    """The state over a point (x, y, piece = +-1) of the section at (l, h), written out here: q = (0, y, x),
+    qdot2 = 0, qdot1 from p1 = l, qdot3 (of the piece's sign) from H = h (docs/cardan.md section 9.5)."""
+    q = np.array([0.0, y, x])
+    M, V = mass_matrix(q), energy(q, np.zeros(3))
+    a, b = np.array([l / M[0, 0], 0, 0]), np.array([-M[0, 2] / M[0, 0], 0, 1.0])  # qdot = a + b qdot3
+    c2, c1, c0 = 0.5 * b @ M @ b, a @ M @ b, 0.5 * a @ M @ a + V - h
+    u = (-c1 + piece * math.sqrt(c1 * c1 - 4 * c2 * c0)) / (2 * c2)
+    return np.concatenate([q, M @ (a + b * u)])
+
+
+def nth_crossing(x, n, t_max):
+    """The n-th crossing (n >= 1) of either factor of the section (dq2/dt, sin q2) after t = 0 (before it if
+    t_max < 0) of the orbit from x, by DOP853: (t, state)."""
+    factors = [lambda _, z: shape_velocity(z[:3], z[3:])[1], lambda _, z: math.sin(z[1])]
+    s = solve_ivp(field, (0, t_max), x, method="DOP853", rtol=1e-12, atol=1e-12, events=factors)
+    c = sorted(((t, y) for k in (0, 1) for t, y in zip(s.t_events[k], s.y_events[k]) if abs(t) > 1e-9),
+               key=lambda r: abs(r[0]))
+    return c[n - 1]
+
+
+def torus_xy(z):
+    """(x, y) = (q3, q2) mod 2 pi of a state on a torus piece."""
+    return np.array([z[2] % (2 * math.pi), z[1] % (2 * math.pi)])
+
+
+# An inverse hyperbolic orbit: lgi periodic --l 1 --from-equilibria --steps 25 --h-step 0.05, family 2 (the
+# period-5.76 mode of equilibrium 0) past its period doubling at h = -0.1037, row 8 (T = 6.4536, tr P = -3.906):
+# its crossing of dq2/dt = 0 at t = 3.121 by DOP853, (x, y, piece), and its h.
+HYPERBOLIC_H = -0.005340203719125776
+HYPERBOLIC_POINT = (0.9341797680757195, 4.766096729250444, -1)
+
+
+def test_manifolds_of_an_inverse_hyperbolic_cardan_orbit(tmp_path):
+    """--manifolds on a Cardan section (experiments/PERIODIC.md, "Cardan tops", "Manifolds"), checked against
+    the return map F (the m-th return, m = `returns`) computed here with DOP853 from the section's points:
+    F(x0) = x0; the eigenvalues of DF (central differences in (x, y)) are lgi's lambda and 1/lambda; each
+    branch's domain leaves x0 along DF's eigenvector; every point lies on H = h, p1 = l and dq2/dt = 0; and
+    points started here on DF's eigenvectors between the domain's points, mapped by F^2 (F^-2 for the stable
+    branch; F swaps the sides of an inverse hyperbolic orbit), land on lgi's polyline of the domain's F^2
+    images (F^-2): the manifolds are invariant and the right ones."""
+    sec, out = str(tmp_path / "s.h5"), str(tmp_path / "m.h5")
+    lgi("poincare", "--scene", UP, "--l", "1", "--h", repr(HYPERBOLIC_H), "--ics", "1", "--t-end", "1", "--out", sec,
+        "--quiet")
+    lgi("periodic", "--scene", UP, "--seeds-from-poincare", sec, "--poincare-point", "%r,%r,%d" % HYPERBOLIC_POINT,
+        "--steps", "0", "--manifolds", "6", "--manifold-periods", "2.5", "--out", out, "--quiet")
+    p, m = columns(out, "periodic"), columns(out, "manifolds")
+    assert p["stability"][0].decode() == "inverse_hyperbolic" and len(p["h"]) == 1
+    assert_orbits_meet_the_bar(p)
+    h, T, lam, m_ret = p["h"][0], p["period"][0], m["multiplier"][0], m["returns"][0]
+    assert lam < -1 and (m["multiplier"] == lam).all() and (m["returns"] == m_ret).all() and m_ret == 2
+    mu = p["multipliers"][0].reshape(6, 2)[4:, 0]
+    assert abs(lam - mu[np.argmax(abs(mu))]) < 1e-12 * abs(lam)
+    x0 = np.array([p["section_phi"][0], p["section_theta"][0]])
+    piece = int(p["section_sheet"][0])
+    assert np.abs(x0 - HYPERBOLIC_POINT[:2]).max() < 1e-6 and piece == HYPERBOLIC_POINT[2]
+
+    def F(xy, n=m_ret, t_max=1.2 * T):
+        return torus_xy(nth_crossing(section_state(*xy, piece, 1.0, h), n, t_max)[1])
+
+    assert np.abs(F(x0) - x0).max() < 1e-9
+    d = 1e-6
+    DF = np.array([(F(x0 + d * e) - F(x0 - d * e)) / (2 * d) for e in np.eye(2)]).T
+    w, V = np.linalg.eig(DF)
+    assert np.abs(w.imag).max() == 0.0
+    w, V = w.real, V.real
+    u, s = np.argmax(abs(w)), np.argmin(abs(w))
+    assert abs(w[u] - lam) < 1e-7 * abs(lam) and abs(w[s] * lam - 1) < 1e-7
+
+    # Every point on the level and on the section's sheet dq2/dt = 0 (the orbit stays off q2 = 0, pi here).
+    for q, pp in zip(m["cardan_angles"], m["cardan_momenta"]):
+        assert abs(energy(q, pp) - h) < 1e-9 and pp[0] == 1.0 and q[0] == 0.0
+        assert abs(shape_velocity(q, pp)[1]) < 1e-10
+    assert set(m["sheet"]) == {1, -1}
+
+    branch = m["branch"].astype(str)
+    xy = np.stack([m["phi"], m["theta"]], axis=1)
+    for name, v, sense in (("unstable", V[:, u], 1), ("stable", V[:, s], -1)):
+        for side in (1, -1):
+            rows = (branch == name) & (m["side"] == side)
+            domain, images = xy[rows & (m["crossing"] == 0)] - x0, xy[rows & (m["crossing"] == 2 * m_ret)]
+            assert len(domain) == 6 and len(images) == 6
+            # The domain leaves x0 along DF's eigenvector, to O(s): measured angles 8e-6 ... 1.1e-4 at
+            # |off| = 3.7e-5 ... 3.6e-4 (at most 0.32 |off|); the two eigenvectors are 0.87 (sine) apart.
+            for off in domain:
+                assert abs(np.cross(off / np.linalg.norm(off), v)) < 0.5 * np.linalg.norm(off)
+            # A point between domain points 2 and 3 on the eigenvector, mapped by F^2 along the branch,
+            # lies on the segment of lgi's images of points 2 and 3 (measured: 4.3e-8 and 7.2e-8 off
+            # segments of 6.1e-4 and 7.1e-4, at t = 0.446; the chord's sag), not merely near it.
+            r = math.sqrt(np.linalg.norm(domain[2]) * np.linalg.norm(domain[3]))
+            z = F(x0 + r * np.sign(v @ domain[2]) * v, 2 * m_ret, sense * 2.2 * T)
+            a, b = images[2], images[3]
+            t = (z - a) @ (b - a) / ((b - a) @ (b - a))
+            assert 0.2 < t < 0.8 and np.linalg.norm(a + t * (b - a) - z) < 1e-3 * np.linalg.norm(b - a)

@@ -8,7 +8,9 @@ outer axis, as `lgi periodic` (experiments/PERIODIC.md, "Cardan tops"; python/RE
  - periodic_orbit from the seed is the CLI's first orbit of --seed-file
    --steps 0, bit-identical, plus converged, iterations and the monodromy;
  - a tilted frame is refused with the CLI's message naming suspension.tilt
-   (ValueError), and so is a seed whose p1 is not l."""
+   (ValueError), and so is a seed whose p1 is not l;
+ - seeds_from_poincare gives the CLI's rows, and manifolds=N its /manifolds
+   on an inverse hyperbolic orbit, bit-identical."""
 import os
 import subprocess
 
@@ -90,3 +92,24 @@ def test_seeds_from_a_cardan_section_as_the_cli(lgi_exe, tmp_path):
     assert len(cli["h"]) == 2 and fam["failures"] == [] and fam["l_file"] == 1.0
     assert (cli["section_sheet"] == -1).all()
     same_columns(fam, cli)
+
+
+def test_manifolds_of_a_cardan_orbit_as_the_cli(lgi_exe, tmp_path):
+    """continue_family(manifolds=N) on a Cardan file gives the CLI's /manifolds, bit for bit (cardan_angles,
+    cardan_momenta included), on the inverse hyperbolic orbit of tests/commands/test_periodic_cardan.py
+    (test_manifolds_of_an_inverse_hyperbolic_cardan_orbit checks the manifolds themselves)."""
+    h = repr(-0.005340203719125776)
+    sec, out = str(tmp_path / "s.h5"), str(tmp_path / "m.h5")
+    subprocess.run([lgi_exe, "poincare", "--scene", UP, "--l", "1", "--h", h, "--ics", "1", "--t-end", "1",
+                    "--out", sec, "--quiet"], check=True, capture_output=True)
+    point = (0.9341797680757195, 4.766096729250444, -1)
+    subprocess.run([lgi_exe, "periodic", "--scene", UP, "--seeds-from-poincare", sec, "--poincare-point",
+                    "%r,%r,%d" % point, "--steps", "0", "--manifolds", "4", "--manifold-periods", "1.5", "--out", out,
+                    "--quiet"], check=True, capture_output=True)
+    with h5py.File(out, "r") as f:
+        cli = {c: f["manifolds"][c][()] for c in f["manifolds"]}
+    fam = lgi.continue_family(UP, seeds_from_poincare=sec, poincare_points=[point], steps=0, manifolds=4,
+                              manifold_periods=1.5)
+    assert fam["stability"] == ["inverse_hyperbolic"] and len(cli["s"]) > 0
+    assert {"cardan_angles", "cardan_momenta"} <= set(cli)
+    same_columns(fam["manifolds"], cli)
