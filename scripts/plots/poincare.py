@@ -39,7 +39,8 @@ y, piece) in the panels of their pieces. A periodic file of another top, or of
 a heavy top on a Cardan section (or the reverse), is refused. Stderr says how
 many orbits, crossings and manifold points were drawn, and DIR/poincare_<file
 stem>_periodic.csv lists the crossings marked (family, index, h, period,
-stability, panel: 0 on a heavy top's section, else the piece; x, y as drawn).
+stability, mark: the marker's class, panel: 0 on a heavy top's section, else
+the piece; x, y as drawn).
 --zoom X0:X1:Y0:Y1 draws only that window of the (phi, torus angle) plane of a
 heavy top's section, or of the (q3, q2) plane on a Cardan top's two torus
 copies (the cylinders are drawn whole).
@@ -188,16 +189,17 @@ def kind_of(table, r):
 
 def report_marks(path, args, par, table, marks, n_orbits, manifolds, stem):
     """The stderr line of --periodic, and DIR/poincare_<stem>_periodic.csv: one row per mark drawn
-    (family, index, h, period, class, the panel: sheet or piece, and the mark's x, y as drawn)."""
+    (family, index, h, period, stability, the mark's class, its panel: 0 or the piece, x, y as drawn)."""
     def count(branch):
         return 0 if manifolds is None else int(np.sum(manifolds["branch"] == branch))
 
     out = c.claim(os.path.join(args.out, f"poincare_{stem}_periodic.csv"))
     with open(out, "w") as f:
-        f.write("family,index,h,period,stability,panel,x,y\n")
+        f.write("family,index,h,period,stability,mark,panel,x,y\n")
         for r, kind, panel, x, y in marks:
             f.write(f"{int(table['family'][r])},{int(table['index'][r])},{float(table['h'][r])!r},"
-                    f"{float(table['period'][r])!r},{kind},{int(panel)},{float(x)!r},{float(y)!r}\n")
+                    f"{float(table['period'][r])!r},{table['stability'][r]},{kind},{int(panel)},{float(x)!r},"
+                    f"{float(y)!r}\n")
     print(f"poincare.py: {path}: {n_orbits} periodic orbit(s) of {args.periodic} within "
           f"{c.num(args.periodic_h_tol)} of h = {c.num(par.get('h', 0))} at l = {c.num(par.get('l', 0))}, "
           f"{len(marks)} crossing(s) marked (listed in {out}); {count('unstable')} unstable and "

@@ -48,7 +48,7 @@ def plot(*args, code=0):
 def marks(csv):
     """poincare.py's list of the marks it drew: [(family, index, stability, panel, x, y)]."""
     rows = [line.split(",") for line in csv.read_text().splitlines()[1:]]
-    return [(int(f), int(i), s, int(p), float(x), float(y)) for f, i, _, _, s, p, x, y in rows]
+    return [(int(f), int(i), s, int(p), float(x), float(y)) for f, i, _, _, _, s, p, x, y in rows]
 
 
 def test_cardan_periodic_marks(tmp_path):
