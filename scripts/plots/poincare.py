@@ -29,7 +29,7 @@ where they cross the section (periodic_crossings.py): open circles elliptic,
 red crosses hyperbolic or inverse hyperbolic, grey diamonds degenerate; where
 the file has /manifolds (lgi periodic --manifolds) of an orbit drawn, the
 section points of its unstable manifold are drawn in red and of its stable
-manifold in blue. On a Cardan top's section the periodic file must be of the
+manifold in blue (the section's dots then faded). On a Cardan top's section the periodic file must be of the
 same Cardan top (its scene's mechanism, parameter for parameter): each orbit's
 crossings of either factor of the section are computed from its point
 (cardan_angles, cardan_momenta) over one period and marked at (x, y) in the
@@ -125,7 +125,7 @@ def draw_cardan(f, path, args, zoom):
     add_colour_bar(fig, sc, axes, label, ticks)
     if args.periodic:
         draw_marks(panels, marks)
-        draw_manifolds(panels, manifolds, False)
+        draw_manifolds(panels, manifolds, False, size=2.0)
         legend = fig.add_subplot(grid[rows, :])
         legend.axis("off")
         handles = {}
@@ -278,11 +278,15 @@ def read_manifolds(path, table, rows):
     return {k: v[keep] for k, v in m.items()} if np.any(keep) else None
 
 
-def draw_manifolds(panels, m, richter):
+def draw_manifolds(panels, m, richter, size=1.2):
     """Manifold points m (read_manifolds) on panels {panel: axes}: {0: the heavy top's one}, or a Cardan
-    top's {piece: axes}, each point in the panel of its piece; the unstable branch red, the stable blue."""
+    top's {piece: axes}, each point in the panel of its piece; the unstable branch red, the stable blue,
+    the section's dots already drawn faded."""
     if m is None:
         return
+    for ax in panels.values():  # the orbits' dots faded: their own reds and blues would pass for manifolds
+        for dots in ax.collections:
+            dots.set_alpha(0.35)
     for name, (colour, label) in MANIFOLD_COLOURS.items():
         for panel, ax in panels.items():
             sel = (m["branch"] == name) & ((m["sheet"] == panel) if panel else True)
@@ -290,7 +294,8 @@ def draw_manifolds(panels, m, richter):
                 continue
             y = (np.where(m["sheet"][sel] > 0, m["theta"][sel], 2 * np.pi - m["theta"][sel]) if richter
                  else m["theta"][sel])
-            ax.scatter(m["phi"][sel], y, s=1.2, color=colour, linewidths=0, zorder=4, label=label)
+            ax.scatter(m["phi"][sel], y, s=size, color=colour, linewidths=0, zorder=4)
+            ax.plot([], [], "o", ls="none", color=colour, ms=3.5, label=label)  # a legend entry one can see
 
 
 def region_boundary(ax, par):

@@ -123,6 +123,37 @@ def test_cardan_manifolds_and_marks_in_their_panels(tmp_path):
     poincare.c.plt.close(fig)
 
 
+# A hyperbolic orbit of the same top at l = 1 (family 0 of `lgi periodic --from-equilibria --steps 25
+# --h-step 0.02 --h-range=-1:1`, index 13, between its folds at h = -0.0245 and -0.0756; tr P = 3.11,
+# T = 14.244): its h and the point where it crosses the torus copy dq3/dt > 0, by lgi periodic
+# --seeds-from-poincare --returns 3, to 17 digits.
+HYPERBOLIC_H, HYPERBOLIC_POINT = "-0.05003916166763288", "2.60946322381019,3.81115459130907,1"
+
+
+def test_cardan_manifolds_of_a_hyperbolic_orbit(tmp_path):
+    """lgi periodic --manifolds on the hyperbolic orbit, drawn: all its /manifolds points counted on
+    stderr, the orbit's six crossings marked as hyperbolic (its own point exactly), and each mark with
+    manifold points near it in its panel (the manifolds leave the orbit's crossings)."""
+    sec, orbit = tmp_path / "s.h5", tmp_path / "o.h5"
+    lgi("poincare", "--scene", UP, "--l", "1", "--h", HYPERBOLIC_H, "--ics", "1", "--t-end", "1", "--out", sec)
+    lgi("periodic", "--scene", UP, "--seeds-from-poincare", sec, "--poincare-point", HYPERBOLIC_POINT, "--returns",
+        "3", "--steps", "0", "--manifolds", "4", "--manifold-periods", "2", "--manifold-epsilon", "1e-3",
+        "--out", orbit)
+    with h5py.File(orbit) as f:
+        assert f["periodic"]["stability"][0] in (b"hyperbolic", "hyperbolic")
+        m = {k: f["manifolds"][k][()] for k in ("branch", "phi", "theta", "sheet")}
+    unstable = sum(b in (b"unstable", "unstable") for b in m["branch"])
+    r = plot("--out", tmp_path / "fig", "--periodic", orbit, "--periodic-h-tol", "1e-9", sec)
+    assert f"{unstable} unstable and {len(m['branch']) - unstable} stable manifold point(s)" in r.stderr, r.stderr
+    drawn = marks(tmp_path / "fig" / "poincare_s_periodic.csv")
+    assert len(drawn) == 6 and all(d[2] == "hyperbolic" for d in drawn)
+    x, y, piece = (float(v) for v in HYPERBOLIC_POINT.split(","))
+    assert (int(piece), x, y) in [d[3:] for d in drawn]
+    for d in drawn:
+        near = (m["sheet"] == d[3]) & (np.hypot(m["phi"] - d[4], m["theta"] - d[5]) < 0.05)
+        assert near.sum() >= 4, d
+
+
 def test_cardan_periodic_refusals(tmp_path):
     """--periodic refuses, with one line naming it and exit 1: a heavy top's periodic file on a Cardan
     section, a Cardan top's on a heavy top's section, and a periodic file of another Cardan top."""
