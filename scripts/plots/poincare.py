@@ -111,7 +111,8 @@ def draw_cardan(f, path, args, zoom):
     panels = {}
     for ax, (piece, title, ylabel) in zip(axes, pieces):
         m = ev["piece"] == piece
-        sc = ax.scatter(ev["x"][m], ev["y"][m], c=values[m], s=size, cmap=cmap, vmin=vmin, vmax=vmax, linewidths=0)
+        sc = ax.scatter(ev["x"][m], ev["y"][m], c=values[m], s=size, cmap=cmap, vmin=vmin, vmax=vmax, linewidths=0,
+                        gid="section")
         background(ax, args)
         ax.set_xlim(0, 2 * np.pi)
         ax.set_ylim((0, 2 * np.pi) if piece in (1, -1) else (-np.pi, np.pi))
@@ -286,7 +287,8 @@ def draw_manifolds(panels, m, richter, size=1.2):
         return
     for ax in panels.values():  # the orbits' dots faded: their own reds and blues would pass for manifolds
         for dots in ax.collections:
-            dots.set_alpha(0.35)
+            if dots.get_gid() == "section":  # not U = h's contour
+                dots.set_alpha(0.35)
     for name, (colour, label) in MANIFOLD_COLOURS.items():
         for panel, ax in panels.items():
             sel = (m["branch"] == name) & ((m["sheet"] == panel) if panel else True)
@@ -365,7 +367,7 @@ def main():
         values, cmap, vmin, vmax, label, ticks = colour_values(args, ev, megno)
         size = args.dot_size or (0.6 if args.colour == "orbit" else 1.2)  # one colour per orbit is read from lines
         sc = ax.scatter(ev["phi"], y, c=values, s=size, cmap=cmap, vmin=vmin, vmax=vmax,
-                        linewidths=0)
+                        linewidths=0, gid="section")
         add_colour_bar(fig, sc, ax, label, ticks)
         background(ax, args)
         ax.set_xlim(0, 2 * np.pi)
