@@ -140,6 +140,14 @@ def test_crossings_agree_with_lgi_poincare(tmp_path):
     r = run("poincare.py", "--out", tmp_path / "fig", "--periodic", tmp_path / "p.h5", tmp_path / "sec.h5")
     assert "2 periodic orbit(s)" in r.stderr
     assert (tmp_path / "fig" / "poincare_sec.png").stat().st_size > 1000
+    # the marks drawn (listed beside the figure) of the first orbit are its crossings, on the torus angle
+    listed = np.genfromtxt(tmp_path / "fig" / "poincare_sec_periodic.csv", delimiter=",", names=True, dtype=None,
+                           encoding=None)
+    first = listed[listed["family"] == 0]
+    drawn = np.column_stack([mine[:, 0], np.where(mine[:, 2] > 0, mine[:, 1], 2 * np.pi - mine[:, 1])])
+    assert (first["panel"] == 0).all() and (first["stability"] == "inverse_hyperbolic").all()
+    assert (first["mark"] == "hyperbolic").all() and len(first) == 12
+    assert np.array_equal(np.column_stack([first["x"], first["y"]]), drawn)
     # /manifolds of the first orbit (as lgi periodic --manifolds writes it) drawn, in a --zoom window
     with h5py.File(tmp_path / "p.h5", "a") as f:
         g = f.create_group("manifolds")
