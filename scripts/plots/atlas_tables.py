@@ -39,7 +39,7 @@ MEGNO_THRESHOLD = 2.5
 
 def die(msg):
     print(f"atlas_tables: {msg}", file=sys.stderr)
-    sys.exit(1)
+    sys.exit(2)
 
 
 def attrs(group):

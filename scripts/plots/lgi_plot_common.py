@@ -269,7 +269,7 @@ def num(x):
 
 def die(msg):
     print(f"{os.path.basename(sys.argv[0])}: {msg}", file=sys.stderr)
-    sys.exit(1)
+    sys.exit(2)  # bad input: one line and exit 2, as lgi itself (README "Using lgi")
 
 
 # ── readers ──────────────────────────────────────────────────────────────────

@@ -28,7 +28,7 @@ little to the right of the previous one, so that overlapping families stay
 apart (the offset is a drawing aid, not a value of l), a dotted line tying
 its first orbit to its true (l, h), a black dot.
 
-Refused with one line on stderr and exit 1: a file without /periodic (or
+Refused with one line on stderr and exit 2: a file without /periodic (or
 unreadable), a stability class other than the four, a --branches file
 without /equilibria.
 """

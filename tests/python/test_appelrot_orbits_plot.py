@@ -54,5 +54,5 @@ def test_bifurcation_figure_with_orbits(tmp_path):
     assert all((out / f"appelrot_kov.{e}").stat().st_size > 1000 for e in ("pdf", "png"))
     r = subprocess.run(["/usr/bin/python3", str(PLOTS / "bifurcation.py"), "--out", str(out), "--periodic", str(bad),
                         str(kov)], env=ENV, capture_output=True, text=True)
-    assert r.returncode == 1 and str(bad) in r.stderr and "column k" in r.stderr
+    assert r.returncode == 2 and str(bad) in r.stderr and "column k" in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1

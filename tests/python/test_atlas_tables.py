@@ -46,7 +46,7 @@ def test_atlas_tables(tmp_path):
     r = subprocess.run(["/usr/bin/python3", str(SCRIPT), "--out", str(tmp_path / "gen2"), "--equilibria",
                         str(tmp_path / "kovalevskaya.h5"), "--sections", str(tmp_path / "kovalevskaya.h5")],
                        env=ENV, capture_output=True, text=True)
-    assert r.returncode == 1 and "no /equilibria" in r.stderr
+    assert r.returncode == 2 and "no /equilibria" in r.stderr
 
 
 def test_long_commands_are_wrapped_for_the_page():

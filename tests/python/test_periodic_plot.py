@@ -40,11 +40,11 @@ def run(script, *args, code=0):
 
 
 def refused(capsys, monkeypatch, *args):
-    """periodic.py's main in this process (a refusal needs no figure): its stderr, after exit 1."""
+    """periodic.py's main in this process (a refusal needs no figure): its stderr, after exit 2."""
     monkeypatch.setattr(sys, "argv", ["periodic.py", *map(str, args)])
     with pytest.raises(SystemExit) as e:
         periodic.main()
-    assert e.value.code == 1
+    assert e.value.code == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1, err
     return err
@@ -157,11 +157,11 @@ def test_crossings_agree_with_lgi_poincare(tmp_path):
     r = run("poincare.py", "--out", tmp_path / "fig4", "--periodic", tmp_path / "p.h5", "--zoom", "0.5:2:1:5.5",
             tmp_path / "sec.h5")
     assert (tmp_path / "fig4" / "poincare_sec.png").stat().st_size > 1000
-    r = run("poincare.py", "--out", tmp_path / "fig5", "--zoom", "2:1:0:1", tmp_path / "sec.h5", code=1)
+    r = run("poincare.py", "--out", tmp_path / "fig5", "--zoom", "2:1:0:1", tmp_path / "sec.h5", code=2)
     assert "--zoom" in r.stderr
     table = {"l": np.array([2.2, 2.2, 2.2]), "h": np.array([h, h + 0.008, h + 0.0005]),
              "family": np.array([0, 1, 1]), "event": np.array(["none"] * 3, dtype=object)}
     assert pc.orbits_at(table, 2.2, h, 1e-3) == [0, 2]  # of each family the nearest, within the tolerance
     assert pc.orbits_at(table, 2.2, h, 1e-2) == [0, 2] and pc.orbits_at(table, 2.3, h, 1e-2) == []
-    r = run("poincare.py", "--out", tmp_path / "fig3", "--periodic", tmp_path / "sec.h5", tmp_path / "sec.h5", code=1)
+    r = run("poincare.py", "--out", tmp_path / "fig3", "--periodic", tmp_path / "sec.h5", tmp_path / "sec.h5", code=2)
     assert "--periodic" in r.stderr and "not a file written by lgi periodic" in r.stderr

@@ -65,7 +65,7 @@ def test_appelrot_arcs_only_where_attained(tmp_path):
     out = tmp_path / "fig"
     plot("bifurcation.py", out, "--l-nonneg", "--h-range=-1:3", "--k-range=-0.2:5", kov)
     assert written(out, "appelrot_kov")
-    r = plot("bifurcation.py", out / "x", "--l-range", "5:6", kov, code=1)
+    r = plot("bifurcation.py", out / "x", "--l-range", "5:6", kov, code=2)
     assert "no value of l" in r.stderr
 
 

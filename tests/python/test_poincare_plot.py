@@ -30,7 +30,7 @@ def test_poincare_figures(tmp_path):
     # --colour megno on a file without MEGNO: one line, exit 1
     r = subprocess.run(["/usr/bin/python3", str(SCRIPT), "--out", str(tmp_path / "fig2"), "--colour", "megno",
                         str(tmp_path / "kov.h5")], env=ENV, capture_output=True, text=True)
-    assert r.returncode == 1 and "--megno" in r.stderr
+    assert r.returncode == 2 and "--megno" in r.stderr
 
 
 # --periodic on a Cardan section (experiments/POINCARE.md, "A top in a Cardan suspension"; PERIODIC.md,
@@ -179,7 +179,7 @@ def test_cardan_periodic_refusals(tmp_path):
     for p, s, words in ((heavy, sec, ("heavy top", "section of a Cardan top")),
                         (same, heavy_sec, ("Cardan top", "section of a heavy top")),
                         (other, sec, ("another top", "rings differ"))):
-        r = plot("--out", tmp_path / "x", "--periodic", p, s, code=1)
+        r = plot("--out", tmp_path / "x", "--periodic", p, s, code=2)
         assert len(r.stderr.strip().splitlines()) == 1 and "--periodic" in r.stderr, r.stderr
         assert all(w in r.stderr for w in words), r.stderr
     assert not list((tmp_path / "x").glob("*.png"))
