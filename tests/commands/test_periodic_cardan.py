@@ -361,3 +361,19 @@ def test_manifolds_of_an_inverse_hyperbolic_cardan_orbit(tmp_path):
             a, b = images[2], images[3]
             t = (z - a) @ (b - a) / ((b - a) @ (b - a))
             assert 0.2 < t < 0.8 and np.linalg.norm(a + t * (b - a) - z) < 1e-3 * np.linalg.norm(b - a)
+
+
+def test_a_seed_that_collapses_to_zero_period_is_no_orbit(tmp_path):
+    """Newton from the section point (0.75, 4.8) of piece 1 at h = -0.5117 (l = 1) goes to the trivial
+    solution of phi_T(x0) = x0, T -> 0 (found as a period of 2.3e-16 with all multipliers 1, once
+    listed as an elliptic orbit). A period of at most one step is no orbit: the seed is reported as
+    failed, with that reason, and nothing of it is written; a seed of a true orbit beside it still is."""
+    section, out = str(tmp_path / "s.h5"), str(tmp_path / "p.h5")
+    lgi("poincare", "--scene", UP, "--l", "1", "--h", "-0.5116918184608042", "--ics", "1", "--t-end", "1",
+        "--out", section, "--quiet")
+    r = lgi("periodic", "--scene", UP, "--seeds-from-poincare", section, "--poincare-point", "0.75,4.8,1",
+            "--poincare-point", "1.0307348182774148,3.9087648709016305,1", "--steps", "0", "--out", out, "--quiet")
+    assert "Newton went to the trivial solution T = 0" in r.stderr, r.stderr
+    p = columns(out, "periodic")
+    assert len(p["period"]) == 1 and abs(p["period"][0] - 5.672563603501278) < 1e-8
+    assert_orbits_meet_the_bar(p)

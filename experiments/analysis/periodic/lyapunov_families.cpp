@@ -147,7 +147,7 @@ std::vector<FamilyOrbit> families_of_starts(const PeriodicFlow& body, double l, 
       const PeriodicOrbit o = correct_orbit(body, start, 2.0 * std::numbers::pi / omega, h0, l, at_l);
       if (!o.converged) {
         failures.push_back("equilibrium " + std::to_string(e.row) + ", omega = " + std::to_string(omega) +
-                           ": the first orbit did not converge (residual " + std::to_string(o.residual) + ")");
+                           ": the first orbit: " + correction_failure(o, at_l));
         if (stop_after_mode()) return all;
         continue;
       }
@@ -173,7 +173,7 @@ std::vector<FamilyOrbit> continue_family(const PeriodicFlow& body, const Vec6& x
   const PeriodicOrbit o = correct_orbit(body, x0, T, h, l, s.shooting);
   if (!o.converged) {
     failures.push_back("seed at h = " + std::to_string(h) + ", T = " + std::to_string(T) +
-                       ": Newton did not converge (residual " + std::to_string(o.residual) + ")");
+                       ": " + correction_failure(o, s.shooting));
     return {};
   }
   FamilyOrbit first;

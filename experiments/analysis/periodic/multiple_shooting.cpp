@@ -99,7 +99,7 @@ PeriodicOrbit correct_multiple(const PeriodicFlow& body, const FamilyPoint& z_p,
     Z -= cod.solve(g.r);
     if (!(Z(n) > 0.0)) break;
   }
-  o.converged = o.residual <= s.tolerance;
+  o.converged = o.residual <= s.tolerance && !collapsed_to_zero_period(o, s);
   if (o.residual < INFINITY) classify_orbit(body, o);
   return o;
 }

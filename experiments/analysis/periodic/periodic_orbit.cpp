@@ -1,6 +1,7 @@
 #include "experiments/analysis/periodic/periodic_orbit.hpp"
 
 #include "experiments/analysis/periodic/multiple_shooting.hpp"
+#include "experiments/io/number_format.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -111,9 +112,16 @@ PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p
     z -= cod.solve(L.r);
     if (!(z(6) > 0.0)) break;
   }
-  o.converged = o.residual <= s.tolerance;  // false when no iterate was finite (residual ∞)
+  // false when no iterate was finite (residual ∞), or at the trivial solution T → 0
+  o.converged = o.residual <= s.tolerance && !collapsed_to_zero_period(o, s);
   if (o.residual < INFINITY) classify_orbit(body, o);
   return o;
+}
+
+std::string correction_failure(const PeriodicOrbit& o, const ShootingSettings& s) {
+  if (o.residual <= s.tolerance && collapsed_to_zero_period(o, s))
+    return "Newton went to the trivial solution T = 0 (period " + format_general(o.period, 3) + ", at most one step)";
+  return "Newton did not converge (residual " + std::to_string(o.residual) + ")";
 }
 
 }  // namespace lgi::experiments

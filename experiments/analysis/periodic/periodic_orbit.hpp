@@ -84,6 +84,14 @@ PeriodicOrbit correct_orbit(const PeriodicFlow& body, const Vec6& x_guess, doubl
 PeriodicOrbit correct_on_family(const PeriodicFlow& body, const FamilyPoint& z_p, const FamilyPoint& t, double fixed,
                                 const ShootingSettings& s);
 
+/// Newton's limit T → 0: φ_T(x0) = x0 holds for every x0 at T = 0, so a seed can converge to
+/// that trivial solution (a residual at round-off, all multipliers 1). A period of at most one
+/// step (s.dt) is that, never an orbit: such an iterate is not converged.
+inline bool collapsed_to_zero_period(const PeriodicOrbit& o, const ShootingSettings& s) { return o.period <= s.dt; }
+
+/// What a failed correction says: the trivial solution T → 0, or the residual Newton ended at.
+std::string correction_failure(const PeriodicOrbit& o, const ShootingSettings& s);
+
 /// (x0, T, p) of an orbit.
 FamilyPoint family_point(const PeriodicOrbit& o);
 
